@@ -1,0 +1,196 @@
+// spindrift public API: particle effects.
+//
+// The API follows Box2D v3: plain Def structs with sensible defaults, Create and
+// Destroy functions, and small value ids. All units are SI: metres, seconds,
+// kilograms, newtons; angles in radians (scene files use degrees).
+#pragma once
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <stdexcept>
+#include <string>
+#include <vector>
+
+namespace spindrift {
+
+/// Thrown for invalid definitions, bad ids and I/O failures. The message says
+/// what was wrong and what was expected.
+class Error : public std::runtime_error {
+public:
+    using std::runtime_error::runtime_error;
+};
+
+/// Handles. A zero index means "none"; ids are only valid for the world that
+/// made them.
+struct WorldId { std::uint32_t index = 0; std::uint32_t generation = 0; };
+struct EmitterId { std::uint32_t index = 0; };
+struct ForceId { std::uint32_t index = 0; };
+struct ColliderId { std::uint32_t index = 0; };
+struct FlowFieldId { std::uint32_t index = 0; };
+
+/// A uniformly sampled range [min, max].
+struct FloatRange { float min = 0.0f; float max = 0.0f; };
+/// One random t mixes min and max, so colours stay on the line between the
+/// two (what artists expect) instead of drifting through other hues.
+struct ColorRange { glm::vec4 min{1.0f}; glm::vec4 max{1.0f}; };
+
+/// One key of a piecewise-linear curve over normalised age t in [0, 1].
+struct CurveKey { float t = 0.0f; glm::vec4 value{1.0f}; };
+/// Piecewise-linear curve; empty means constant 1. At most kMaxCurveKeys keys,
+/// t strictly increasing.
+struct Curve { std::vector<CurveKey> keys; };
+inline constexpr int kMaxCurveKeys = 8;
+
+enum class Lifecycle : std::uint32_t {
+    Recycle = 0,  ///< fixed slots, each re-born as soon as it dies (GPU talk)
+    Spawn = 1,    ///< rate + bursts, dead slots go to a free list
+};
+
+enum class Integrator : std::uint32_t {
+    ExplicitEuler = 0,      ///< x += v dt; v += a dt (both from the old state)
+    SemiImplicitEuler = 1,  ///< v += a dt; x += v dt (symplectic)
+    Verlet = 2,             ///< velocity Verlet, a re-evaluated at the new position
+    Rk4 = 3,                ///< classic Runge-Kutta 4, forces at every stage
+};
+
+enum class SpawnShapeKind : std::uint32_t { Point = 0, Sphere = 1, Box = 2, Disk = 3, Cone = 4 };
+
+/// Where particles are born and which way they fly.
+struct SpawnShapeDef {
+    SpawnShapeKind kind = SpawnShapeKind::Point;
+    glm::vec3 center{0.0f};
+    /// Sphere, disk and cone radius (m). For a cone, the radius of its base disk.
+    float radius = 0.0f;
+    /// Box half extents (m).
+    glm::vec3 halfExtents{0.0f};
+    /// Sphere and box: born on the surface instead of in the volume.
+    bool surface = false;
+    /// Disk normal and cone axis; also the launch direction of every shape.
+    glm::vec3 direction{0.0f, 1.0f, 0.0f};
+    /// Half-angle (rad) of the cone of launch directions around `direction`.
+    float spreadAngle = 0.0f;
+};
+
+struct BurstDef {
+    float time = 0.0f;         ///< s since the emitter started
+    std::uint32_t count = 0;   ///< particles born at that time
+};
+
+/// Which colliders an emitter's particles hit, and what a hit does to them.
+struct CollisionResponseDef {
+    bool enabled = true;
+    /// Colliders by id; empty means every collider in the world.
+    std::vector<ColliderId> colliders;
+    bool killOnCollision = false;
+    /// Fraction of the remaining life lost at each hit, in [0, 1].
+    float lifeLossOnCollision = 0.0f;
+};
+
+struct EmitterDef {
+    std::string name;
+    Lifecycle lifecycle = Lifecycle::Spawn;
+    /// Slots (recycle: all of them cycle; spawn: the most alive at once).
+    std::uint32_t capacity = 1024;
+    /// Spawn mode: particles per second.
+    float rate = 100.0f;
+    /// Spawn mode and stateless emitters: timed bursts.
+    std::vector<BurstDef> bursts;
+    /// Stop emitting after this many seconds (< 0: never).
+    float duration = -1.0f;
+
+    SpawnShapeDef shape;
+    FloatRange speed{1.0f, 1.0f};            ///< m/s
+    FloatRange lifetime{1.0f, 1.0f};         ///< s, > 0
+    FloatRange size{0.1f, 0.1f};             ///< diameter, m
+    FloatRange rotation{0.0f, 0.0f};         ///< rad
+    FloatRange angularVelocity{0.0f, 0.0f};  ///< rad/s
+    ColorRange color;                        ///< linear RGBA
+    float mass = 1.0f;                       ///< kg, > 0
+
+    Curve colorOverLife;  ///< multiplies the start colour
+    Curve sizeOverLife;   ///< multiplies the start size (uses .x)
+
+    Integrator integrator = Integrator::SemiImplicitEuler;
+    /// Forces acting on this emitter; empty means every force in the world.
+    std::vector<ForceId> forces;
+    CollisionResponseDef collision;
+
+    /// Stateless: a closed-form function of time, p = p0 + v0 t + g t^2 / 2,
+    /// using `statelessGravity`; nothing is stored or simulated.
+    bool stateless = false;
+    glm::vec3 statelessGravity{0.0f, -9.81f, 0.0f};
+};
+
+enum class ForceKind : std::uint32_t {
+    Gravity = 0,    ///< uniform acceleration `vector` (m/s^2), F = m g
+    Wind = 1,       ///< linear drag toward wind velocity `vector`: F = strength (w - v)
+    Attractor = 2,  ///< toward `position`: |F| = strength (radius / d)^falloff; strength < 0 repels
+    Vortex = 3,     ///< around the line through `position` along `axis`, same falloff law
+    Damping = 4,    ///< speed decays exactly: s(t) = s0 exp(-strength t)
+    Undamping = 5,  ///< speed relaxes exactly toward `targetSpeed` at rate `strength` (bees)
+    FlowField = 6,  ///< Stokes drag toward the field: F = 6 pi viscosity r (v_flow - v)
+};
+
+struct ForceDef {
+    std::string name;
+    ForceKind kind = ForceKind::Gravity;
+    glm::vec3 vector{0.0f, -9.81f, 0.0f};  ///< gravity acceleration or wind velocity
+    glm::vec3 position{0.0f};
+    glm::vec3 axis{0.0f, 1.0f, 0.0f};
+    float strength = 1.0f;
+    /// Reference distance of the falloff law (m), > 0.
+    float radius = 1.0f;
+    /// Exponent of (radius / d): 2 = inverse square, 0 = constant, -1 = spring.
+    float falloff = 2.0f;
+    /// Force is zero beyond this distance (m); 0 means unlimited. For damping
+    /// and undamping it makes the force local, with rate scaled by (1 - d/range).
+    float range = 0.0f;
+    float targetSpeed = 1.0f;  ///< undamping, m/s
+    FlowFieldId flowField;     ///< flow field forces
+    float viscosity = 1.8e-5f; ///< eta, Pa s (air by default)
+};
+
+/// A grid of flow velocities over an axis-aligned box. 2D fields have nz = 1
+/// and are extruded along z.
+struct FlowFieldDef {
+    std::string name;
+    glm::vec3 boundsMin{-1.0f};
+    glm::vec3 boundsMax{1.0f};
+    std::uint32_t nx = 0, ny = 0, nz = 0;
+    /// nx * ny * nz velocities, x fastest, then y, then z (m/s).
+    std::vector<glm::vec3> velocities;
+};
+
+enum class ColliderKind : std::uint32_t { Plane = 0, Sphere = 1, Box = 2, Terrain = 3, CubeMap = 4 };
+
+/// Particles stay on the outside of every collider (the side the plane normal
+/// points to; outside spheres and boxes; above terrain; outside the cube-map
+/// shape).
+struct ColliderDef {
+    std::string name;
+    ColliderKind kind = ColliderKind::Plane;
+    /// Plane: a point on it and its unit normal. Sphere, box, cube map: centre.
+    glm::vec3 position{0.0f};
+    glm::vec3 normal{0.0f, 1.0f, 0.0f};
+    float radius = 1.0f;               ///< sphere
+    glm::vec3 halfExtents{0.5f};       ///< box
+    glm::vec3 rotationDegrees{0.0f};   ///< box orientation, XYZ Euler (deg)
+    /// Terrain: heights on an nx by nz grid over [position.x, position.x + sizeX]
+    /// x [position.z, position.z + sizeZ], x fastest; surface y = position.y + h.
+    std::uint32_t terrainNx = 0, terrainNz = 0;
+    float terrainSizeX = 0.0f, terrainSizeZ = 0.0f;
+    std::vector<float> heights;
+    /// Cube map: res x res texels per face, faces in Vulkan order
+    /// (+x, -x, +y, -y, +z, -z); each texel the distance (m) from `position` to
+    /// the shape's surface along the texel's direction.
+    std::uint32_t cubeResolution = 0;
+    std::vector<float> cubeDepths;
+
+    float friction = 0.0f;    ///< mu, fraction of tangential velocity removed
+    float resilience = 0.5f;  ///< e, fraction of normal velocity kept
+    /// Below this tangential speed (m/s) friction is not applied.
+    float restSpeed = 0.01f;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,71 @@
+// spindrift public API: scene files (TOML) and building a world from them.
+#pragma once
+
+#include <spindrift/world.h>
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace spindrift {
+
+/// A scene file was rejected. what() reads "file:line:col: key.path: message";
+/// the parts are also available separately.
+class SceneError : public Error {
+public:
+    SceneError(std::string file, int line, int column, std::string keyPath, std::string message);
+    const std::string& file() const { return file_; }
+    int line() const { return line_; }
+    int column() const { return column_; }
+    const std::string& keyPath() const { return keyPath_; }
+    const std::string& message() const { return message_; }
+
+private:
+    std::string file_;
+    int line_;
+    int column_;
+    std::string keyPath_;
+    std::string message_;
+};
+
+struct CameraDef {
+    glm::vec3 eye{0.0f, 2.0f, 10.0f};
+    glm::vec3 target{0.0f};
+    glm::vec3 up{0.0f, 1.0f, 0.0f};
+    float fovDegrees = 45.0f;
+    bool orthographic = false;
+    float orthoHeight = 10.0f;  ///< visible height (m) of an orthographic view
+};
+
+struct RunDef {
+    float dt = 1.0f / 60.0f;    ///< s
+    std::uint32_t steps = 300;  ///< default length of `spindrift run`
+};
+
+/// Everything a scene file describes. References between objects (an emitter's
+/// forces and colliders, a force's flow field) are stored as the ids that
+/// buildWorld() will give them: 1-based creation order per kind.
+struct SceneDef {
+    std::string source;  ///< file the scene came from
+    WorldDef world;
+    CameraDef camera;
+    RunDef run;
+    std::vector<FlowFieldDef> flowFields;
+    std::vector<ForceDef> forces;
+    std::vector<ColliderDef> colliders;
+    std::vector<EmitterDef> emitters;
+};
+
+/// Parses and validates a scene file; throws SceneError on the first problem,
+/// before anything is built. Relative data paths resolve against the file.
+SceneDef loadScene(const std::string& path);
+/// Same, from text in memory; `sourceName` is used in error messages and
+/// `baseDir` to resolve relative data paths.
+SceneDef parseScene(std::string_view text, const std::string& sourceName,
+                    const std::string& baseDir = ".");
+
+/// Creates a world with flow fields, forces, colliders and emitters in that
+/// order, so their ids match the SceneDef's references.
+WorldId buildWorld(const SceneDef& scene);
+
+}  // namespace spindrift

@@ -1,0 +1,36 @@
+// The CPU backend's side of the shared kernels: the KernelContext hooks of
+// src/kernels/context_hooks.glsl over plain arrays, then the kernels themselves,
+// compiled as C++.
+#pragma once
+
+#include "effects/fields.h"
+#include "kernels/types.glsl"
+
+namespace spindrift::kernels {
+
+struct KernelContext {
+    const ForceParams* forces;
+    uint forceTotal;
+    const ColliderParams* colliders;
+    uint colliderTotal;
+    const FieldSet* fields;
+};
+
+inline uint forceCount(KernelContext ctx) { return ctx.forceTotal; }
+inline ForceParams forceAt(KernelContext ctx, uint i) { return ctx.forces[i]; }
+inline uint colliderCount(KernelContext ctx) { return ctx.colliderTotal; }
+inline ColliderParams colliderAt(KernelContext ctx, uint i) { return ctx.colliders[i]; }
+inline vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw) {
+    return sampleFlow(ctx.fields->flows[field], uvw);
+}
+inline float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) {
+    return sampleHeight(ctx.fields->heights[map], uv);
+}
+inline vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) {
+    return sampleCube(ctx.fields->cubes[map], direction);
+}
+
+}  // namespace spindrift::kernels
+
+#include "kernels/stateless.glsl"
+#include "kernels/update.glsl"

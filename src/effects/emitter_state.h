@@ -1,0 +1,47 @@
+// One emitter's particles as structure-of-arrays (hot data, one array per
+// attribute) plus its cold definition and emission bookkeeping.
+//
+// Bytes per slot: position 12, velocity 12, colour 16, age 4, lifetime 4,
+// size 4, rotation 4, angular velocity 4, birth serial 4 = 64 B. Mass is one
+// value per emitter (EmitterDef::mass), so it lives in the parameters, not here.
+#pragma once
+
+#include "kernels/types.glsl"
+
+#include <spindrift/effects.h>
+
+#include <cstdint>
+#include <vector>
+
+namespace spindrift {
+
+struct ParticleArrays {
+    std::vector<glm::vec3> position;
+    std::vector<glm::vec3> velocity;
+    std::vector<glm::vec4> color;
+    std::vector<float> age;  // < 0: unborn (recycle) or dead (spawn)
+    std::vector<float> lifetime;
+    std::vector<float> size;
+    std::vector<float> rotation;
+    std::vector<float> angularVelocity;
+    std::vector<std::uint32_t> birth;
+
+    void resize(std::size_t n);
+};
+inline constexpr std::size_t kBytesPerSlot = 12 + 12 + 16 + 4 * 6;
+static_assert(kBytesPerSlot == 64);
+
+struct EmitterState {
+    EmitterDef def;
+    kernels::EmitterParams params;
+    ParticleArrays particles;
+    /// Spawn mode: free slots, the next to use at the back.
+    std::vector<std::uint32_t> freeSlots;
+    /// Serial of the next particle born (spawn mode).
+    std::uint32_t nextSerial = 0;
+    /// Fraction of a particle owed by the rate, carried between steps.
+    double emissionCarry = 0.0;
+    std::uint64_t alive = 0;
+};
+
+}  // namespace spindrift

@@ -1,0 +1,169 @@
+// One step of one state-preserving emitter on the CPU: a named list of passes.
+#include "effects/cpu_kernels.h"
+#include "effects/world_internal.h"
+
+#include <bit>
+#include <cmath>
+
+namespace spindrift {
+namespace {
+
+// Slots per chunk: fixed, so per-chunk results (deaths, counts) are the same
+// for any thread count.
+constexpr std::size_t kChunk = 4096;
+
+struct ChunkResult {
+    std::uint64_t born = 0;
+    std::uint64_t died = 0;
+    std::uint64_t hits[32] = {};
+    std::vector<std::uint32_t> dead;  // spawn mode: slots that died, ascending
+};
+
+kernels::Particle loadParticle(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i) {
+    kernels::Particle p;
+    p.position = a.position[i];
+    p.velocity = a.velocity[i];
+    p.color = a.color[i];
+    p.age = a.age[i];
+    p.lifetime = a.lifetime[i];
+    p.size = a.size[i];
+    p.rotation = a.rotation[i];
+    p.angularVelocity = a.angularVelocity[i];
+    p.mass = e.mass;
+    p.birth = a.birth[i];
+    p.alive = p.age >= 0.0f ? 1u : 0u;
+    return p;
+}
+
+void storeParticle(ParticleArrays& a, std::size_t i, const kernels::Particle& p) {
+    a.position[i] = p.position;
+    a.velocity[i] = p.velocity;
+    a.color[i] = p.color;
+    a.age[i] = p.age;
+    a.lifetime[i] = p.lifetime;
+    a.size[i] = p.size;
+    a.rotation[i] = p.rotation;
+    a.angularVelocity[i] = p.angularVelocity;
+    a.birth[i] = p.birth;
+}
+
+void countUpdate(const kernels::ParticleUpdate& r, ChunkResult& out) {
+    out.born += (r.events & kernels::SD_EVENT_BORN) != 0u ? 1 : 0;
+    out.died += (r.events & kernels::SD_EVENT_DIED) != 0u ? 1 : 0;
+    for (std::uint32_t mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
+        out.hits[std::countr_zero(mask)] += 1;
+    }
+}
+
+// Ages (s, at the end of the step) of the particles the emitter owes this step:
+// bursts whose time falls in [t0, t1), then the rate's particles, each born at
+// the moment the running count crosses an integer (so emission does not band
+// into one sheet per frame).
+std::vector<float> scheduleBirths(EmitterState& e, double t0, float dt) {
+    std::vector<float> ages;
+    double t1 = t0 + dt;
+    for (const BurstDef& b : e.def.bursts) {
+        if (b.time >= t0 && b.time < t1) {
+            ages.insert(ages.end(), b.count, static_cast<float>(t1 - b.time));
+        }
+    }
+    double activeEnd = e.def.duration >= 0.0f ? std::min<double>(t1, e.def.duration) : t1;
+    double activeDt = std::max(0.0, activeEnd - t0);
+    if (e.def.rate > 0.0f && activeDt > 0.0) {
+        double owed = e.emissionCarry + e.def.rate * activeDt;
+        auto count = static_cast<std::uint64_t>(std::floor(owed));
+        for (std::uint64_t j = 0; j < count; ++j) {
+            double bornAfterStart = (static_cast<double>(j) + 1.0 - e.emissionCarry) / e.def.rate;
+            ages.push_back(static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, static_cast<double>(dt))));
+        }
+        e.emissionCarry = owed - static_cast<double>(count);
+    }
+    return ages;
+}
+
+}  // namespace
+
+void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
+    const kernels::KernelContext ctx{w.forces.data(), static_cast<std::uint32_t>(w.forces.size()),
+                                     w.colliders.data(), static_cast<std::uint32_t>(w.colliders.size()),
+                                     &w.fields};
+    const kernels::EmitterParams& params = e.params;
+    const bool spawnMode = e.def.lifecycle == Lifecycle::Spawn;
+    ParticleArrays& a = e.particles;
+    std::vector<ChunkResult> chunks(WorkerPool::chunkCount(e.def.capacity, kChunk));
+
+    // Update: age, forces, integration, collisions and over-life values of
+    // every slot; recycle slots are born and re-born here.
+    {
+        w.pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
+            ChunkResult& out = chunks[c];
+            for (std::size_t i = begin; i < end; ++i) {
+                if (spawnMode && a.age[i] < 0.0f) {
+                    continue;  // free slot
+                }
+                kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, loadParticle(a, params, i), dt);
+                storeParticle(a, i, r.particle);
+                countUpdate(r, out);
+                if (spawnMode && (r.events & kernels::SD_EVENT_DIED) != 0u) {
+                    out.dead.push_back(static_cast<std::uint32_t>(i));
+                }
+            }
+        });
+    }
+
+    // Free the dead: their slots go on the free list in slot order.
+    std::uint64_t born = 0, died = 0;
+    for (ChunkResult& c : chunks) {
+        born += c.born;
+        died += c.died;
+        for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
+            stats.colliderHits[k].hits += c.hits[k];
+        }
+        e.freeSlots.insert(e.freeSlots.end(), c.dead.begin(), c.dead.end());
+    }
+
+    // Emission (spawn mode): births owed this step take free slots; beyond
+    // capacity they are dropped and counted, never overwriting live particles.
+    if (spawnMode) {
+        std::vector<float> ages = scheduleBirths(e, w.time, dt);
+        std::size_t count = std::min(ages.size(), e.freeSlots.size());
+        stats.clamped += ages.size() - count;
+        std::vector<std::uint32_t> slots(e.freeSlots.end() - static_cast<std::ptrdiff_t>(count), e.freeSlots.end());
+        e.freeSlots.resize(e.freeSlots.size() - count);
+        const std::uint32_t firstSerial = e.nextSerial;
+        std::vector<ChunkResult> birthChunks(WorkerPool::chunkCount(count, kChunk));
+        w.pool.forChunks(count, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
+            for (std::size_t k = begin; k < end; ++k) {
+                // The slot at the back of the free list is used first.
+                std::uint32_t slot = slots[count - 1 - k];
+                auto serial = firstSerial + static_cast<std::uint32_t>(k);
+                kernels::ParticleUpdate r = kernels::bornParticle(ctx, params, serial, ages[k]);
+                if (r.particle.age >= r.particle.lifetime) {
+                    r.particle = kernels::deadParticle(r.particle);  // killed at once by a collision
+                    r.events |= kernels::SD_EVENT_DIED;
+                }
+                storeParticle(a, slot, r.particle);
+                countUpdate(r, birthChunks[c]);
+                if ((r.events & kernels::SD_EVENT_DIED) != 0u) {
+                    birthChunks[c].dead.push_back(slot);
+                }
+            }
+        });
+        e.nextSerial += static_cast<std::uint32_t>(count);
+        for (ChunkResult& c : birthChunks) {
+            born += c.born;
+            died += c.died;
+            for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
+                stats.colliderHits[k].hits += c.hits[k];
+            }
+            e.freeSlots.insert(e.freeSlots.end(), c.dead.begin(), c.dead.end());
+        }
+    }
+
+    // Tally.
+    e.alive = e.alive + born - died;
+    stats.born += born;
+    stats.died += died;
+}
+
+}  // namespace spindrift

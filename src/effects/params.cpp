@@ -1,0 +1,241 @@
+#include "effects/params.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+#include <cstring>
+
+namespace spindrift {
+namespace {
+
+glm::vec4 v4(glm::vec3 v, float w) { return glm::vec4(v, w); }
+
+void require(bool ok, const std::string& object, const char* field, const std::string& expected) {
+    if (!ok) {
+        throw Error(fmt::format("{}: {}: expected {}", object, field, expected));
+    }
+}
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+void requireRange(const FloatRange& r, const std::string& object, const char* field) {
+    require(std::isfinite(r.min) && std::isfinite(r.max) && r.min <= r.max, object, field,
+            "a finite range with min <= max");
+}
+
+std::string label(const char* kind, const std::string& name) {
+    return name.empty() ? std::string(kind) : fmt::format("{} '{}'", kind, name);
+}
+
+}  // namespace
+
+kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what) {
+    kernels::CurveParams c;
+    std::memset(&c, 0, sizeof c);
+    require(curve.keys.size() <= static_cast<std::size_t>(kMaxCurveKeys), what, "keys",
+            fmt::format("at most {} keys", kMaxCurveKeys));
+    float previous = -1.0f;
+    for (std::size_t i = 0; i < curve.keys.size(); ++i) {
+        const CurveKey& k = curve.keys[i];
+        require(k.t >= 0.0f && k.t <= 1.0f && k.t > previous, what, "keys",
+                "key times strictly increasing in [0, 1]");
+        previous = k.t;
+        c.values[i] = k.value;
+        c.times[i / 4][i % 4] = k.t;
+    }
+    c.count = static_cast<std::uint32_t>(curve.keys.size());
+    return c;
+}
+
+void validateEmitterDef(const EmitterDef& d) {
+    std::string who = label("emitter", d.name);
+    require(d.capacity >= 1 && d.capacity <= (1u << 24), who, "capacity", "1 to 16777216 slots");
+    require(std::isfinite(d.rate) && d.rate >= 0.0f, who, "rate", "a finite rate >= 0 per second");
+    requireRange(d.speed, who, "speed");
+    requireRange(d.lifetime, who, "lifetime");
+    require(d.lifetime.min > 0.0f, who, "lifetime", "lifetimes > 0 s");
+    requireRange(d.size, who, "size");
+    require(d.size.min >= 0.0f, who, "size", "sizes >= 0 m");
+    requireRange(d.rotation, who, "rotation");
+    requireRange(d.angularVelocity, who, "angular_velocity");
+    require(std::isfinite(d.mass) && d.mass > 0.0f, who, "mass", "a mass > 0 kg");
+    require(d.collision.lifeLossOnCollision >= 0.0f && d.collision.lifeLossOnCollision <= 1.0f, who,
+            "collision.life_loss", "a fraction in [0, 1]");
+    const SpawnShapeDef& s = d.shape;
+    require(finite(s.center) && finite(s.halfExtents) && std::isfinite(s.radius) && s.radius >= 0.0f, who, "shape",
+            "finite centre and extents, radius >= 0");
+    require(finite(s.direction) && glm::length(s.direction) > 0.0f, who, "shape.direction", "a non-zero direction");
+    require(s.spreadAngle >= 0.0f && s.spreadAngle <= 3.14159266f, who, "shape.spread", "an angle in [0, 180] degrees");
+    for (const BurstDef& b : d.bursts) {
+        require(std::isfinite(b.time) && b.time >= 0.0f, who, "bursts.time", "a time >= 0 s");
+        require(b.count < (1u << 20), who, "bursts.count", "fewer than 1048576 particles per burst");
+    }
+}
+
+kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,
+                                         std::uint32_t forceMask, std::uint32_t colliderMask) {
+    validateEmitterDef(d);
+    kernels::EmitterParams e;
+    std::memset(&e, 0, sizeof e);
+    e.shapeCenter = v4(d.shape.center, d.shape.radius);
+    e.shapeHalfExtents = v4(d.shape.halfExtents, d.shape.spreadAngle);
+    e.shapeDirection = v4(glm::normalize(d.shape.direction), 0.0f);
+    e.colorMin = d.color.min;
+    e.colorMax = d.color.max;
+    e.statelessGravity = v4(d.statelessGravity, 0.0f);
+    e.speedMin = d.speed.min;
+    e.speedMax = d.speed.max;
+    e.lifetimeMin = d.lifetime.min;
+    e.lifetimeMax = d.lifetime.max;
+    e.sizeMin = d.size.min;
+    e.sizeMax = d.size.max;
+    e.rotationMin = d.rotation.min;
+    e.rotationMax = d.rotation.max;
+    e.angularVelocityMin = d.angularVelocity.min;
+    e.angularVelocityMax = d.angularVelocity.max;
+    e.mass = d.mass;
+    e.lifeLossOnCollision = d.collision.lifeLossOnCollision;
+    e.shapeKind = static_cast<std::uint32_t>(d.shape.kind);
+    e.integrator = static_cast<std::uint32_t>(d.integrator);
+    e.flags = (d.lifecycle == Lifecycle::Recycle ? kernels::SD_EMITTER_RECYCLE : 0u) |
+              (d.shape.surface ? kernels::SD_EMITTER_SHAPE_SURFACE : 0u) |
+              (d.collision.killOnCollision ? kernels::SD_EMITTER_KILL_ON_COLLISION : 0u) |
+              (d.collision.enabled && colliderMask != 0 ? kernels::SD_EMITTER_COLLISIONS : 0u);
+    e.seed = seed;
+    e.emitterIndex = emitterIndex;
+    e.capacity = d.capacity;
+    e.forceMask = forceMask;
+    e.colliderMask = colliderMask;
+    std::string who = label("emitter", d.name);
+    e.colorOverLife = makeCurveParams(d.colorOverLife, who + " color_over_life");
+    e.sizeOverLife = makeCurveParams(d.sizeOverLife, who + " size_over_life");
+    return e;
+}
+
+void validateFlowFieldDef(const FlowFieldDef& d) {
+    std::string who = label("flow field", d.name);
+    require(d.nx >= 1 && d.ny >= 1 && d.nz >= 1, who, "resolution", "at least 1 x 1 x 1 cells");
+    require(d.velocities.size() == static_cast<std::size_t>(d.nx) * d.ny * d.nz, who, "velocities",
+            fmt::format("{} velocities (nx * ny * nz)", static_cast<std::size_t>(d.nx) * d.ny * d.nz));
+    glm::vec3 extent = d.boundsMax - d.boundsMin;
+    require(finite(extent) && extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f, who, "bounds",
+            "max > min on every axis");
+    for (glm::vec3 v : d.velocities) {
+        require(finite(v), who, "velocities", "finite velocities");
+    }
+}
+
+void validateForceDef(const ForceDef& d) {
+    std::string who = label("force", d.name);
+    require(finite(d.vector) && finite(d.position) && finite(d.axis), who, "vector/position/axis", "finite values");
+    require(std::isfinite(d.strength), who, "strength", "a finite number");
+    require(std::isfinite(d.radius) && d.radius > 0.0f, who, "radius", "a radius > 0 m");
+    require(std::isfinite(d.falloff), who, "falloff", "a finite exponent");
+    require(std::isfinite(d.range) && d.range >= 0.0f, who, "range", "a range >= 0 m (0: unlimited)");
+    require(std::isfinite(d.targetSpeed) && d.targetSpeed >= 0.0f, who, "target_speed", "a speed >= 0 m/s");
+    require(std::isfinite(d.viscosity) && d.viscosity >= 0.0f, who, "viscosity", "a viscosity >= 0 Pa s");
+    if (d.kind == ForceKind::Vortex) {
+        require(glm::length(d.axis) > 0.0f, who, "axis", "a non-zero axis");
+    }
+    if (d.kind == ForceKind::Damping || d.kind == ForceKind::Undamping || d.kind == ForceKind::Wind) {
+        require(d.strength >= 0.0f, who, "strength", "a rate >= 0 (a negative one would blow up)");
+    }
+}
+
+kernels::ForceParams makeForceParams(const ForceDef& d, const FlowFieldDef* flow, std::uint32_t flowIndex) {
+    validateForceDef(d);
+    kernels::ForceParams f;
+    std::memset(&f, 0, sizeof f);
+    f.vector = v4(d.vector, 0.0f);
+    f.position = v4(d.position, d.range);
+    glm::vec3 axis = glm::length(d.axis) > 0.0f ? glm::normalize(d.axis) : glm::vec3(0.0f, 1.0f, 0.0f);
+    f.axis = v4(axis, d.targetSpeed);
+    if (flow != nullptr) {
+        f.flowMin = v4(flow->boundsMin, d.viscosity);
+        f.flowInvExtent = v4(1.0f / (flow->boundsMax - flow->boundsMin), 0.0f);
+    }
+    f.kind = static_cast<std::uint32_t>(d.kind);
+    f.flowField = flowIndex;
+    f.strength = d.strength;
+    f.radius = d.radius;
+    f.falloff = d.falloff;
+    return f;
+}
+
+void validateColliderDef(const ColliderDef& d) {
+    std::string who = label("collider", d.name);
+    require(finite(d.position) && finite(d.normal) && finite(d.halfExtents) && finite(d.rotationDegrees), who,
+            "position/normal/half_extents/rotation", "finite values");
+    require(d.friction >= 0.0f && d.friction <= 1.0f, who, "friction", "a fraction in [0, 1]");
+    require(d.resilience >= 0.0f && d.resilience <= 1.0f, who, "resilience", "a fraction in [0, 1]");
+    require(std::isfinite(d.restSpeed) && d.restSpeed >= 0.0f, who, "rest_speed", "a speed >= 0 m/s");
+    switch (d.kind) {
+        case ColliderKind::Plane:
+            require(glm::length(d.normal) > 0.0f, who, "normal", "a non-zero normal");
+            break;
+        case ColliderKind::Sphere:
+            require(std::isfinite(d.radius) && d.radius > 0.0f, who, "radius", "a radius > 0 m");
+            break;
+        case ColliderKind::Box:
+            require(d.halfExtents.x > 0.0f && d.halfExtents.y > 0.0f && d.halfExtents.z > 0.0f, who,
+                    "half_extents", "half extents > 0 m");
+            break;
+        case ColliderKind::Terrain:
+            require(d.terrainNx >= 2 && d.terrainNz >= 2, who, "resolution", "at least 2 x 2 heights");
+            require(d.heights.size() == static_cast<std::size_t>(d.terrainNx) * d.terrainNz, who, "heights",
+                    "nx * nz heights");
+            require(d.terrainSizeX > 0.0f && d.terrainSizeZ > 0.0f, who, "size", "a size > 0 m on x and z");
+            for (float h : d.heights) {
+                require(std::isfinite(h), who, "heights", "finite heights");
+            }
+            break;
+        case ColliderKind::CubeMap:
+            require(d.cubeResolution >= 2, who, "resolution", "at least 2 x 2 texels per face");
+            require(d.cubeDepths.size() == 6ull * d.cubeResolution * d.cubeResolution, who, "depths",
+                    "6 * res * res depths");
+            for (float depth : d.cubeDepths) {
+                require(std::isfinite(depth) && depth >= 0.0f, who, "depths", "finite depths >= 0 m");
+            }
+            break;
+    }
+}
+
+kernels::ColliderParams makeColliderParams(const ColliderDef& d, std::uint32_t dataIndex) {
+    validateColliderDef(d);
+    kernels::ColliderParams c;
+    std::memset(&c, 0, sizeof c);
+    c.position = v4(d.position, d.radius);
+    c.normal = v4(glm::length(d.normal) > 0.0f ? glm::normalize(d.normal) : glm::vec3(0.0f, 1.0f, 0.0f), 0.0f);
+    c.halfExtents = v4(d.halfExtents, 0.0f);
+    // Box frame from XYZ Euler angles: R = Rz * Ry * Rx, columns are the axes.
+    glm::vec3 r = glm::radians(d.rotationDegrees);
+    glm::mat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
+    glm::mat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
+    glm::mat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
+    glm::mat3 rot = rz * ry * rx;
+    c.axisX = v4(rot[0], 0.0f);
+    c.axisY = v4(rot[1], 0.0f);
+    c.axisZ = v4(rot[2], 0.0f);
+    c.kind = static_cast<std::uint32_t>(d.kind);
+    c.dataIndex = dataIndex;
+    c.friction = d.friction;
+    c.resilience = d.resilience;
+    c.restSpeed = d.restSpeed;
+    if (d.kind == ColliderKind::Terrain) {
+        c.grid = glm::vec4(d.terrainSizeX, d.terrainSizeZ, static_cast<float>(d.terrainNx),
+                           static_cast<float>(d.terrainNz));
+        // Half a cell: a march this fine cannot step over a bump of the bilinear surface.
+        c.marchStep = 0.5f * std::min(d.terrainSizeX / (d.terrainNx - 1), d.terrainSizeZ / (d.terrainNz - 1));
+    } else if (d.kind == ColliderKind::CubeMap) {
+        c.grid = glm::vec4(static_cast<float>(d.cubeResolution), 0.0f, 0.0f, 0.0f);
+        float minDepth = d.cubeDepths.empty() ? 1.0f : *std::min_element(d.cubeDepths.begin(), d.cubeDepths.end());
+        // About half a texel's arc at the closest surface.
+        c.marchStep = std::max(1e-3f, 0.5f * 2.0f * std::max(minDepth, 1e-3f) / static_cast<float>(d.cubeResolution));
+    } else {
+        c.marchStep = 1.0f;
+    }
+    return c;
+}
+
+}  // namespace spindrift

@@ -1,0 +1,241 @@
+// World lifetime and object creation (Box2D v3 style: Def structs in, small ids
+// out). Ids index 1-based arrays in creation order.
+#include "effects/params.h"
+#include "effects/world_internal.h"
+
+#include <fmt/format.h>
+
+#include <chrono>
+#include <cmath>
+#include <cstring>
+#include <mutex>
+
+namespace spindrift {
+namespace {
+
+struct WorldSlot {
+    std::unique_ptr<World> world;
+    std::uint32_t generation = 0;
+};
+
+std::mutex gWorldsMutex;
+std::vector<WorldSlot> gWorlds;
+
+void initialiseSlots(EmitterState& s) {
+    const std::uint32_t n = s.def.capacity;
+    s.particles.resize(n);
+    ParticleArrays& p = s.particles;
+    if (s.def.lifecycle == Lifecycle::Recycle) {
+        // Slot i is first born at i / n of a mean lifetime: an even stream from
+        // the start, as the GPU particle talk's fixed slots.
+        float meanLife = 0.5f * (s.def.lifetime.min + s.def.lifetime.max);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            p.age[i] = -meanLife * (static_cast<float>(i) / static_cast<float>(n));
+            p.birth[i] = i;
+        }
+        // Slot 0 is born in the first step, at age dt.
+    } else {
+        std::fill(p.age.begin(), p.age.end(), kernels::SD_DEAD_AGE);
+        s.freeSlots.resize(n);
+        for (std::uint32_t i = 0; i < n; ++i) {
+            s.freeSlots[i] = n - 1 - i;  // slot 0 at the back: used first
+        }
+    }
+}
+
+std::uint32_t maskOf(const auto& ids, std::size_t total, const char* what, const std::string& emitter) {
+    if (ids.empty()) {
+        return total >= 32 ? 0xFFFFFFFFu : ((1u << total) - 1u);
+    }
+    std::uint32_t mask = 0;
+    for (auto id : ids) {
+        if (id.index == 0 || id.index > total) {
+            throw Error(fmt::format("emitter '{}': {} id {} does not exist in this world", emitter, what, id.index));
+        }
+        mask |= 1u << (id.index - 1);
+    }
+    return mask;
+}
+
+}  // namespace
+
+void ParticleArrays::resize(std::size_t n) {
+    position.resize(n);
+    velocity.resize(n);
+    color.resize(n);
+    age.resize(n);
+    lifetime.resize(n, 1.0f);
+    size.resize(n);
+    rotation.resize(n);
+    angularVelocity.resize(n);
+    birth.resize(n);
+}
+
+World& worldFromId(WorldId id) {
+    std::lock_guard lock(gWorldsMutex);
+    if (id.index == 0 || id.index > gWorlds.size() || !gWorlds[id.index - 1].world ||
+        gWorlds[id.index - 1].generation != id.generation) {
+        throw Error(fmt::format("world id {}:{} is not a live world", id.index, id.generation));
+    }
+    return *gWorlds[id.index - 1].world;
+}
+
+EmitterState& emitterFromId(World& world, EmitterId id) {
+    if (id.index == 0 || id.index > world.emitters.size()) {
+        throw Error(fmt::format("emitter id {} does not exist in this world", id.index));
+    }
+    return *world.emitters[id.index - 1];
+}
+
+WorldId createWorld(const WorldDef& def) {
+    if (def.backend == Backend::Vulkan) {
+        throw Error("backend 'vulkan' is not available yet in this build; use 'cpu' or 'auto'");
+    }
+    auto world = std::make_unique<World>(def);
+    std::lock_guard lock(gWorldsMutex);
+    for (std::size_t i = 0; i < gWorlds.size(); ++i) {
+        if (!gWorlds[i].world) {
+            gWorlds[i].world = std::move(world);
+            return {static_cast<std::uint32_t>(i + 1), ++gWorlds[i].generation};
+        }
+    }
+    gWorlds.push_back({std::move(world), 1});
+    return {static_cast<std::uint32_t>(gWorlds.size()), 1};
+}
+
+void destroyWorld(WorldId id) {
+    worldFromId(id);  // validates
+    std::lock_guard lock(gWorldsMutex);
+    gWorlds[id.index - 1].world.reset();
+}
+
+FlowFieldId createFlowField(WorldId id, const FlowFieldDef& def) {
+    World& w = worldFromId(id);
+    validateFlowFieldDef(def);
+    w.flowDefs.push_back(def);
+    w.fields.flows.push_back(FlowGrid{def.nx, def.ny, def.nz, def.velocities});
+    return {static_cast<std::uint32_t>(w.flowDefs.size())};
+}
+
+ForceId createForce(WorldId id, const ForceDef& def) {
+    World& w = worldFromId(id);
+    if (w.forces.size() >= kMaxForces) {
+        throw Error(fmt::format("force '{}': a world holds at most {} forces", def.name, kMaxForces));
+    }
+    const FlowFieldDef* flow = nullptr;
+    std::uint32_t flowIndex = 0;
+    if (def.kind == ForceKind::FlowField) {
+        if (def.flowField.index == 0 || def.flowField.index > w.flowDefs.size()) {
+            throw Error(fmt::format("force '{}': flow field id {} does not exist", def.name, def.flowField.index));
+        }
+        flowIndex = def.flowField.index - 1;
+        flow = &w.flowDefs[flowIndex];
+    }
+    w.forces.push_back(makeForceParams(def, flow, flowIndex));
+    w.forceDefs.push_back(def);
+    return {static_cast<std::uint32_t>(w.forces.size())};
+}
+
+ColliderId createCollider(WorldId id, const ColliderDef& def) {
+    World& w = worldFromId(id);
+    if (w.colliders.size() >= kMaxColliders) {
+        throw Error(fmt::format("collider '{}': a world holds at most {} colliders", def.name, kMaxColliders));
+    }
+    std::uint32_t dataIndex = 0;
+    kernels::ColliderParams params;
+    if (def.kind == ColliderKind::Terrain) {
+        params = makeColliderParams(def, static_cast<std::uint32_t>(w.fields.heights.size()));
+        w.fields.heights.push_back(HeightMap{def.terrainNx, def.terrainNz, def.heights});
+    } else if (def.kind == ColliderKind::CubeMap) {
+        params = makeColliderParams(def, static_cast<std::uint32_t>(w.fields.cubes.size()));
+        w.fields.cubes.push_back(makeDepthCubeMap(def.cubeResolution, def.cubeDepths));
+    } else {
+        params = makeColliderParams(def, dataIndex);
+    }
+    w.colliders.push_back(params);
+    w.colliderDefs.push_back(def);
+    return {static_cast<std::uint32_t>(w.colliders.size())};
+}
+
+EmitterId createEmitter(WorldId id, const EmitterDef& def) {
+    World& w = worldFromId(id);
+    auto state = std::make_unique<EmitterState>();
+    state->def = def;
+    auto index = static_cast<std::uint32_t>(w.emitters.size());
+    std::uint32_t forceMask = maskOf(def.forces, w.forces.size(), "force", def.name);
+    std::uint32_t colliderMask = maskOf(def.collision.colliders, w.colliders.size(), "collider", def.name);
+    state->params = makeEmitterParams(def, w.def.seed, index, forceMask, colliderMask);
+    if (!def.stateless) {
+        initialiseSlots(*state);
+    }
+    w.emitters.push_back(std::move(state));
+    return {index + 1};
+}
+
+StepStats stepWorld(WorldId id, float dt) {
+    World& w = worldFromId(id);
+    if (!(dt > 0.0f) || !std::isfinite(dt)) {
+        throw Error(fmt::format("stepWorld: dt must be a finite time > 0 s, got {}", dt));
+    }
+    auto start = std::chrono::steady_clock::now();
+    StepStats stats;
+    stats.step = w.stepIndex;
+    stats.colliderHits.resize(w.colliders.size());
+    for (std::size_t i = 0; i < w.colliders.size(); ++i) {
+        stats.colliderHits[i].collider = {static_cast<std::uint32_t>(i + 1)};
+    }
+    for (auto& emitter : w.emitters) {
+        if (!emitter->def.stateless) {
+            stepEmitter(w, *emitter, dt, stats);
+        }
+    }
+    for (auto& emitter : w.emitters) {
+        stats.alive += emitter->alive;
+    }
+    for (const ColliderStepStats& c : stats.colliderHits) {
+        stats.collisions += c.hits;
+    }
+    w.time += dt;
+    w.stepIndex += 1;
+    stats.time = w.time;
+    stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+}
+
+double worldTime(WorldId id) { return worldFromId(id).time; }
+
+std::uint32_t emitterCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).emitters.size()); }
+
+std::uint32_t colliderCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).colliders.size()); }
+
+const EmitterDef& emitterDef(WorldId id, EmitterId emitter) {
+    World& w = worldFromId(id);
+    return emitterFromId(w, emitter).def;
+}
+
+ParticleSnapshot readParticles(WorldId id, EmitterId emitterId) {
+    World& w = worldFromId(id);
+    EmitterState& e = emitterFromId(w, emitterId);
+    if (e.def.stateless) {
+        return evaluateStateless(e.def, w.def.seed, emitterId.index - 1, static_cast<float>(w.time));
+    }
+    ParticleSnapshot s;
+    const ParticleArrays& p = e.particles;
+    for (std::uint32_t i = 0; i < e.def.capacity; ++i) {
+        if (p.age[i] < 0.0f) {
+            continue;
+        }
+        s.position.push_back(p.position[i]);
+        s.velocity.push_back(p.velocity[i]);
+        s.age.push_back(p.age[i]);
+        s.lifetime.push_back(p.lifetime[i]);
+        s.size.push_back(p.size[i]);
+        s.rotation.push_back(p.rotation[i]);
+        s.color.push_back(p.color[i]);
+        s.birth.push_back(p.birth[i]);
+        s.slot.push_back(i);
+    }
+    return s;
+}
+
+}  // namespace spindrift

@@ -1,0 +1,79 @@
+// Forces (GPU particle talk, "Update Velocities"): every force is evaluated at a
+// position and velocity and accumulated into one vector; a = F / m.
+//
+// Requires the backend hooks declared in context_hooks.glsl.
+#ifndef SPINDRIFT_KERNELS_FORCES
+#define SPINDRIFT_KERNELS_FORCES
+#include "types.glsl"
+SD_BEGIN
+
+// |F| = strength (radius / d)^falloff. For positive falloff d is softened at
+// 1 % of the radius so the force stays finite at the centre; for falloff <= 0
+// (constant or spring-like) no softening is needed and none is applied, so a
+// spring (falloff -1) is exactly linear: F = strength d / radius.
+SD_FN float falloffMagnitude(ForceParams f, float d) {
+    float softened = f.falloff > 0.0f ? max(d, 0.01f * f.radius) : d;
+    return f.strength * pow(softened / f.radius, -f.falloff);
+}
+
+SD_FN bool outOfRange(ForceParams f, float d) {
+    return f.position.w > 0.0f && d > f.position.w;
+}
+
+// Attraction toward f.position (repulsion for negative strength).
+SD_FN vec3 attractorForce(ForceParams f, vec3 p) {
+    vec3 toCentre = vec3(f.position) - p;
+    float d = length(toCentre);
+    if (d <= 0.0f || outOfRange(f, d)) {
+        return vec3(0.0f);
+    }
+    return toCentre * (falloffMagnitude(f, d) / d);
+}
+
+// Swirl around the line through f.position along f.axis.
+SD_FN vec3 vortexForce(ForceParams f, vec3 p) {
+    vec3 axis = vec3(f.axis);
+    vec3 offset = p - vec3(f.position);
+    vec3 radial = offset - axis * dot(offset, axis);
+    float d = length(radial);
+    if (d <= 0.0f || outOfRange(f, d)) {
+        return vec3(0.0f);
+    }
+    return cross(axis, radial) * (falloffMagnitude(f, d) / d);
+}
+
+// Linear drag toward a medium's velocity: F = k (v_medium - v). Wind uses a
+// user coefficient k (kg/s); a flow field uses Stokes' law for a sphere,
+// k = 6 pi eta r (GPU particle talk, flow fields).
+SD_FN vec3 dragForce(float k, vec3 mediumVelocity, vec3 v) {
+    return (mediumVelocity - v) * k;
+}
+
+SD_FN float stokesCoefficient(float viscosity, float radius) {
+    return 6.0f * SD_PI * viscosity * radius;
+}
+
+// Exact speed relaxation for damping and un-damping: ds/dt = rate (target - s)
+// has s(t + dt) = target + (s - target) exp(-rate dt), the same for any step
+// length (frame-rate independent; "v *= 0.98" per frame is not). Damping is
+// target 0. The direction of motion is kept.
+SD_FN vec3 relaxSpeed(vec3 v, float target, float rate, float dt) {
+    float s = length(v);
+    if (s <= 1e-20f) {
+        return v;
+    }
+    float relaxed = target + (s - target) * exp(-rate * dt);
+    return v * (max(relaxed, 0.0f) / s);
+}
+
+// Local damping: the rate falls linearly to 0 at `range` from the position.
+SD_FN float relaxationRate(ForceParams f, vec3 p) {
+    if (f.position.w <= 0.0f) {
+        return f.strength;
+    }
+    float d = length(p - vec3(f.position));
+    return f.strength * max(0.0f, 1.0f - d / f.position.w);
+}
+
+SD_END
+#endif

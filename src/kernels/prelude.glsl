@@ -1,0 +1,38 @@
+// The common subset of GLSL 450 and C++20/glm that every kernel is written in.
+//
+// Rules (DESIGN.md "Write each rule of physics once"): plain structs, vecN,
+// functions that take values and return values (no references, no inout), no
+// swizzle assignment, float literals with an f suffix (glm does not mix float
+// and double), unsigned literals with a u suffix. Struct values are built by
+// declaring and assigning fields, never with constructors (the syntax differs).
+// A kernel file wraps its contents in SD_BEGIN / SD_END so that on the C++ side
+// it lives in namespace spindrift::kernels.
+#ifndef SPINDRIFT_KERNELS_PRELUDE
+#define SPINDRIFT_KERNELS_PRELUDE
+
+#ifdef __cplusplus
+#include <glm/glm.hpp>
+#include <glm/gtc/packing.hpp>
+
+#include <cstdint>
+
+#define SD_BEGIN                        \
+    namespace spindrift::kernels {      \
+    using namespace glm;                \
+    using uint = std::uint32_t;
+#define SD_END }
+#define SD_FN inline
+#define SD_CONST inline constexpr
+#else
+#define SD_BEGIN
+#define SD_END
+#define SD_FN
+#define SD_CONST const
+#endif
+
+SD_BEGIN
+SD_CONST float SD_PI = 3.14159265358979f;
+SD_CONST uint SD_NONE = 0xFFFFFFFFu;
+SD_END
+
+#endif

@@ -1,0 +1,26 @@
+// Stateless particles (GPU particle talk, "Stateless / State-preserving PS"): a
+// closed-form function of time, p = p0 + v0 t + g t^2 / 2, evaluated wherever
+// it is needed; nothing is stored. No hooks needed.
+#ifndef SPINDRIFT_KERNELS_STATELESS
+#define SPINDRIFT_KERNELS_STATELESS
+#include "curves.glsl"
+#include "spawn.glsl"
+SD_BEGIN
+
+// The particle with serial `serial`, `age` seconds after its birth.
+SD_FN Particle evaluateStatelessParticle(EmitterParams e, uint serial, float age) {
+    Particle p = spawnParticle(e, serial);
+    vec3 g = vec3(e.statelessGravity);
+    p.position = p.position + p.velocity * age + g * (0.5f * age * age);
+    p.velocity = p.velocity + g * age;
+    p.rotation = p.rotation + p.angularVelocity * age;
+    p.age = age;
+    float t = clamp(age / p.lifetime, 0.0f, 1.0f);
+    p.color = p.color * evaluateCurve(e.colorOverLife, t);
+    p.size = p.size * evaluateCurve(e.sizeOverLife, t).x;
+    p.alive = age < p.lifetime ? 1u : 0u;
+    return p;
+}
+
+SD_END
+#endif

@@ -1,0 +1,109 @@
+// GPU-visible parameter structs, defined once for both languages. Every struct is
+// laid out for std430 with vec4 members first and scalars in groups of four, so
+// the C++ layout (glm::vec4 is 16 bytes, 4-aligned) matches; src/effects/
+// kernel_layout.cpp static_asserts sizes and offsets.
+#ifndef SPINDRIFT_KERNELS_TYPES
+#define SPINDRIFT_KERNELS_TYPES
+#include "prelude.glsl"
+SD_BEGIN
+
+SD_CONST uint SD_MAX_CURVE_KEYS = 8u;
+
+// Age of a dead slot in spawn mode: never reaches 0, so it is never re-born by
+// the update (only the emission pass re-uses it).
+SD_CONST float SD_DEAD_AGE = -3.0e38f;
+
+// Piecewise-linear curve over normalised age. 8 keys: 176 bytes.
+struct CurveParams {
+    vec4 values[8];
+    vec4 times[2];   // key i's t is times[i / 4][i % 4]
+    uint count;      // 0: the curve is constant 1
+    uint pad0;
+    uint pad1;
+    uint pad2;
+};
+
+// Lifecycle and shape flags of EmitterParams.flags.
+SD_CONST uint SD_EMITTER_RECYCLE = 1u;
+SD_CONST uint SD_EMITTER_SHAPE_SURFACE = 2u;
+SD_CONST uint SD_EMITTER_KILL_ON_COLLISION = 4u;
+SD_CONST uint SD_EMITTER_COLLISIONS = 8u;
+
+SD_CONST uint SD_SHAPE_POINT = 0u;
+SD_CONST uint SD_SHAPE_SPHERE = 1u;
+SD_CONST uint SD_SHAPE_BOX = 2u;
+SD_CONST uint SD_SHAPE_DISK = 3u;
+SD_CONST uint SD_SHAPE_CONE = 4u;
+
+SD_CONST uint SD_INTEGRATE_EXPLICIT_EULER = 0u;
+SD_CONST uint SD_INTEGRATE_SEMI_IMPLICIT_EULER = 1u;
+SD_CONST uint SD_INTEGRATE_VERLET = 2u;
+SD_CONST uint SD_INTEGRATE_RK4 = 3u;
+
+// Everything the update and spawn kernels need to know about one emitter.
+// 528 bytes.
+struct EmitterParams {
+    vec4 shapeCenter;       // xyz (m), w: shape radius (m)
+    vec4 shapeHalfExtents;  // xyz (m), w: spread half-angle (rad)
+    vec4 shapeDirection;    // xyz unit launch direction / disk normal / cone axis
+    vec4 colorMin;
+    vec4 colorMax;
+    vec4 statelessGravity;  // xyz (m/s^2)
+    float speedMin, speedMax, lifetimeMin, lifetimeMax;
+    float sizeMin, sizeMax, rotationMin, rotationMax;
+    float angularVelocityMin, angularVelocityMax, mass, lifeLossOnCollision;
+    uint shapeKind, integrator, flags, seed;
+    uint emitterIndex, capacity, forceMask, colliderMask;
+    CurveParams colorOverLife;
+    CurveParams sizeOverLife;
+};
+
+SD_CONST uint SD_FORCE_GRAVITY = 0u;
+SD_CONST uint SD_FORCE_WIND = 1u;
+SD_CONST uint SD_FORCE_ATTRACTOR = 2u;
+SD_CONST uint SD_FORCE_VORTEX = 3u;
+SD_CONST uint SD_FORCE_DAMPING = 4u;
+SD_CONST uint SD_FORCE_UNDAMPING = 5u;
+SD_CONST uint SD_FORCE_FLOW_FIELD = 6u;
+
+// One force. 112 bytes.
+struct ForceParams {
+    vec4 vector;        // gravity acceleration / wind velocity (xyz)
+    vec4 position;      // xyz (m), w: range (m), 0 = unlimited
+    vec4 axis;          // xyz unit, w: target speed (m/s) for undamping
+    vec4 flowMin;       // flow field box min (m), w: viscosity eta (Pa s)
+    vec4 flowInvExtent; // 1 / (max - min) per axis (1/m)
+    uint kind;
+    uint flowField;     // index of the flow field's data
+    float strength;
+    float radius;
+    float falloff;
+    float pad0, pad1, pad2;
+};
+
+SD_CONST uint SD_COLLIDER_PLANE = 0u;
+SD_CONST uint SD_COLLIDER_SPHERE = 1u;
+SD_CONST uint SD_COLLIDER_BOX = 2u;
+SD_CONST uint SD_COLLIDER_TERRAIN = 3u;
+SD_CONST uint SD_COLLIDER_CUBE_MAP = 4u;
+
+// One collider. 144 bytes.
+struct ColliderParams {
+    vec4 position;     // plane point / centre / terrain origin (m); w: sphere radius
+    vec4 normal;       // plane unit normal
+    vec4 halfExtents;  // box half extents (m)
+    vec4 axisX;        // box orientation: world-space unit axes of its frame
+    vec4 axisY;
+    vec4 axisZ;
+    vec4 grid;         // terrain: size x, size z (m), nx, nz; cube map: res
+    uint kind;
+    uint dataIndex;    // which height map / cube map
+    float friction;    // mu
+    float resilience;  // e
+    float restSpeed;   // m/s, no friction below this tangential speed
+    float marchStep;   // m, sampling step for terrain and cube maps
+    uint pad0, pad1;
+};
+
+SD_END
+#endif

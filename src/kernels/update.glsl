@@ -1,0 +1,137 @@
+// One step of one particle (GPU particle talk, "State-Preserving PS"): process
+// birth and death, update velocity and position, collide, then derive the
+// over-life colour and size. Requires the hooks of context_hooks.glsl.
+#ifndef SPINDRIFT_KERNELS_UPDATE
+#define SPINDRIFT_KERNELS_UPDATE
+#include "collide.glsl"
+#include "curves.glsl"
+#include "integrate.glsl"
+#include "spawn.glsl"
+SD_BEGIN
+
+SD_CONST uint SD_EVENT_BORN = 1u;
+SD_CONST uint SD_EVENT_DIED = 2u;
+
+struct ParticleUpdate {
+    Particle particle;
+    uint events;   // SD_EVENT_* bits
+    uint hitMask;  // bit i: hit collider i during the step
+    uint pad0;
+    uint pad1;
+};
+
+// Colour and size over life: start values (re-derived from the key) times the
+// curves at normalised age.
+SD_FN Particle applyOverLife(EmitterParams e, Particle p) {
+    if (e.colorOverLife.count == 0u && e.sizeOverLife.count == 0u) {
+        return p;
+    }
+    uint key = particleKey(e.seed, e.emitterIndex, p.birth);
+    float t = clamp(p.age / p.lifetime, 0.0f, 1.0f);
+    p.color = startColor(e, key) * evaluateCurve(e.colorOverLife, t);
+    p.size = startSize(e, key) * evaluateCurve(e.sizeOverLife, t).x;
+    return p;
+}
+
+// Motion, damping, collisions and spin over dt for a live particle.
+SD_FN ParticleUpdate simulateParticle(KernelContext ctx, EmitterParams e, Particle p, float dt) {
+    ParticleUpdate r;
+    r.events = 0u;
+    r.hitMask = 0u;
+    r.pad0 = 0u;
+    r.pad1 = 0u;
+    vec3 start = p.position;
+    Motion m = integrateMotion(ctx, e, p.position, p.velocity, p.mass, 0.5f * p.size, dt);
+    m.velocity = applySpeedRelaxation(ctx, e, m.position, m.velocity, dt);
+    if ((e.flags & SD_EMITTER_COLLISIONS) != 0u) {
+        uint n = colliderCount(ctx);
+        for (uint i = 0u; i < n; ++i) {
+            if ((e.colliderMask & (1u << i)) == 0u) {
+                continue;
+            }
+            ColliderParams c = colliderAt(ctx, i);
+            Hit h = intersectCollider(ctx, c, start, m.position);
+            if (h.hit == 0u) {
+                continue;
+            }
+            vec3 contactVelocity = mix(p.velocity, m.velocity, h.t);
+            m.velocity = collisionVelocity(c, h.normal, contactVelocity);
+            m.position = h.point + h.normal * SD_COLLISION_SKIN;
+            r.hitMask = r.hitMask | (1u << i);
+        }
+    }
+    p.position = m.position;
+    p.velocity = m.velocity;
+    p.rotation = p.rotation + p.angularVelocity * dt;
+    if (r.hitMask != 0u) {
+        if ((e.flags & SD_EMITTER_KILL_ON_COLLISION) != 0u) {
+            p.age = p.lifetime;  // dies now; a recycle slot is re-born next step
+        } else {
+            p.age = p.age + e.lifeLossOnCollision * max(p.lifetime - p.age, 0.0f);
+        }
+    }
+    r.particle = applyOverLife(e, p);
+    return r;
+}
+
+// A fresh particle with serial `serial` that has lived `age` seconds of this step.
+SD_FN ParticleUpdate bornParticle(KernelContext ctx, EmitterParams e, uint serial, float age) {
+    Particle p = spawnParticle(e, serial);
+    p.age = min(age, p.lifetime * 0.999f);
+    ParticleUpdate r = simulateParticle(ctx, e, p, p.age);
+    r.events = r.events | SD_EVENT_BORN;
+    return r;
+}
+
+SD_FN Particle deadParticle(Particle p) {
+    p.age = SD_DEAD_AGE;
+    p.alive = 0u;
+    return p;
+}
+
+// The whole step of one slot. Recycle slots are born when their (initially
+// negative, phase-staggered) age reaches 0 and re-born when it reaches the
+// lifetime, keeping the remainder so emission stays evenly phased; the serial
+// advances by the capacity so every life of every slot has its own key.
+SD_FN ParticleUpdate updateParticle(KernelContext ctx, EmitterParams e, Particle p, float dt) {
+    bool recycle = (e.flags & SD_EMITTER_RECYCLE) != 0u;
+    float age = p.age + dt;
+    if (p.age < 0.0f) {
+        if (age < 0.0f || !recycle) {
+            ParticleUpdate r;
+            p.age = recycle ? age : SD_DEAD_AGE;
+            r.particle = p;
+            r.events = 0u;
+            r.hitMask = 0u;
+            r.pad0 = 0u;
+            r.pad1 = 0u;
+            return r;
+        }
+        return bornParticle(ctx, e, p.birth, age);
+    }
+    if (age >= p.lifetime) {
+        if (recycle) {
+            ParticleUpdate r = bornParticle(ctx, e, p.birth + e.capacity, age - p.lifetime);
+            r.events = r.events | SD_EVENT_DIED;
+            return r;
+        }
+        ParticleUpdate r;
+        r.particle = deadParticle(p);
+        r.events = SD_EVENT_DIED;
+        r.hitMask = 0u;
+        r.pad0 = 0u;
+        r.pad1 = 0u;
+        return r;
+    }
+    p.age = age;
+    ParticleUpdate r = simulateParticle(ctx, e, p, dt);
+    if (!recycle && r.particle.age >= r.particle.lifetime) {
+        // Killed by a collision or its life used up by hits: dies this step.
+        r.particle = deadParticle(r.particle);
+        r.events = r.events | SD_EVENT_DIED;
+    }
+    return r;
+}
+
+SD_END
+#endif

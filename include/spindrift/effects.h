@@ -158,7 +158,10 @@ struct FlowFieldDef {
     glm::vec3 boundsMin{-1.0f};
     glm::vec3 boundsMax{1.0f};
     std::uint32_t nx = 0, ny = 0, nz = 0;
-    /// nx * ny * nz velocities, x fastest, then y, then z (m/s).
+    /// nx * ny * nz velocities (m/s), x fastest, then y, then z, sampled at the
+    /// grid's vertices: vertex (i, j, k) sits at boundsMin + (i/(nx-1), j/(ny-1),
+    /// k/(nz-1)) * (boundsMax - boundsMin); trilinear in between, the edge value
+    /// outside the box.
     std::vector<glm::vec3> velocities;
 };
 

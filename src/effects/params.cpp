@@ -152,8 +152,13 @@ kernels::ForceParams makeForceParams(const ForceDef& d, const FlowFieldDef* flow
     glm::vec3 axis = glm::length(d.axis) > 0.0f ? glm::normalize(d.axis) : glm::vec3(0.0f, 1.0f, 0.0f);
     f.axis = v4(axis, d.targetSpeed);
     if (flow != nullptr) {
-        f.flowMin = v4(flow->boundsMin, d.viscosity);
-        f.flowInvExtent = v4(1.0f / (flow->boundsMax - flow->boundsMin), 0.0f);
+        // Velocities are samples at the grid's vertices, vertex i of n at i / (n - 1)
+        // across the box; a sampler's texel i has its centre at (i + 0.5) / n.
+        glm::vec3 n(flow->nx, flow->ny, flow->nz);
+        glm::vec3 scale = (n - 1.0f) / (n * (flow->boundsMax - flow->boundsMin));
+        glm::vec3 offset = 0.5f / n - flow->boundsMin * scale;
+        f.flowOffset = v4(offset, d.viscosity);
+        f.flowScale = v4(scale, 0.0f);
     }
     f.kind = static_cast<std::uint32_t>(d.kind);
     f.flowField = flowIndex;

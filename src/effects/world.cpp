@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include <chrono>
+#include <cfloat>
 #include <cmath>
 #include <cstring>
 #include <mutex>
@@ -30,10 +31,10 @@ void initialiseSlots(EmitterState& s) {
         // the start, as the GPU particle talk's fixed slots.
         float meanLife = 0.5f * (s.def.lifetime.min + s.def.lifetime.max);
         for (std::uint32_t i = 0; i < n; ++i) {
-            p.age[i] = -meanLife * (static_cast<float>(i) / static_cast<float>(n));
+            // Strictly negative, also for slot 0: unborn until the first step.
+            p.age[i] = -meanLife * (static_cast<float>(i) / static_cast<float>(n)) - FLT_MIN;
             p.birth[i] = i;
         }
-        // Slot 0 is born in the first step, at age dt.
     } else {
         std::fill(p.age.begin(), p.age.end(), kernels::SD_DEAD_AGE);
         s.freeSlots.resize(n);

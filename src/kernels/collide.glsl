@@ -15,6 +15,8 @@ SD_BEGIN
 SD_CONST float SD_COLLISION_SKIN = 1e-4f;
 // At most this many samples when marching a path through a sampled collider.
 SD_CONST float SD_MAX_MARCH_SAMPLES = 64.0f;
+// Bisections of a bracketed contact: 2^-10 of a march step.
+SD_CONST uint SD_CONTACT_BISECTIONS = 10u;
 
 struct Hit {
     vec3 point;   // contact point (m)
@@ -175,8 +177,12 @@ SD_FN Hit intersectBox(ColliderParams c, vec3 p0, vec3 p1) {
 // texel) and at most SD_MAX_MARCH_SAMPLES samples, so a fast particle cannot
 // skip over a hill or a thin part of the shape finer than that.
 
+// Heights are samples at grid vertices spanning the terrain (vertex i of n at
+// i / (n - 1) of the size); a sampler's texel i has its centre at (i + 0.5) / n.
 SD_FN vec2 terrainUv(ColliderParams c, vec3 p) {
-    return vec2((p.x - c.position.x) / c.grid.x, (p.z - c.position.z) / c.grid.y);
+    vec2 u = vec2((p.x - c.position.x) / c.grid.x, (p.z - c.position.z) / c.grid.y);
+    vec2 n = vec2(c.grid.z, c.grid.w);
+    return (u * (n - 1.0f) + 0.5f) / n;
 }
 
 // Height above the terrain (m); vertical distance, exact on flat ground.
@@ -184,7 +190,7 @@ SD_FN float terrainDistance(KernelContext ctx, ColliderParams c, vec3 p) {
     return p.y - (c.position.y + sampleTerrainHeight(ctx, c.dataIndex, terrainUv(c, p)));
 }
 
-// Normal from central differences of the heights one texel apart.
+// Normal from central differences of the heights one grid cell apart.
 SD_FN vec3 terrainNormal(KernelContext ctx, ColliderParams c, vec3 p) {
     vec2 uv = terrainUv(c, p);
     vec2 texel = vec2(1.0f / c.grid.z, 1.0f / c.grid.w);
@@ -192,8 +198,8 @@ SD_FN vec3 terrainNormal(KernelContext ctx, ColliderParams c, vec3 p) {
     float hr = sampleTerrainHeight(ctx, c.dataIndex, uv + vec2(texel.x, 0.0f));
     float hd = sampleTerrainHeight(ctx, c.dataIndex, uv - vec2(0.0f, texel.y));
     float hu = sampleTerrainHeight(ctx, c.dataIndex, uv + vec2(0.0f, texel.y));
-    float dx = 2.0f * c.grid.x * texel.x;
-    float dz = 2.0f * c.grid.y * texel.y;
+    float dx = 2.0f * c.grid.x / (c.grid.z - 1.0f);
+    float dz = 2.0f * c.grid.y / (c.grid.w - 1.0f);
     return normalize(vec3(-(hr - hl) / dx, 1.0f, -(hu - hd) / dz));
 }
 
@@ -246,17 +252,26 @@ SD_FN Hit intersectSampled(KernelContext ctx, ColliderParams c, vec3 p0, vec3 p1
     float samples = clamp(ceil(pathLength / c.marchStep), 1.0f, SD_MAX_MARCH_SAMPLES);
     uint count = uint(samples);
     float previousT = 0.0f;
-    float previousD = d0;
     for (uint i = 1u; i <= count; ++i) {
         float t = float(i) / samples;
         float d = sampledDistance(ctx, c, mix(p0, p1, t));
         if (d < 0.0f) {
-            float tc = mix(previousT, t, contactFraction(previousD, d));
-            vec3 point = mix(p0, p1, tc);
-            return makeHit(point, sampledNormal(ctx, c, point), tc);
+            // Bisect the bracket; keep its outside end, so the contact is never
+            // below the surface even where the surface curves between samples.
+            float outsideT = previousT;
+            float insideT = t;
+            for (uint k = 0u; k < SD_CONTACT_BISECTIONS; ++k) {
+                float midT = 0.5f * (outsideT + insideT);
+                if (sampledDistance(ctx, c, mix(p0, p1, midT)) >= 0.0f) {
+                    outsideT = midT;
+                } else {
+                    insideT = midT;
+                }
+            }
+            vec3 point = mix(p0, p1, outsideT);
+            return makeHit(point, sampledNormal(ctx, c, point), outsideT);
         }
         previousT = t;
-        previousD = d;
     }
     return noHit();
 }

@@ -25,9 +25,9 @@ SD_FN vec3 accelerationAt(KernelContext ctx, EmitterParams e, vec3 p, vec3 v, fl
         } else if (f.kind == SD_FORCE_VORTEX) {
             force += vortexForce(f, p);
         } else if (f.kind == SD_FORCE_FLOW_FIELD) {
-            vec3 uvw = (p - vec3(f.flowMin)) * vec3(f.flowInvExtent);
+            vec3 uvw = p * vec3(f.flowScale) + vec3(f.flowOffset);
             vec3 flow = sampleFlowField(ctx, f.flowField, uvw);
-            force += dragForce(stokesCoefficient(f.flowMin.w, radius), flow, v);
+            force += dragForce(stokesCoefficient(f.flowOffset.w, radius), flow, v);
         }
     }
     return gravity + force / mass;

@@ -71,8 +71,8 @@ struct ForceParams {
     vec4 vector;        // gravity acceleration / wind velocity (xyz)
     vec4 position;      // xyz (m), w: range (m), 0 = unlimited
     vec4 axis;          // xyz unit, w: target speed (m/s) for undamping
-    vec4 flowMin;       // flow field box min (m), w: viscosity eta (Pa s)
-    vec4 flowInvExtent; // 1 / (max - min) per axis (1/m)
+    vec4 flowOffset;    // sampler coordinate = p * flowScale + flowOffset; w: viscosity eta (Pa s)
+    vec4 flowScale;     // (1/m), see makeForceParams
     uint kind;
     uint flowField;     // index of the flow field's data
     float strength;

@@ -1,0 +1,107 @@
+// Determinism (DESIGN.md): the same inputs give bit-identical state for any
+// thread count and from run to run.
+#include "effects/effects_test_util.h"
+
+#include <gtest/gtest.h>
+
+#include <cstring>
+
+namespace spindrift {
+namespace {
+
+// A world using every feature, with more particles than one parallel chunk
+// (4096) so that two threads really split the work.
+std::vector<ParticleSnapshot> runEverything(std::uint32_t threads) {
+    test::ScopedWorld w(threads, 11);
+    FlowFieldDef flow;
+    flow.boundsMin = glm::vec3(-5.0f);
+    flow.boundsMax = glm::vec3(5.0f);
+    flow.nx = flow.ny = flow.nz = 4;
+    for (int i = 0; i < 64; ++i) {
+        flow.velocities.push_back(glm::vec3(std::sin(i * 0.7f), std::cos(i * 1.3f), std::sin(i * 2.1f)));
+    }
+    FlowFieldId field = createFlowField(w.id, flow);
+    createForce(w.id, test::gravity({0.0f, -9.81f, 0.0f}));
+    ForceDef f;
+    f.kind = ForceKind::Wind;
+    f.vector = {1.0f, 0.0f, 0.5f};
+    f.strength = 0.1f;
+    createForce(w.id, f);
+    f = ForceDef{};
+    f.kind = ForceKind::Attractor;
+    f.position = {1.0f, 2.0f, 0.0f};
+    f.strength = 3.0f;
+    createForce(w.id, f);
+    f.kind = ForceKind::Vortex;
+    createForce(w.id, f);
+    f = ForceDef{};
+    f.kind = ForceKind::Damping;
+    f.strength = 0.2f;
+    createForce(w.id, f);
+    f = ForceDef{};
+    f.kind = ForceKind::FlowField;
+    f.flowField = field;
+    f.viscosity = 0.01f;
+    createForce(w.id, f);
+    createCollider(w.id, test::groundPlane(0.6f, 0.1f));
+    ColliderDef sphere;
+    sphere.kind = ColliderKind::Sphere;
+    sphere.position = {0.0f, 1.0f, 0.0f};
+    sphere.radius = 0.7f;
+    createCollider(w.id, sphere);
+    std::vector<EmitterId> emitters;
+    const Integrator integrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler, Integrator::Verlet,
+                                      Integrator::Rk4};
+    for (int k = 0; k < 4; ++k) {
+        EmitterDef e;
+        e.lifecycle = k % 2 == 0 ? Lifecycle::Spawn : Lifecycle::Recycle;
+        e.capacity = 9000;
+        e.rate = 6000.0f;
+        e.lifetime = {0.5f, 1.5f};
+        e.speed = {1.0f, 5.0f};
+        e.shape.kind = SpawnShapeKind::Sphere;
+        e.shape.center = {0.0f, 3.0f, 0.0f};
+        e.shape.radius = 0.5f;
+        e.shape.spreadAngle = 1.0f;
+        e.integrator = integrators[k];
+        e.colorOverLife.keys = {{0.0f, glm::vec4(1.0f)}, {1.0f, glm::vec4(0.0f)}};
+        emitters.push_back(createEmitter(w.id, e));
+    }
+    for (int i = 0; i < 60; ++i) {
+        stepWorld(w.id, 1.0f / 60.0f);
+    }
+    std::vector<ParticleSnapshot> out;
+    for (EmitterId e : emitters) {
+        out.push_back(readParticles(w.id, e));
+    }
+    return out;
+}
+
+template <class T>
+bool bitEqual(const std::vector<T>& a, const std::vector<T>& b) {
+    return a.size() == b.size() && std::memcmp(a.data(), b.data(), a.size() * sizeof(T)) == 0;
+}
+
+void expectBitIdentical(const std::vector<ParticleSnapshot>& a, const std::vector<ParticleSnapshot>& b) {
+    ASSERT_EQ(a.size(), b.size());
+    for (std::size_t e = 0; e < a.size(); ++e) {
+        EXPECT_GT(a[e].count(), 4096u) << "emitter " << e << " must span several chunks";
+        EXPECT_TRUE(bitEqual(a[e].position, b[e].position)) << "emitter " << e;
+        EXPECT_TRUE(bitEqual(a[e].velocity, b[e].velocity)) << "emitter " << e;
+        EXPECT_TRUE(bitEqual(a[e].age, b[e].age)) << "emitter " << e;
+        EXPECT_TRUE(bitEqual(a[e].color, b[e].color)) << "emitter " << e;
+        EXPECT_TRUE(bitEqual(a[e].birth, b[e].birth)) << "emitter " << e;
+        EXPECT_TRUE(bitEqual(a[e].slot, b[e].slot)) << "emitter " << e;
+    }
+}
+
+TEST(Determinism, BitIdenticalForOneAndTwoThreads) {
+    expectBitIdentical(runEverything(1), runEverything(2));
+}
+
+TEST(Determinism, BitIdenticalRunToRun) {
+    expectBitIdentical(runEverything(2), runEverything(2));
+}
+
+}  // namespace
+}  // namespace spindrift

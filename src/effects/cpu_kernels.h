@@ -16,17 +16,17 @@ struct KernelContext {
     const FieldSet* fields;
 };
 
-inline uint forceCount(KernelContext ctx) { return ctx.forceTotal; }
-inline ForceParams forceAt(KernelContext ctx, uint i) { return ctx.forces[i]; }
-inline uint colliderCount(KernelContext ctx) { return ctx.colliderTotal; }
-inline ColliderParams colliderAt(KernelContext ctx, uint i) { return ctx.colliders[i]; }
-inline vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw) {
+inline uint forceCount(const KernelContext& ctx) { return ctx.forceTotal; }
+inline const ForceParams& forceAt(const KernelContext& ctx, uint i) { return ctx.forces[i]; }
+inline uint colliderCount(const KernelContext& ctx) { return ctx.colliderTotal; }
+inline const ColliderParams& colliderAt(const KernelContext& ctx, uint i) { return ctx.colliders[i]; }
+inline vec3 sampleFlowField(const KernelContext& ctx, uint field, vec3 uvw) {
     return sampleFlow(ctx.fields->flows[field], uvw);
 }
-inline float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) {
+inline float sampleTerrainHeight(const KernelContext& ctx, uint map, vec2 uv) {
     return sampleHeight(ctx.fields->heights[map], uv);
 }
-inline vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) {
+inline vec4 sampleCubeMap(const KernelContext& ctx, uint map, vec3 direction) {
     return sampleCube(ctx.fields->cubes[map], direction);
 }
 

@@ -1,5 +1,7 @@
 #include "effects/params.h"
 
+#include "kernels/random.glsl"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -102,7 +104,7 @@ kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed
               (d.shape.surface ? kernels::SD_EMITTER_SHAPE_SURFACE : 0u) |
               (d.collision.killOnCollision ? kernels::SD_EMITTER_KILL_ON_COLLISION : 0u) |
               (d.collision.enabled && colliderMask != 0 ? kernels::SD_EMITTER_COLLISIONS : 0u);
-    e.seed = seed;
+    e.keyBase = kernels::emitterKeyBase(seed, emitterIndex);
     e.emitterIndex = emitterIndex;
     e.capacity = d.capacity;
     e.forceMask = forceMask;

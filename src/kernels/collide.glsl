@@ -50,7 +50,7 @@ SD_FN float contactFraction(float d0, float d1) {
 }
 
 // --- Plane: signed distance dot(p - point, n) --------------------------------
-SD_FN Hit intersectPlane(ColliderParams c, vec3 p0, vec3 p1) {
+SD_FN Hit intersectPlane(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     vec3 n = vec3(c.normal);
     float d0 = dot(p0 - vec3(c.position), n);
     float d1 = dot(p1 - vec3(c.position), n);
@@ -66,7 +66,7 @@ SD_FN Hit intersectPlane(ColliderParams c, vec3 p0, vec3 p1) {
 }
 
 // --- Sphere: first root of |p0 + t (p1 - p0) - c| = r ------------------------
-SD_FN Hit intersectSphere(ColliderParams c, vec3 p0, vec3 p1) {
+SD_FN Hit intersectSphere(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     vec3 centre = vec3(c.position);
     float r = c.position.w;
     vec3 m = p0 - centre;
@@ -95,12 +95,12 @@ SD_FN Hit intersectSphere(ColliderParams c, vec3 p0, vec3 p1) {
 }
 
 // --- Oriented box: slab test in the box frame -------------------------------
-SD_FN vec3 toBoxFrame(ColliderParams c, vec3 p) {
+SD_FN vec3 toBoxFrame(SD_IN(ColliderParams) c, vec3 p) {
     vec3 q = p - vec3(c.position);
     return vec3(dot(q, vec3(c.axisX)), dot(q, vec3(c.axisY)), dot(q, vec3(c.axisZ)));
 }
 
-SD_FN vec3 fromBoxFrameDirection(ColliderParams c, vec3 d) {
+SD_FN vec3 fromBoxFrameDirection(SD_IN(ColliderParams) c, vec3 d) {
     return vec3(c.axisX) * d.x + vec3(c.axisY) * d.y + vec3(c.axisZ) * d.z;
 }
 
@@ -120,7 +120,7 @@ SD_FN bool insideBox(vec3 q, vec3 h) {
     return abs(q.x) < h.x && abs(q.y) < h.y && abs(q.z) < h.z;
 }
 
-SD_FN Hit intersectBox(ColliderParams c, vec3 p0, vec3 p1) {
+SD_FN Hit intersectBox(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     vec3 h = vec3(c.halfExtents);
     vec3 q0 = toBoxFrame(c, p0);
     vec3 q1 = toBoxFrame(c, p1);
@@ -179,19 +179,19 @@ SD_FN Hit intersectBox(ColliderParams c, vec3 p0, vec3 p1) {
 
 // Heights are samples at grid vertices spanning the terrain (vertex i of n at
 // i / (n - 1) of the size); a sampler's texel i has its centre at (i + 0.5) / n.
-SD_FN vec2 terrainUv(ColliderParams c, vec3 p) {
+SD_FN vec2 terrainUv(SD_IN(ColliderParams) c, vec3 p) {
     vec2 u = vec2((p.x - c.position.x) / c.grid.x, (p.z - c.position.z) / c.grid.y);
     vec2 n = vec2(c.grid.z, c.grid.w);
     return (u * (n - 1.0f) + 0.5f) / n;
 }
 
 // Height above the terrain (m); vertical distance, exact on flat ground.
-SD_FN float terrainDistance(KernelContext ctx, ColliderParams c, vec3 p) {
+SD_FN float terrainDistance(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p) {
     return p.y - (c.position.y + sampleTerrainHeight(ctx, c.dataIndex, terrainUv(c, p)));
 }
 
 // Normal from central differences of the heights one grid cell apart.
-SD_FN vec3 terrainNormal(KernelContext ctx, ColliderParams c, vec3 p) {
+SD_FN vec3 terrainNormal(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p) {
     vec2 uv = terrainUv(c, p);
     vec2 texel = vec2(1.0f / c.grid.z, 1.0f / c.grid.w);
     float hl = sampleTerrainHeight(ctx, c.dataIndex, uv - vec2(texel.x, 0.0f));
@@ -204,7 +204,7 @@ SD_FN vec3 terrainNormal(KernelContext ctx, ColliderParams c, vec3 p) {
 }
 
 // Outside-positive distance along the ray from the cube map's centre.
-SD_FN float cubeMapDistance(KernelContext ctx, ColliderParams c, vec3 p) {
+SD_FN float cubeMapDistance(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p) {
     vec3 offset = p - vec3(c.position);
     float r = length(offset);
     if (r <= 0.0f) {
@@ -213,11 +213,11 @@ SD_FN float cubeMapDistance(KernelContext ctx, ColliderParams c, vec3 p) {
     return r - sampleCubeMap(ctx, c.dataIndex, offset / r).w;
 }
 
-SD_FN float sampledDistance(KernelContext ctx, ColliderParams c, vec3 p) {
+SD_FN float sampledDistance(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p) {
     return c.kind == SD_COLLIDER_TERRAIN ? terrainDistance(ctx, c, p) : cubeMapDistance(ctx, c, p);
 }
 
-SD_FN vec3 sampledNormal(KernelContext ctx, ColliderParams c, vec3 p) {
+SD_FN vec3 sampledNormal(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p) {
     if (c.kind == SD_COLLIDER_TERRAIN) {
         return terrainNormal(ctx, c, p);
     }
@@ -229,7 +229,7 @@ SD_FN vec3 sampledNormal(KernelContext ctx, ColliderParams c, vec3 p) {
 
 // The point on the surface straight out from p (up for terrain, radially for
 // the cube map): where a particle that ended inside is put back.
-SD_FN vec3 sampledSurfacePoint(ColliderParams c, vec3 p, float distance) {
+SD_FN vec3 sampledSurfacePoint(SD_IN(ColliderParams) c, vec3 p, float distance) {
     if (c.kind == SD_COLLIDER_TERRAIN) {
         return vec3(p.x, p.y - distance, p.z);
     }
@@ -239,7 +239,7 @@ SD_FN vec3 sampledSurfacePoint(ColliderParams c, vec3 p, float distance) {
     return vec3(c.position) + dir * (r - distance);
 }
 
-SD_FN Hit intersectSampled(KernelContext ctx, ColliderParams c, vec3 p0, vec3 p1) {
+SD_FN Hit intersectSampled(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     float d0 = sampledDistance(ctx, c, p0);
     if (d0 < 0.0f) {
         float d1 = sampledDistance(ctx, c, p1);
@@ -276,7 +276,7 @@ SD_FN Hit intersectSampled(KernelContext ctx, ColliderParams c, vec3 p0, vec3 p1
     return noHit();
 }
 
-SD_FN Hit intersectCollider(KernelContext ctx, ColliderParams c, vec3 p0, vec3 p1) {
+SD_FN Hit intersectCollider(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     if (c.kind == SD_COLLIDER_PLANE) {
         return intersectPlane(c, p0, p1);
     }
@@ -290,7 +290,7 @@ SD_FN Hit intersectCollider(KernelContext ctx, ColliderParams c, vec3 p0, vec3 p
 }
 
 // Velocity response at a contact; v is the velocity at the moment of contact.
-SD_FN vec3 collisionVelocity(ColliderParams c, vec3 n, vec3 v) {
+SD_FN vec3 collisionVelocity(SD_IN(ColliderParams) c, vec3 n, vec3 v) {
     float vn = dot(v, n);
     if (vn >= 0.0f) {
         return v;  // already leaving the surface

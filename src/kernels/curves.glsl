@@ -4,14 +4,14 @@
 #include "types.glsl"
 SD_BEGIN
 
-SD_FN float curveTime(CurveParams c, uint i) {
+SD_FN float curveTime(SD_IN(CurveParams) c, uint i) {
     vec4 group = c.times[i / 4u];
     uint lane = i % 4u;
     return lane == 0u ? group.x : (lane == 1u ? group.y : (lane == 2u ? group.z : group.w));
 }
 
 // Value at t in [0, 1]; constant before the first and after the last key.
-SD_FN vec4 evaluateCurve(CurveParams c, float t) {
+SD_FN vec4 evaluateCurve(SD_IN(CurveParams) c, float t) {
     if (c.count == 0u) {
         return vec4(1.0f);
     }

@@ -11,17 +11,32 @@ SD_BEGIN
 // 1 % of the radius so the force stays finite at the centre; for falloff <= 0
 // (constant or spring-like) no softening is needed and none is applied, so a
 // spring (falloff -1) is exactly linear: F = strength d / radius.
-SD_FN float falloffMagnitude(ForceParams f, float d) {
+SD_FN float falloffMagnitude(SD_IN(ForceParams) f, float d) {
     float softened = f.falloff > 0.0f ? max(d, 0.01f * f.radius) : d;
-    return f.strength * pow(softened / f.radius, -f.falloff);
+    float q = f.radius / softened;
+    // The common exponents without pow(), which costs more than all the rest
+    // of a force; the results are the same to rounding.
+    if (f.falloff == 2.0f) {
+        return f.strength * q * q;
+    }
+    if (f.falloff == 1.0f) {
+        return f.strength * q;
+    }
+    if (f.falloff == 0.0f) {
+        return f.strength;
+    }
+    if (f.falloff == -1.0f) {
+        return f.strength * softened / f.radius;
+    }
+    return f.strength * pow(q, f.falloff);
 }
 
-SD_FN bool outOfRange(ForceParams f, float d) {
+SD_FN bool outOfRange(SD_IN(ForceParams) f, float d) {
     return f.position.w > 0.0f && d > f.position.w;
 }
 
 // Attraction toward f.position (repulsion for negative strength).
-SD_FN vec3 attractorForce(ForceParams f, vec3 p) {
+SD_FN vec3 attractorForce(SD_IN(ForceParams) f, vec3 p) {
     vec3 toCentre = vec3(f.position) - p;
     float d = length(toCentre);
     if (d <= 0.0f || outOfRange(f, d)) {
@@ -31,7 +46,7 @@ SD_FN vec3 attractorForce(ForceParams f, vec3 p) {
 }
 
 // Swirl around the line through f.position along f.axis.
-SD_FN vec3 vortexForce(ForceParams f, vec3 p) {
+SD_FN vec3 vortexForce(SD_IN(ForceParams) f, vec3 p) {
     vec3 axis = vec3(f.axis);
     vec3 offset = p - vec3(f.position);
     vec3 radial = offset - axis * dot(offset, axis);
@@ -67,7 +82,7 @@ SD_FN vec3 relaxSpeed(vec3 v, float target, float rate, float dt) {
 }
 
 // Local damping: the rate falls linearly to 0 at `range` from the position.
-SD_FN float relaxationRate(ForceParams f, vec3 p) {
+SD_FN float relaxationRate(SD_IN(ForceParams) f, vec3 p) {
     if (f.position.w <= 0.0f) {
         return f.strength;
     }

@@ -7,7 +7,7 @@ SD_BEGIN
 
 // a = F / m with every force acting on the emitter at (p, v). Damping and
 // un-damping are not here: they are exact speed relaxations (applySpeedRelaxation).
-SD_FN vec3 accelerationAt(KernelContext ctx, EmitterParams e, vec3 p, vec3 v, float mass, float radius) {
+SD_FN vec3 accelerationAt(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p, vec3 v, float mass, float radius) {
     vec3 force = vec3(0.0f);
     vec3 gravity = vec3(0.0f);
     uint n = forceCount(ctx);
@@ -15,7 +15,7 @@ SD_FN vec3 accelerationAt(KernelContext ctx, EmitterParams e, vec3 p, vec3 v, fl
         if ((e.forceMask & (1u << i)) == 0u) {
             continue;
         }
-        ForceParams f = forceAt(ctx, i);
+        SD_LET(ForceParams) f = forceAt(ctx, i);
         if (f.kind == SD_FORCE_GRAVITY) {
             gravity += vec3(f.vector);
         } else if (f.kind == SD_FORCE_WIND) {
@@ -33,13 +33,13 @@ SD_FN vec3 accelerationAt(KernelContext ctx, EmitterParams e, vec3 p, vec3 v, fl
     return gravity + force / mass;
 }
 
-SD_FN vec3 applySpeedRelaxation(KernelContext ctx, EmitterParams e, vec3 p, vec3 v, float dt) {
+SD_FN vec3 applySpeedRelaxation(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p, vec3 v, float dt) {
     uint n = forceCount(ctx);
     for (uint i = 0u; i < n; ++i) {
         if ((e.forceMask & (1u << i)) == 0u) {
             continue;
         }
-        ForceParams f = forceAt(ctx, i);
+        SD_LET(ForceParams) f = forceAt(ctx, i);
         if (f.kind == SD_FORCE_DAMPING) {
             v = relaxSpeed(v, 0.0f, relaxationRate(f, p), dt);
         } else if (f.kind == SD_FORCE_UNDAMPING) {
@@ -55,7 +55,7 @@ struct Motion {
     vec3 velocity;
 };
 
-SD_FN Motion integrateMotion(KernelContext ctx, EmitterParams e, vec3 p, vec3 v, float mass, float radius,
+SD_FN Motion integrateMotion(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p, vec3 v, float mass, float radius,
                              float dt) {
     Motion m;
     vec3 a0 = accelerationAt(ctx, e, p, v, mass, radius);

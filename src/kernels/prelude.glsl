@@ -5,6 +5,8 @@
 // swizzle assignment, float literals with an f suffix (glm does not mix float
 // and double), unsigned literals with a u suffix. Struct values are built by
 // declaring and assigning fields, never with constructors (the syntax differs).
+// Large parameter structs are passed as SD_IN(Type) and bound as SD_LET(Type),
+// which are const references on the C++ side and plain values in GLSL.
 // A kernel file wraps its contents in SD_BEGIN / SD_END so that on the C++ side
 // it lives in namespace spindrift::kernels.
 #ifndef SPINDRIFT_KERNELS_PRELUDE
@@ -21,12 +23,20 @@
     using namespace glm;                \
     using uint = std::uint32_t;
 #define SD_END }
-#define SD_FN inline
+// Always inlined: kernels pass structs by value (GLSL has no references), and
+// inlining turns those copies into plain register and memory reads.
+#define SD_FN [[gnu::always_inline]] inline
+// Large read-only parameter structs: a const reference in C++ (a value in
+// GLSL). Semantically still a value: nothing writes through it.
+#define SD_IN(T) const T&
+#define SD_LET(T) const T&
 #define SD_CONST inline constexpr
 #else
 #define SD_BEGIN
 #define SD_END
 #define SD_FN
+#define SD_IN(T) T
+#define SD_LET(T) T
 #define SD_CONST const
 #endif
 

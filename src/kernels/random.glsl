@@ -12,9 +12,15 @@ SD_FN uint pcgHash(uint v) {
     return (word >> 22u) ^ word;
 }
 
-// Key of one particle: (scene seed, emitter index, birth serial).
-SD_FN uint particleKey(uint seed, uint emitter, uint serial) {
-    return pcgHash(seed ^ pcgHash(emitter * 0x9E3779B9u ^ pcgHash(serial)));
+// Per-emitter part of the particle keys, computed once per emitter.
+SD_FN uint emitterKeyBase(uint seed, uint emitter) {
+    return pcgHash(seed ^ pcgHash(emitter * 0x9E3779B9u + 0x7F4A7C15u));
+}
+
+// Key of one particle: (scene seed, emitter index, birth serial). One hash per
+// particle: the emitter's part is folded into keyBase beforehand.
+SD_FN uint particleKey(uint keyBase, uint serial) {
+    return pcgHash(serial ^ keyBase);
 }
 
 // The n-th uniform number in [0, 1) of a key: 24 random bits, so the float is

@@ -93,15 +93,15 @@ SD_FN vec3 pointInBox(vec3 h, bool surface, float u0, float u1, float u2, float 
 }
 
 // Start colour and size are pure functions of the key (see file comment).
-SD_FN vec4 startColor(EmitterParams e, uint key) {
+SD_FN vec4 startColor(SD_IN(EmitterParams) e, uint key) {
     return mix(e.colorMin, e.colorMax, randomUnit(key, SD_RAND_COLOR));
 }
-SD_FN float startSize(EmitterParams e, uint key) {
+SD_FN float startSize(SD_IN(EmitterParams) e, uint key) {
     return randomRange(key, SD_RAND_SIZE, e.sizeMin, e.sizeMax);
 }
 
-SD_FN Particle spawnParticle(EmitterParams e, uint serial) {
-    uint key = particleKey(e.seed, e.emitterIndex, serial);
+SD_FN Particle spawnParticle(SD_IN(EmitterParams) e, uint serial) {
+    uint key = particleKey(e.keyBase, serial);
     float u0 = randomUnit(key, SD_RAND_POS0);
     float u1 = randomUnit(key, SD_RAND_POS1);
     float u2 = randomUnit(key, SD_RAND_POS2);

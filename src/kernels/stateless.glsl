@@ -8,7 +8,7 @@
 SD_BEGIN
 
 // The particle with serial `serial`, `age` seconds after its birth.
-SD_FN Particle evaluateStatelessParticle(EmitterParams e, uint serial, float age) {
+SD_FN Particle evaluateStatelessParticle(SD_IN(EmitterParams) e, uint serial, float age) {
     Particle p = spawnParticle(e, serial);
     vec3 g = vec3(e.statelessGravity);
     p.position = p.position + p.velocity * age + g * (0.5f * age * age);

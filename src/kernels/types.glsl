@@ -52,7 +52,7 @@ struct EmitterParams {
     float speedMin, speedMax, lifetimeMin, lifetimeMax;
     float sizeMin, sizeMax, rotationMin, rotationMax;
     float angularVelocityMin, angularVelocityMax, mass, lifeLossOnCollision;
-    uint shapeKind, integrator, flags, seed;
+    uint shapeKind, integrator, flags, keyBase;  // keyBase: emitterKeyBase(seed, emitterIndex)
     uint emitterIndex, capacity, forceMask, colliderMask;
     CurveParams colorOverLife;
     CurveParams sizeOverLife;

@@ -22,11 +22,11 @@ struct ParticleUpdate {
 
 // Colour and size over life: start values (re-derived from the key) times the
 // curves at normalised age.
-SD_FN Particle applyOverLife(EmitterParams e, Particle p) {
+SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
     if (e.colorOverLife.count == 0u && e.sizeOverLife.count == 0u) {
         return p;
     }
-    uint key = particleKey(e.seed, e.emitterIndex, p.birth);
+    uint key = particleKey(e.keyBase, p.birth);
     float t = clamp(p.age / p.lifetime, 0.0f, 1.0f);
     p.color = startColor(e, key) * evaluateCurve(e.colorOverLife, t);
     p.size = startSize(e, key) * evaluateCurve(e.sizeOverLife, t).x;
@@ -34,7 +34,7 @@ SD_FN Particle applyOverLife(EmitterParams e, Particle p) {
 }
 
 // Motion, damping, collisions and spin over dt for a live particle.
-SD_FN ParticleUpdate simulateParticle(KernelContext ctx, EmitterParams e, Particle p, float dt) {
+SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float dt) {
     ParticleUpdate r;
     r.events = 0u;
     r.hitMask = 0u;
@@ -49,7 +49,7 @@ SD_FN ParticleUpdate simulateParticle(KernelContext ctx, EmitterParams e, Partic
             if ((e.colliderMask & (1u << i)) == 0u) {
                 continue;
             }
-            ColliderParams c = colliderAt(ctx, i);
+            SD_LET(ColliderParams) c = colliderAt(ctx, i);
             Hit h = intersectCollider(ctx, c, start, m.position);
             if (h.hit == 0u) {
                 continue;
@@ -75,7 +75,7 @@ SD_FN ParticleUpdate simulateParticle(KernelContext ctx, EmitterParams e, Partic
 }
 
 // A fresh particle with serial `serial` that has lived `age` seconds of this step.
-SD_FN ParticleUpdate bornParticle(KernelContext ctx, EmitterParams e, uint serial, float age) {
+SD_FN ParticleUpdate bornParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, uint serial, float age) {
     Particle p = spawnParticle(e, serial);
     p.age = min(age, p.lifetime * 0.999f);
     ParticleUpdate r = simulateParticle(ctx, e, p, p.age);
@@ -93,7 +93,7 @@ SD_FN Particle deadParticle(Particle p) {
 // negative, phase-staggered) age reaches 0 and re-born when it reaches the
 // lifetime, keeping the remainder so emission stays evenly phased; the serial
 // advances by the capacity so every life of every slot has its own key.
-SD_FN ParticleUpdate updateParticle(KernelContext ctx, EmitterParams e, Particle p, float dt) {
+SD_FN ParticleUpdate updateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float dt) {
     bool recycle = (e.flags & SD_EMITTER_RECYCLE) != 0u;
     float age = p.age + dt;
     if (p.age < 0.0f) {

@@ -1,9 +1,327 @@
-// Placeholder: the command line tool is being written (see issue 2).
+// spindrift: the command line tool. `validate` checks scene files, `run`
+// simulates one and writes particle caches plus a JSON summary. Usage and the
+// file formats are documented in docs/cli.md.
+#include "io/cache.h"
+#include "io/progress.h"
+#include "io/summary.h"
+
+#include <spindrift/scene.h>
 #include <spindrift/world.h>
 
-#include <cstdio>
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
 
-int main() {
-    std::printf("spindrift %s\n", spindrift::versionString());
+#include <unistd.h>
+
+#include <algorithm>
+#include <charconv>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <filesystem>
+#include <iostream>
+#include <limits>
+#include <map>
+#include <set>
+#include <string>
+#include <vector>
+
+namespace {
+
+namespace fs = std::filesystem;
+using namespace spindrift;
+
+// Exit codes: 0 success, 1 the scene or the run failed, 2 bad usage (CLI11's
+// own codes are folded into 2 so scripts see one "you called me wrong" value).
+constexpr int kExitFailure = 1;
+constexpr int kExitUsage = 2;
+
+struct RunOptions {
+    std::string scene;
+    std::uint32_t steps = 0;
+    double seconds = 0.0;
+    double dt = 0.0;
+    std::string backend;
+    std::uint32_t threads = 0;
+    std::uint32_t seed = 0;
+    std::string out;
+    std::uint32_t every = 1;
+    std::vector<std::string> formats{"csv"};
+    bool quiet = false;
+    // Which options were given, so the scene's own values stay otherwise.
+    bool hasSteps = false, hasSeconds = false, hasDt = false, hasBackend = false;
+    bool hasThreads = false, hasSeed = false;
+};
+
+/// CLI11 validator for a finite number > 0 ("inf" and "nan" parse as doubles).
+CLI::Validator positiveFinite() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            double value = 0.0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+            if (ec != std::errc() || end != text.data() + text.size() || !std::isfinite(value) ||
+                value <= 0.0) {
+                return "must be a finite number > 0, got '" + text + "'";
+            }
+            return {};
+        },
+        "POSITIVE");
+}
+
+std::string backendName(Backend backend) {
+    switch (backend) {
+        case Backend::Cpu: return "cpu";
+        case Backend::Vulkan: return "vulkan";
+        case Backend::Auto: return "auto";
+    }
+    return "unknown";
+}
+
+Backend parseBackend(const std::string& name) {
+    static const std::map<std::string, Backend> kByName{
+        {"cpu", Backend::Cpu}, {"vulkan", Backend::Vulkan}, {"auto", Backend::Auto}};
+    return kByName.at(name);  // CLI11 has already checked membership
+}
+
+/// Destroys the world on every exit path, errors included.
+class WorldGuard {
+public:
+    explicit WorldGuard(WorldId id) : id_(id) {}
+    ~WorldGuard() {
+        try {
+            destroyWorld(id_);
+        } catch (...) {  // nothing useful to do while already leaving
+        }
+    }
+    WorldGuard(const WorldGuard&) = delete;
+    WorldGuard& operator=(const WorldGuard&) = delete;
+    WorldId id() const { return id_; }
+
+private:
+    WorldId id_;
+};
+
+// validate ---------------------------------------------------------------------
+
+int validateCommand(const std::string& path) {
+    const SceneDef scene = loadScene(path);
+    fmt::print("{}: ok ({} emitters, {} forces, {} colliders)\n", path, scene.emitters.size(),
+               scene.forces.size(), scene.colliders.size());
     return 0;
+}
+
+// run ----------------------------------------------------------------------------
+
+/// Options override the scene; --seconds becomes a step count at the final dt.
+void applyOverrides(SceneDef& scene, const RunOptions& o) {
+    if (o.hasBackend) scene.world.backend = parseBackend(o.backend);
+    if (o.hasThreads) scene.world.threads = o.threads;
+    if (o.hasSeed) scene.world.seed = o.seed;
+    if (o.hasDt) scene.run.dt = static_cast<float>(o.dt);
+    if (o.hasSteps) scene.run.steps = o.steps;
+    if (o.hasSeconds) {
+        // dt is a float (1/60 is not exact): allow for rounding so that
+        // 1 s at 1/60 gives 60 steps, not 61.
+        const double steps = std::ceil(o.seconds / static_cast<double>(scene.run.dt) - 1e-6);
+        if (steps > std::numeric_limits<std::uint32_t>::max()) {
+            throw Error(fmt::format("--seconds {} at dt {} needs more than 2^32 steps", o.seconds, scene.run.dt));
+        }
+        scene.run.steps = static_cast<std::uint32_t>(std::max(steps, 1.0));
+    }
+}
+
+/// File stem per emitter (index i = id i + 1): its name, made unique by
+/// appending the id when two names would give the same file.
+std::vector<std::string> cacheStems(WorldId world) {
+    std::vector<std::string> names;
+    std::map<std::string, int> uses;
+    for (std::uint32_t i = 0; i < emitterCount(world); ++i) {
+        names.push_back(emitterDef(world, EmitterId{i + 1}).name);
+        ++uses[io::cacheFileName(names.back(), 0, io::CacheFormat::Csv)];
+    }
+    for (std::uint32_t i = 0; i < names.size(); ++i) {
+        if (uses[io::cacheFileName(names[i], 0, io::CacheFormat::Csv)] > 1) names[i] += fmt::format("_{}", i + 1);
+    }
+    return names;
+}
+
+std::vector<io::CacheFormat> cacheFormats(const std::vector<std::string>& names) {
+    std::set<std::string> seen;
+    std::vector<io::CacheFormat> formats;
+    for (const std::string& name : names) {
+        if (!seen.insert(name).second) continue;
+        formats.push_back(name == "ply" ? io::CacheFormat::Ply : io::CacheFormat::Csv);
+    }
+    return formats;
+}
+
+/// Writes every emitter's particles in every format; returns files written.
+std::uint64_t dumpCaches(WorldId world, const fs::path& dir, std::uint64_t step,
+                         const std::vector<std::string>& stems,
+                         const std::vector<io::CacheFormat>& formats) {
+    std::uint64_t files = 0;
+    for (std::uint32_t i = 0; i < stems.size(); ++i) {
+        const ParticleSnapshot particles = readParticles(world, EmitterId{i + 1});
+        for (io::CacheFormat format : formats) {
+            io::writeCache(dir / io::cacheFileName(stems[i], step, format), particles, format);
+            ++files;
+        }
+    }
+    return files;
+}
+
+void createOutputDir(const fs::path& dir) {
+    std::error_code ec;
+    fs::create_directories(dir, ec);
+    if (ec || !fs::is_directory(dir)) {
+        throw Error(fmt::format("cannot create output directory '{}': {}", dir.string(),
+                                ec ? ec.message() : "a file of that name exists"));
+    }
+}
+
+io::RunSummary startSummary(const RunOptions& o, const SceneDef& scene, WorldId world) {
+    io::RunSummary s;
+    s.scene = o.scene;
+    s.backend = backendName(scene.world.backend);
+    s.threads = scene.world.threads;
+    s.seed = scene.world.seed;
+    s.dt = scene.run.dt;
+    s.every = o.out.empty() ? 0 : o.every;
+    if (!o.out.empty()) {
+        for (io::CacheFormat f : cacheFormats(o.formats)) s.formats.emplace_back(io::cacheExtension(f));
+    }
+    for (std::uint32_t i = 0; i < emitterCount(world); ++i) s.emitterNames.push_back(emitterDef(world, EmitterId{i + 1}).name);
+    for (const ColliderDef& c : scene.colliders) s.colliderNames.push_back(c.name);
+    return s;
+}
+
+double secondsSince(std::chrono::steady_clock::time_point start) {
+    return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+}
+
+/// Steps the world, dumping caches every `every` steps and after the last;
+/// fills summary.steps, wallSeconds and cacheFiles. Without --out no summary
+/// is written, so only the last step's stats are kept: memory stays flat
+/// however long the run.
+void simulate(WorldId world, const SceneDef& scene, const RunOptions& o, io::RunSummary& summary) {
+    const std::uint64_t total = scene.run.steps;
+    const bool dump = !o.out.empty();
+    if (dump) summary.steps.reserve(std::min<std::uint64_t>(total, 1u << 20));
+    const auto stems = cacheStems(world);
+    const auto formats = cacheFormats(o.formats);
+    io::ProgressReporter::Options progressOptions;
+    progressOptions.terminal = isatty(STDERR_FILENO) != 0;
+    io::ProgressReporter progress(std::cerr, total, progressOptions);
+    const auto start = std::chrono::steady_clock::now();
+    for (std::uint64_t done = 1; done <= total; ++done) {
+        StepStats stats = stepWorld(world, scene.run.dt);
+        if (!dump) summary.steps.clear();
+        summary.steps.push_back(std::move(stats));
+        if (dump && (done % o.every == 0 || done == total)) {
+            summary.cacheFiles += dumpCaches(world, o.out, done, stems, formats);
+        }
+        if (!o.quiet) progress.update(done, summary.steps.back().alive, secondsSince(start));
+    }
+    summary.wallSeconds = secondsSince(start);
+    const std::uint64_t alive = summary.steps.empty() ? 0 : summary.steps.back().alive;
+    if (!o.quiet) progress.finish(total, alive, summary.wallSeconds);
+}
+
+void printResult(const io::RunSummary& s, std::uint64_t steps, WorldId world, const RunOptions& o,
+                 std::uint64_t files) {
+    const std::uint64_t alive = s.steps.empty() ? 0 : s.steps.back().alive;
+    const std::string where = o.out.empty() ? std::string() : fmt::format(" to {}", o.out);
+    fmt::print("{} steps, {:.3f} s simulated, {:.3f} s wall, {} alive, {} files written{}\n", steps,
+               worldTime(world), s.wallSeconds, alive, files, where);
+}
+
+int runCommand(const RunOptions& o) {
+    SceneDef scene = loadScene(o.scene);
+    applyOverrides(scene, o);
+    // Build first: a scene or backend that fails leaves no empty directory.
+    WorldGuard world(buildWorld(scene));
+    if (!o.out.empty()) createOutputDir(o.out);
+    io::RunSummary summary = startSummary(o, scene, world.id());
+    simulate(world.id(), scene, o, summary);
+    std::uint64_t files = summary.cacheFiles;
+    if (!o.out.empty()) {
+        io::writeSummary(fs::path(o.out) / "summary.json", summary);
+        ++files;
+    }
+    printResult(summary, scene.run.steps, world.id(), o, files);
+    return 0;
+}
+
+// command line ---------------------------------------------------------------------
+
+void addRunOptions(CLI::App& run, RunOptions& o) {
+    run.add_option("scene", o.scene, "Scene file (TOML)")->required();
+    auto* steps = run.add_option("--steps,-n", o.steps, "Number of steps (default: the scene's run.steps)")
+                      ->check(CLI::Range(1u, std::numeric_limits<std::uint32_t>::max()));
+    auto* seconds = run.add_option("--seconds,-s", o.seconds, "Simulated time in seconds, rounded up to whole steps")
+                        ->check(positiveFinite());
+    steps->excludes(seconds);
+    run.add_option("--dt", o.dt, "Time step in seconds (default: the scene's run.dt)")->check(positiveFinite());
+    run.add_option("--backend,-b", o.backend, "cpu, vulkan or auto (default: the scene's)")
+        ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+    run.add_option("--threads,-j", o.threads, "CPU worker threads, 0 = all (default: the scene's)");
+    run.add_option("--seed", o.seed, "Seed of the random streams (default: the scene's)");
+    auto* out = run.add_option("--out,-o", o.out, "Directory for particle caches and summary.json");
+    run.add_option("--every,-e", o.every, "Write caches every K steps and after the last")
+        ->capture_default_str()
+        ->check(CLI::Range(1u, std::numeric_limits<std::uint32_t>::max()))
+        ->needs(out);
+    run.add_option("--format,-f", o.formats, "Cache formats, comma separated: csv, ply")
+        ->capture_default_str()
+        ->delimiter(',')
+        ->check(CLI::IsMember({"csv", "ply"}))
+        ->needs(out);
+    run.add_flag("--quiet,-q", o.quiet, "No progress line on stderr");
+}
+
+void noteGiven(const CLI::App& run, RunOptions& o) {
+    o.hasSteps = run.count("--steps") > 0;
+    o.hasSeconds = run.count("--seconds") > 0;
+    o.hasDt = run.count("--dt") > 0;
+    o.hasBackend = run.count("--backend") > 0;
+    o.hasThreads = run.count("--threads") > 0;
+    o.hasSeed = run.count("--seed") > 0;
+}
+
+/// Runs a command, turning errors into a message on stderr and exit code 1.
+template <class Command>
+int reportErrors(Command&& command) {
+    try {
+        return command();
+    } catch (const SceneError& e) {
+        std::fprintf(stderr, "%s\n", e.what());  // already "file:line:col: key: message"
+    } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+    }
+    return kExitFailure;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+    CLI::App app{"spindrift: simulate particle effects from scene files"};
+    app.set_version_flag("--version", fmt::format("spindrift {}", versionString()));
+    app.require_subcommand(1);
+
+    std::string validatePath;
+    CLI::App* validate = app.add_subcommand("validate", "Check a scene file and report what it holds");
+    validate->add_option("scene", validatePath, "Scene file (TOML)")->required();
+
+    RunOptions runOptions;
+    CLI::App* run = app.add_subcommand("run", "Simulate a scene, optionally writing caches and a summary");
+    addRunOptions(*run, runOptions);
+
+    try {
+        app.parse(argc, argv);
+    } catch (const CLI::ParseError& e) {
+        return app.exit(e) == 0 ? 0 : kExitUsage;
+    }
+    if (validate->parsed()) return reportErrors([&] { return validateCommand(validatePath); });
+    noteGiven(*run, runOptions);
+    return reportErrors([&] { return runCommand(runOptions); });
 }

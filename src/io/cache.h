@@ -1,0 +1,50 @@
+// Particle caches: one file per emitter per dumped step, for Houdini, Blender,
+// ParaView, MeshLab or a spreadsheet to load.
+#pragma once
+
+#include <spindrift/world.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <ostream>
+#include <string>
+#include <string_view>
+
+namespace spindrift::io {
+
+enum class CacheFormat : std::uint32_t {
+    Csv = 0,  ///< text, every attribute, floats that round-trip exactly
+    Ply = 1,  ///< binary little-endian point cloud for 3D tools
+};
+
+/// "csv" or "ply".
+std::string_view cacheExtension(CacheFormat format);
+
+/// "<emitter>_<step, at least 6 digits>.<ext>". Characters of the emitter name
+/// outside [A-Za-z0-9._-] become '_' so any name gives one safe file name; an
+/// empty name becomes "emitter".
+std::string cacheFileName(std::string_view emitterName, std::uint64_t step, CacheFormat format);
+
+/// Throws spindrift::Error unless every attribute the caches write (all but
+/// `slot`) has count() entries.
+void checkSnapshot(const ParticleSnapshot& particles);
+
+/// CSV columns, in order.
+inline constexpr std::string_view kCsvHeader =
+    "x,y,z,vx,vy,vz,age,lifetime,size,rotation,r,g,b,a,birth";
+
+/// Header row, then one row per particle in snapshot order.
+void writeCsv(std::ostream& out, const ParticleSnapshot& particles);
+
+/// PLY 1.0, binary_little_endian; vertex properties: float x y z vx vy vz age
+/// size, uchar red green blue alpha. Colour is clamped to [0, 1] and encoded
+/// sRGB (alpha stays linear) because the tools that read PLY treat byte colours
+/// as display colours.
+void writePly(std::ostream& out, const ParticleSnapshot& particles);
+
+/// Writes `particles` to `path` in `format` atomically (see AtomicFile);
+/// throws spindrift::Error on failure.
+void writeCache(const std::filesystem::path& path, const ParticleSnapshot& particles,
+                CacheFormat format);
+
+}  // namespace spindrift::io

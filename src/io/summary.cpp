@@ -1,0 +1,150 @@
+#include "io/summary.h"
+
+#include "io/atomic_file.h"
+#include "io/json_writer.h"
+
+namespace spindrift::io {
+
+namespace {
+
+/// Hits per collider in id order. The library may report only the colliders
+/// that were hit, in any order; a dense array lines up with "colliders".
+std::vector<std::uint64_t> denseHits(const StepStats& step, std::size_t colliderCount) {
+    std::vector<std::uint64_t> hits(colliderCount, 0);
+    for (const ColliderStepStats& c : step.colliderHits) {
+        if (c.collider.index >= 1 && c.collider.index <= colliderCount) hits[c.collider.index - 1] += c.hits;
+    }
+    return hits;
+}
+
+void writeCounts(JsonWriter& json, const std::vector<std::uint64_t>& counts) {
+    json.beginArray(true);
+    for (std::uint64_t n : counts) json.value(n);
+    json.endArray();
+}
+
+void writeNames(JsonWriter& json, const char* key, const std::vector<std::string>& names) {
+    json.key(key);
+    json.beginArray(true);
+    for (const std::string& name : names) json.value(name);
+    json.endArray();
+}
+
+void writeHeader(JsonWriter& json, const RunSummary& s) {
+    json.key("schema");
+    json.value(kSummarySchema);
+    json.key("spindrift");
+    json.value(versionString());
+    json.key("scene");
+    json.value(s.scene);
+    json.key("backend");
+    json.value(s.backend);
+    json.key("threads");
+    json.value(s.threads);
+    json.key("seed");
+    json.value(s.seed);
+    json.key("dt");
+    json.value(s.dt);
+    json.key("steps");
+    json.value(static_cast<std::uint64_t>(s.steps.size()));
+    json.key("every");
+    json.value(s.every);
+    writeNames(json, "formats", s.formats);
+    writeNames(json, "emitters", s.emitterNames);
+    writeNames(json, "colliders", s.colliderNames);
+}
+
+void writeStep(JsonWriter& json, const StepStats& step, std::size_t colliderCount) {
+    json.beginObject(true);
+    // 1-based: the state after this many steps, the number in the cache file names.
+    json.key("step");
+    json.value(step.step + 1);
+    json.key("time");
+    json.value(step.time);
+    json.key("alive");
+    json.value(step.alive);
+    json.key("born");
+    json.value(step.born);
+    json.key("died");
+    json.value(step.died);
+    json.key("collisions");
+    json.value(step.collisions);
+    json.key("clamped");
+    json.value(step.clamped);
+    json.key("ms");
+    json.value(step.milliseconds);
+    json.key("collider_hits");
+    writeCounts(json, denseHits(step, colliderCount));
+    json.endObject();
+}
+
+struct Totals {
+    std::uint64_t born = 0, died = 0, collisions = 0, clamped = 0;
+    double milliseconds = 0.0;
+    std::vector<std::uint64_t> colliderHits;
+};
+
+Totals sumSteps(const RunSummary& s) {
+    Totals t;
+    t.colliderHits.assign(s.colliderNames.size(), 0);
+    for (const StepStats& step : s.steps) {
+        t.born += step.born;
+        t.died += step.died;
+        t.collisions += step.collisions;
+        t.clamped += step.clamped;
+        t.milliseconds += step.milliseconds;
+        const auto hits = denseHits(step, s.colliderNames.size());
+        for (std::size_t i = 0; i < hits.size(); ++i) t.colliderHits[i] += hits[i];
+    }
+    return t;
+}
+
+void writeTotals(JsonWriter& json, const RunSummary& s) {
+    const Totals t = sumSteps(s);
+    json.beginObject();
+    json.key("born");
+    json.value(t.born);
+    json.key("died");
+    json.value(t.died);
+    json.key("collisions");
+    json.value(t.collisions);
+    json.key("clamped");
+    json.value(t.clamped);
+    json.key("collider_hits");
+    writeCounts(json, t.colliderHits);
+    json.key("step_ms");
+    json.value(t.milliseconds);
+    json.key("final_alive");
+    json.value(s.steps.empty() ? std::uint64_t{0} : s.steps.back().alive);
+    json.key("simulated_seconds");
+    json.value(s.steps.empty() ? 0.0 : s.steps.back().time);
+    json.key("wall_seconds");
+    json.value(s.wallSeconds);
+    json.key("cache_files");
+    json.value(s.cacheFiles);
+    json.endObject();
+}
+
+}  // namespace
+
+void writeSummaryJson(std::ostream& out, const RunSummary& summary) {
+    JsonWriter json(out);
+    json.beginObject();
+    writeHeader(json, summary);
+    json.key("per_step");
+    json.beginArray();
+    for (const StepStats& step : summary.steps) writeStep(json, step, summary.colliderNames.size());
+    json.endArray();
+    json.key("totals");
+    writeTotals(json, summary);
+    json.endObject();
+    json.finish();
+}
+
+void writeSummary(const std::filesystem::path& path, const RunSummary& summary) {
+    AtomicFile file(path);
+    writeSummaryJson(file.stream(), summary);
+    file.commit();
+}
+
+}  // namespace spindrift::io

@@ -1,0 +1,274 @@
+// The command line tool, run as a separate process the way users run it.
+#include <spindrift/scene.h>
+
+#include <gtest/gtest.h>
+
+#include <sys/wait.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <regex>
+#include <set>
+#include <sstream>
+#include <string>
+#include <vector>
+
+namespace spindrift_test {  // tests/io/json_check.cpp
+std::string jsonError(std::string_view text);
+std::optional<std::string> jsonQuery(std::string_view text, std::string_view path);
+}  // namespace spindrift_test
+
+namespace {
+
+namespace fs = std::filesystem;
+using spindrift_test::jsonError;
+using spindrift_test::jsonQuery;
+
+const fs::path kCli = SPINDRIFT_CLI_PATH;
+const fs::path kFountain = fs::path(SPINDRIFT_SOURCE_DIR) / "scenes" / "fountain.toml";
+
+std::string readFile(const fs::path& path) {
+    std::ifstream in(path, std::ios::binary);
+    std::ostringstream text;
+    text << in.rdbuf();
+    return text.str();
+}
+
+/// Single quotes for sh; the paths used here hold no single quote.
+std::string quoted(const fs::path& path) {
+    // Appended piecewise: GCC 12 at -O3 warns falsely (-Wrestrict) on "'" + string.
+    std::string text(1, '\'');
+    text += path.string();
+    text += '\'';
+    return text;
+}
+
+struct Result {
+    int code = -1;          ///< exit status, or -1 if killed by a signal
+    std::string out, err;
+};
+
+/// A fresh directory per test, removed afterwards.
+class CliTest : public ::testing::Test {
+protected:
+    void SetUp() override {
+        const auto* test = ::testing::UnitTest::GetInstance()->current_test_info();
+        dir_ = fs::temp_directory_path() /
+               ("spindrift-cli-" + std::to_string(::getpid()) + "-" + test->test_suite_name() + "-" + test->name());
+        fs::remove_all(dir_);
+        fs::create_directories(dir_ / "cwd");
+    }
+    void TearDown() override {
+        std::error_code ignored;
+        fs::remove_all(dir_, ignored);
+    }
+
+    /// Runs `spindrift ARGS` in dir/cwd, capturing both streams.
+    Result cli(const std::string& args) {
+        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
+        const std::string command = "cd " + quoted(dir_ / "cwd") + " && " + quoted(kCli) + " " + args +
+                                    " >" + quoted(out) + " 2>" + quoted(err);
+        const int status = std::system(command.c_str());
+        Result r;
+        if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
+        r.out = readFile(out);
+        r.err = readFile(err);
+        return r;
+    }
+
+    const fs::path& dir() const { return dir_; }
+
+private:
+    fs::path dir_;
+};
+
+std::vector<std::string> fileNames(const fs::path& dir) {
+    std::vector<std::string> names;
+    for (const auto& entry : fs::directory_iterator(dir)) names.push_back(entry.path().filename().string());
+    std::sort(names.begin(), names.end());
+    return names;
+}
+
+/// Data rows of a CSV cache (lines after the header).
+std::size_t csvRows(const fs::path& file) {
+    const std::string text = readFile(file);
+    const auto lines = static_cast<std::size_t>(std::count(text.begin(), text.end(), '\n'));
+    return lines == 0 ? 0 : lines - 1;
+}
+
+#define SKIP_WITHOUT_FOUNTAIN()                                                         \
+    if (!fs::exists(kFountain)) GTEST_SKIP() << kFountain << " is not written yet"
+
+// --version, usage --------------------------------------------------------------------
+
+TEST_F(CliTest, VersionPrintsNameAndSemver) {
+    const Result r = cli("--version");
+    EXPECT_EQ(r.code, 0);
+    EXPECT_TRUE(std::regex_match(r.out, std::regex(R"(spindrift \d+\.\d+\.\d+\n)"))) << r.out;
+}
+
+TEST_F(CliTest, BadUsageExitsWith2AndSaysWhy) {
+    // Parsing fails before the scene is opened, so a missing scene is fine:
+    // a parser that let these through would exit 1 instead.
+    const char* bad[] = {"",
+                         "frobnicate",
+                         "run",
+                         "run x.toml --steps abc",
+                         "run x.toml --steps 0",
+                         "run x.toml --steps -3",
+                         "run x.toml --dt -1",
+                         "run x.toml --dt nan",
+                         "run x.toml --seconds inf",
+                         "run x.toml --steps 5 --seconds 1",
+                         "run x.toml --backend metal",
+                         "run x.toml --out d --format csv,obj",
+                         "run x.toml --every 5",
+                         "run x.toml --out d --every 0",
+                         "run x.toml --no-such-option",
+                         "validate"};
+    for (const char* args : bad) {
+        const Result r = cli(args);
+        EXPECT_EQ(r.code, 2) << "spindrift " << args;
+        EXPECT_FALSE(r.err.empty()) << "spindrift " << args;
+    }
+    EXPECT_TRUE(fs::is_empty(dir() / "cwd")) << "nothing may be written on a usage error";
+}
+
+// validate -------------------------------------------------------------------------------
+
+TEST_F(CliTest, ValidateMissingFileFailsWithPath) {
+    const fs::path missing = dir() / "no-such-scene.toml";
+    const Result r = cli("validate " + quoted(missing));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(missing.string()), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
+TEST_F(CliTest, ValidateUnknownKeyReportsFileLineColumn) {
+    const fs::path scene = dir() / "typo.toml";
+    std::ofstream(scene) << "# a scene with a misspelt key\n"
+                            "\n"
+                            "  bogus_key = 1\n";
+    const Result r = cli("validate " + quoted(scene));
+    EXPECT_EQ(r.code, 1);
+    const std::regex location(std::regex_replace(scene.string(), std::regex(R"([.^$|()\[\]{}*+?\\])"), R"(\$&)") +
+                              R"(:3:\d+: )");
+    EXPECT_TRUE(std::regex_search(r.err, location)) << r.err;
+    EXPECT_NE(r.err.find("bogus_key"), std::string::npos) << r.err;
+}
+
+TEST_F(CliTest, ValidateFountainCountsItsParts) {
+    SKIP_WITHOUT_FOUNTAIN();
+    const spindrift::SceneDef scene = spindrift::loadScene(kFountain.string());
+    const Result r = cli("validate " + quoted(kFountain));
+    EXPECT_EQ(r.code, 0) << r.err;
+    std::ostringstream expected;
+    expected << kFountain.string() << ": ok (" << scene.emitters.size() << " emitters, "
+             << scene.forces.size() << " forces, " << scene.colliders.size() << " colliders)\n";
+    EXPECT_EQ(r.out, expected.str());
+}
+
+// run -----------------------------------------------------------------------------------------
+
+TEST_F(CliTest, RunFountainWritesCachesAndSummary) {
+    SKIP_WITHOUT_FOUNTAIN();
+    const spindrift::SceneDef scene = spindrift::loadScene(kFountain.string());
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(kFountain) + " --steps 20 --every 10 --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+
+    std::vector<std::string> expected{"summary.json"};
+    for (const auto& e : scene.emitters) {
+        ASSERT_TRUE(std::regex_match(e.name, std::regex("[A-Za-z0-9_-]+"))) << "test assumes plain names";
+        expected.push_back(e.name + "_000010.csv");
+        expected.push_back(e.name + "_000020.csv");
+    }
+    std::sort(expected.begin(), expected.end());
+    EXPECT_EQ(fileNames(out), expected);
+
+    const std::string json = readFile(out / "summary.json");
+    ASSERT_EQ(jsonError(json), "") << json;
+    EXPECT_EQ(jsonQuery(json, "steps"), "20");
+    EXPECT_EQ(jsonQuery(json, "per_step/#"), "20");
+    EXPECT_EQ(jsonQuery(json, "per_step/19/step"), "20");
+    EXPECT_EQ(jsonQuery(json, "totals/cache_files"), std::to_string(2 * scene.emitters.size()));
+
+    // "alive" counts state-preserving particles; stateless ones are not stored.
+    std::size_t rows = 0;
+    for (const auto& e : scene.emitters) {
+        if (!e.stateless) rows += csvRows(out / (e.name + "_000020.csv"));
+    }
+    EXPECT_EQ(jsonQuery(json, "per_step/19/alive"), std::to_string(rows));
+    EXPECT_GT(rows, 0u) << "a fountain should have particles after 20 steps";
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(^20 steps, .* )" + std::to_string(rows) +
+                                                    R"( alive, )" + std::to_string(expected.size()) +
+                                                    R"( files written)")))
+        << r.out;
+}
+
+TEST_F(CliTest, RunSecondsBecomeStepsAndLastStepIsAlwaysWritten) {
+    SKIP_WITHOUT_FOUNTAIN();
+    const fs::path out = dir() / "cache";
+    // 0.1 s at 0.01 s is 10 steps; --every 4 writes after 4, 8 and the last, 10.
+    const Result r = cli("run " + quoted(kFountain) + " --seconds 0.1 --dt 0.01 --every 4 --quiet --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string json = readFile(out / "summary.json");
+    EXPECT_EQ(jsonQuery(json, "steps"), "10");
+    EXPECT_EQ(jsonQuery(json, "dt"), "0.01");
+    std::set<std::string> steps;
+    for (const std::string& name : fileNames(out)) {
+        if (name.ends_with(".csv")) steps.insert(name.substr(name.size() - 10, 6));
+    }
+    EXPECT_EQ(steps, (std::set<std::string>{"000004", "000008", "000010"}));
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(CliTest, RunWritesPlyWithTheSameParticlesAsCsv) {
+    SKIP_WITHOUT_FOUNTAIN();
+    const spindrift::SceneDef scene = spindrift::loadScene(kFountain.string());
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(kFountain) + " --steps 12 --every 12 --format ply,csv -o " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    for (const auto& e : scene.emitters) {
+        const std::string ply = readFile(out / (e.name + "_000012.ply"));
+        ASSERT_EQ(ply.rfind("ply\nformat binary_little_endian 1.0\n", 0), 0u);
+        const std::string vertices = "element vertex " + std::to_string(csvRows(out / (e.name + "_000012.csv"))) + "\n";
+        EXPECT_NE(ply.find(vertices), std::string::npos) << e.name;
+    }
+}
+
+TEST_F(CliTest, RunWithoutOutWritesNothing) {
+    SKIP_WITHOUT_FOUNTAIN();
+    const Result r = cli("run " + quoted(kFountain) + " --steps 5");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_TRUE(fs::is_empty(dir() / "cwd"));
+    EXPECT_TRUE(std::regex_search(r.out, std::regex(R"(^5 steps, .* 0 files written\n$)"))) << r.out;
+}
+
+TEST_F(CliTest, RunBadSceneExits1) {
+    const fs::path scene = dir() / "typo.toml";
+    std::ofstream(scene) << "bogus_key = 1\n";
+    const Result r = cli("run " + quoted(scene) + " --steps 3 --out " + quoted(dir() / "cache"));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(scene.string()), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(dir() / "cache")) << "a rejected scene must not create the output";
+}
+
+TEST_F(CliTest, RunOnVulkanFailsCleanlyOrWorks) {
+    SKIP_WITHOUT_FOUNTAIN();
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(kFountain) + " --steps 2 --backend vulkan --out " + quoted(out));
+    ASSERT_TRUE(r.code == 0 || r.code == 1) << "exit " << r.code << " (-1: killed by a signal)\n" << r.err;
+    if (r.code == 1) {
+        EXPECT_TRUE(r.err.starts_with("error: ")) << r.err;
+        EXPECT_FALSE(fs::exists(out)) << "a world that could not be built must not create the output";
+    } else {
+        EXPECT_TRUE(fs::exists(out / "summary.json"));
+    }
+}
+
+}  // namespace

@@ -179,8 +179,10 @@ struct ColliderDef {
     float radius = 1.0f;               ///< sphere
     glm::vec3 halfExtents{0.5f};       ///< box
     glm::vec3 rotationDegrees{0.0f};   ///< box orientation, XYZ Euler (deg)
-    /// Terrain: heights on an nx by nz grid over [position.x, position.x + sizeX]
-    /// x [position.z, position.z + sizeZ], x fastest; surface y = position.y + h.
+    /// Terrain: heights at the vertices of an nx by nz grid spanning
+    /// [position.x, position.x + sizeX] x [position.z, position.z + sizeZ]
+    /// (height (i, j) at x = position.x + sizeX i / (nx - 1)), x fastest; surface
+    /// y = position.y + h, bilinear between vertices, edge heights beyond.
     std::uint32_t terrainNx = 0, terrainNz = 0;
     float terrainSizeX = 0.0f, terrainSizeZ = 0.0f;
     std::vector<float> heights;

@@ -1,0 +1,23 @@
+// Greyscale PNG height maps (decoded with stb_image).
+#pragma once
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spindrift::scene {
+
+struct GreyImage {
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    /// width * height values in [0, 1] (8-bit / 255, 16-bit / 65535), row 0
+    /// (the top of the image) first, x fastest.
+    std::vector<float> values;
+};
+
+/// Decodes an 8- or 16-bit greyscale PNG (an alpha channel is ignored). On
+/// failure returns false and says why in `error`; colour images are refused
+/// rather than silently converted.
+bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& error);
+
+}  // namespace spindrift::scene

@@ -1,0 +1,296 @@
+// [[emitter]]: spawning, launch shape, per-particle ranges, curves, forces,
+// collisions and the stateless closed form. Angles in the file are degrees.
+#include "scene/limits.h"
+#include "scene/parse_internal.h"
+
+#include <fmt/format.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include <set>
+
+namespace spindrift::scene {
+
+namespace {
+
+constexpr float kRadiansPerDegree = glm::pi<float>() / 180.0f;
+
+const std::vector<std::string_view> kEmitterKeys = {
+    "name",           "lifecycle",  "capacity",
+    "rate",           "bursts",     "duration",
+    "shape",          "speed",      "lifetime",
+    "size",           "rotation",   "angular_velocity",
+    "color",          "mass",       "color_over_life",
+    "size_over_life", "integrator", "forces",
+    "collision",      "stateless",  "stateless_gravity"};
+
+FloatRange toRadians(FloatRange degrees) {
+    return {degrees.min * kRadiansPerDegree, degrees.max * kRadiansPerDegree};
+}
+
+// --- Shape -------------------------------------------------------------------
+
+std::vector<std::string_view> shapeKeys(SpawnShapeKind kind) {
+    std::vector<std::string_view> keys = {"kind", "center", "direction", "spread"};
+    switch (kind) {
+        case SpawnShapeKind::Point:
+            break;
+        case SpawnShapeKind::Sphere:
+            keys.insert(keys.end(), {"radius", "surface"});
+            break;
+        case SpawnShapeKind::Box:
+            keys.insert(keys.end(), {"half_extents", "surface"});
+            break;
+        case SpawnShapeKind::Disk:
+        case SpawnShapeKind::Cone:
+            keys.push_back("radius");  // required, > 0
+            break;
+    }
+    return keys;
+}
+
+SpawnShapeDef readShape(const Table& t) {
+    SpawnShapeDef def;
+    const Value kind = t.require("kind", "\"point\", \"sphere\", \"box\", \"disk\" or \"cone\"");
+    def.kind = kind.choice<SpawnShapeKind>({{"point", SpawnShapeKind::Point},
+                                            {"sphere", SpawnShapeKind::Sphere},
+                                            {"box", SpawnShapeKind::Box},
+                                            {"disk", SpawnShapeKind::Disk},
+                                            {"cone", SpawnShapeKind::Cone}});
+    t.allowOnly(shapeKeys(def.kind), fmt::format("a shape of kind \"{}\"", kind.string()));
+    def.center = t.vec3("center", def.center);
+    def.direction = t.direction("direction", def.direction);
+    def.spreadAngle = t.real("spread", 0.0f, Bounds::between(0.0, 180.0)) * kRadiansPerDegree;
+    def.surface = t.boolean("surface", def.surface);
+    if (def.kind == SpawnShapeKind::Box) {
+        def.halfExtents =
+            t.require("half_extents", "[hx, hy, hz] (m), each >= 0").vec3(Bounds::nonNegative());
+    } else if (def.kind != SpawnShapeKind::Point) {
+        // A cone's launch angle grows from 0 on its axis to `spread` at its rim,
+        // so it needs a rim: radius 0 would launch everything along the axis.
+        def.radius = t.require("radius", "a number > 0 (m)").real(Bounds::positive());
+    }
+    return def;
+}
+
+// --- Colours and curves ------------------------------------------------------
+
+// [r, g, b, a] in linear light: rgb >= 0 (may exceed 1 for HDR glow), alpha in [0, 1].
+glm::vec4 readColor(const Value& v, bool alphaIsFactor) {
+    if (!v.node().is_array() || v.array().size() != 4) {
+        v.failExpected("a colour [r, g, b, a]");
+    }
+    glm::vec4 c;
+    for (std::size_t i = 0; i < 3; ++i) {
+        c[static_cast<int>(i)] = v.element(i).real(Bounds::nonNegative());
+    }
+    c.a = v.element(3).real(alphaIsFactor ? Bounds::nonNegative() : Bounds::unit());
+    return c;
+}
+
+// `color = [r, g, b, a]` or `color = [[r, g, b, a], [r, g, b, a]]`.
+ColorRange readColorRange(const Value& v) {
+    if (v.node().is_array() && v.array().size() == 2 && v.array().get(0)->is_array()) {
+        return {readColor(v.element(0), false), readColor(v.element(1), false)};
+    }
+    if (!v.node().is_array() || v.array().size() != 4) {
+        v.failExpected("a colour [r, g, b, a] or two colours [[r, g, b, a], [r, g, b, a]]");
+    }
+    const glm::vec4 c = readColor(v, false);
+    return {c, c};
+}
+
+// Keys {t = ..., value = ...}: at most 8, t in [0, 1] strictly increasing.
+Curve readCurve(const Value& v, bool colorValues) {
+    const toml::array& keys = v.array();
+    if (keys.size() > static_cast<std::size_t>(kMaxCurveKeys)) {
+        v.fail(fmt::format("expected at most {} curve keys, got {}", kMaxCurveKeys, keys.size()));
+    }
+    Curve curve;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        const Value key = v.element(i);
+        if (!key.node().is_table()) {
+            key.failExpected("a curve key {t = ..., value = ...}");
+        }
+        const Table t(key.context(), *key.node().as_table(), key.path());
+        t.allowOnly({"t", "value"}, "a curve key");
+        CurveKey k;
+        const Value time = t.require("t", "a number in [0, 1] (normalised age)");
+        k.t = time.real(Bounds::unit());
+        if (!curve.keys.empty() && !(k.t > curve.keys.back().t)) {
+            time.fail(
+                fmt::format("expected t > {} (the previous key's t): curve keys must be in "
+                            "strictly increasing t, got {}",
+                            curve.keys.back().t, k.t));
+        }
+        const Value value =
+            t.require("value", colorValues ? "a colour factor [r, g, b, a]" : "a size factor >= 0");
+        k.value =
+            colorValues ? readColor(value, true) : glm::vec4(value.real(Bounds::nonNegative()));
+        curve.keys.push_back(k);
+    }
+    return curve;
+}
+
+// --- Spawning ----------------------------------------------------------------
+
+// Bursts of at most `capacity` particles: a larger one could never be born whole.
+std::vector<BurstDef> readBursts(const Value& v, std::uint32_t capacity) {
+    std::vector<BurstDef> bursts;
+    for (std::size_t i = 0; i < v.array().size(); ++i) {
+        const Value item = v.element(i);
+        if (!item.node().is_table()) {
+            item.failExpected("a burst {time = ..., count = ...}");
+        }
+        const Table t(item.context(), *item.node().as_table(), item.path());
+        t.allowOnly({"time", "count"}, "a burst");
+        BurstDef burst;
+        burst.time = t.require("time", "a number >= 0 (s)").real(Bounds::nonNegative());
+        burst.count = static_cast<std::uint32_t>(
+            t.require("count", "an integer >= 1")
+                .integer(Bounds::between(1, static_cast<double>(capacity))));
+        bursts.push_back(burst);
+    }
+    return bursts;
+}
+
+void readSpawning(const Table& t, EmitterDef& def) {
+    if (auto v = t.find("lifecycle")) {
+        def.lifecycle =
+            v->choice<Lifecycle>({{"spawn", Lifecycle::Spawn}, {"recycle", Lifecycle::Recycle}});
+    }
+    def.capacity = static_cast<std::uint32_t>(
+        t.integer("capacity", def.capacity, Bounds::between(1, static_cast<double>(kMaxCapacity))));
+    // Recycle mode re-births every slot as it dies: there is nothing to pace.
+    if (def.lifecycle == Lifecycle::Recycle && !def.stateless) {
+        for (std::string_view key : {"rate", "bursts"}) {
+            if (t.has(key)) {
+                t.failAtKey(key, fmt::format("`{}` applies to lifecycle = \"spawn\" (or stateless "
+                                             "emitters); a recycle emitter re-births each of its "
+                                             "`capacity` slots as soon as it dies",
+                                             key));
+            }
+        }
+    }
+    def.rate = t.real("rate", def.rate, Bounds::nonNegative());
+    if (auto v = t.find("bursts")) {
+        def.bursts = readBursts(*v, def.capacity);
+    }
+    // The file says "forever" by leaving duration out; the API uses -1.
+    def.duration = t.real("duration", -1.0f, Bounds::positive());
+}
+
+// --- Per-particle ranges -----------------------------------------------------
+
+void readParticleRanges(const Table& t, EmitterDef& def) {
+    def.speed = t.range("speed", def.speed, Bounds::nonNegative());
+    def.lifetime = t.range("lifetime", def.lifetime, Bounds::positive());
+    def.size = t.range("size", def.size, Bounds::nonNegative());
+    if (auto v = t.find("rotation")) {
+        def.rotation = toRadians(v->range());
+    }
+    if (auto v = t.find("angular_velocity")) {
+        def.angularVelocity = toRadians(v->range());
+    }
+    if (auto v = t.find("color")) {
+        def.color = readColorRange(*v);
+    }
+    def.mass = t.real("mass", def.mass, Bounds::positive());
+    if (auto v = t.find("color_over_life")) {
+        def.colorOverLife = readCurve(*v, true);
+    }
+    if (auto v = t.find("size_over_life")) {
+        def.sizeOverLife = readCurve(*v, false);
+    }
+}
+
+// --- Forces, collisions, integration -----------------------------------------
+
+// A list of names, each resolved to its 1-based id. An empty list is refused:
+// the API reads empty as "all", the opposite of what `[]` seems to say.
+template <class Id>
+std::vector<Id> readReferences(const Value& v, const NameTable& names, std::string_view kind) {
+    const toml::array& items = v.array();
+    if (items.empty()) {
+        v.fail(fmt::format("expected at least one {0} name; leave the key out to use every {0}",
+                           kind));
+    }
+    std::vector<Id> ids;
+    std::set<std::uint32_t> seen;
+    for (std::size_t i = 0; i < items.size(); ++i) {
+        const Value item = v.element(i);
+        const std::uint32_t index = names.resolve(item);
+        if (!seen.insert(index).second) {
+            item.fail(fmt::format("{} \"{}\" is listed twice", kind, item.string()));
+        }
+        ids.push_back(Id{index + 1});
+    }
+    return ids;
+}
+
+CollisionResponseDef readCollision(const Table& t, const NameTable& colliders) {
+    t.allowOnly({"enabled", "colliders", "kill", "life_loss"}, "[emitter.collision]");
+    CollisionResponseDef def;
+    def.enabled = t.boolean("enabled", def.enabled);
+    if (auto v = t.find("colliders")) {
+        def.colliders = readReferences<ColliderId>(*v, colliders, "collider");
+    }
+    def.killOnCollision = t.boolean("kill", def.killOnCollision);
+    def.lifeLossOnCollision = t.real("life_loss", def.lifeLossOnCollision, Bounds::unit());
+    return def;
+}
+
+void readStatelessRules(const Table& t, EmitterDef& def) {
+    def.stateless = t.boolean("stateless", def.stateless);
+    if (def.stateless) {
+        for (std::string_view key : {"integrator", "forces", "collision", "mass"}) {
+            if (t.has(key)) {
+                t.failAtKey(key, fmt::format("`{}` has no effect on a stateless emitter: its "
+                                             "particles follow p0 + v0 t + g t^2 / 2 with "
+                                             "g = stateless_gravity",
+                                             key));
+            }
+        }
+        def.statelessGravity = t.vec3("stateless_gravity", def.statelessGravity);
+    } else if (t.has("stateless_gravity")) {
+        t.failAtKey("stateless_gravity",
+                    "`stateless_gravity` applies only with stateless = true; state-preserving "
+                    "emitters feel the scene's [[force]]s");
+    }
+}
+
+void readDynamics(const Table& t, EmitterDef& def, const NameTable& forces,
+                  const NameTable& colliders) {
+    if (auto v = t.find("integrator")) {
+        def.integrator =
+            v->choice<Integrator>({{"explicit_euler", Integrator::ExplicitEuler},
+                                   {"semi_implicit_euler", Integrator::SemiImplicitEuler},
+                                   {"verlet", Integrator::Verlet},
+                                   {"rk4", Integrator::Rk4}});
+    }
+    if (auto v = t.find("forces")) {
+        def.forces = readReferences<ForceId>(*v, forces, "force");
+    }
+    if (auto sub = t.subTable("collision")) {
+        def.collision = readCollision(*sub, colliders);
+    }
+}
+
+}  // namespace
+
+EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& forces,
+                        const NameTable& colliders) {
+    t.allowOnly(kEmitterKeys, "an emitter");
+    EmitterDef def;
+    def.name = names.add(t);
+    readStatelessRules(t, def);
+    readSpawning(t, def);
+    if (auto shape = t.subTable("shape")) {
+        def.shape = readShape(*shape);
+    }
+    readParticleRanges(t, def);
+    readDynamics(t, def, forces, colliders);
+    return def;
+}
+
+}  // namespace spindrift::scene

@@ -1,0 +1,46 @@
+// Shared by the parsers of the scene's parts (scene_parse.cpp, parse_*.cpp).
+#pragma once
+
+#include "scene/data_files.h"
+#include "scene/toml_read.h"
+
+#include <spindrift/scene.h>
+
+#include <cstdint>
+#include <map>
+#include <string>
+
+namespace spindrift::scene {
+
+/// The names of one kind of object ("force", "collider" ...): unique per kind,
+/// and what references in other objects resolve against.
+class NameTable {
+public:
+    explicit NameTable(std::string kind) : kind_(std::move(kind)) {}
+
+    /// Reads the required `name` of the next object of this kind and records it.
+    std::string add(const Table& table);
+    /// 0-based creation index of the object `reference` (a string) names.
+    std::uint32_t resolve(const Value& reference) const;
+    std::size_t size() const { return entries_.size(); }
+
+private:
+    struct Entry {
+        std::uint32_t index;
+        std::uint32_t line;
+    };
+    std::string kind_;
+    std::map<std::string, Entry, std::less<>> entries_;
+};
+
+/// Reads a data file named by a string value (relative to the scene's
+/// directory). A file that cannot be read is an error at the value.
+std::string readDataFile(const Value& value, DataFileRef& ref);
+
+FlowFieldDef parseFlowField(const Table& table, NameTable& names);
+ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
+ColliderDef parseCollider(const Table& table, NameTable& names);
+EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,
+                        const NameTable& colliders);
+
+}  // namespace spindrift::scene

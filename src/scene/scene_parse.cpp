@@ -1,0 +1,188 @@
+// Scene files: the top level (world, camera, run) and the order in which the
+// object arrays are read. See docs/scene-format.md for the format.
+#include "scene/limits.h"
+#include "scene/parse_internal.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+
+namespace spindrift {
+
+namespace scene {
+
+namespace {
+
+WorldDef parseWorld(const Table& t) {
+    t.allowOnly({"backend", "threads", "seed"}, "[world]");
+    WorldDef def;
+    if (auto v = t.find("backend")) {
+        def.backend = v->choice<Backend>(
+            {{"cpu", Backend::Cpu}, {"vulkan", Backend::Vulkan}, {"auto", Backend::Auto}});
+    }
+    def.threads = static_cast<std::uint32_t>(
+        t.integer("threads", def.threads, Bounds::between(0, kMaxThreads)));
+    def.seed =
+        static_cast<std::uint32_t>(t.integer("seed", def.seed, Bounds::between(0, 4294967295.0)));
+    return def;
+}
+
+CameraDef parseCamera(const Table& t) {
+    t.allowOnly({"eye", "target", "up", "fov", "orthographic", "ortho_height"}, "[camera]");
+    CameraDef def;
+    def.eye = t.vec3("eye", def.eye);
+    def.target = t.vec3("target", def.target);
+    def.up = t.direction("up", def.up);
+    // Open interval: 0 and 180 degrees make a degenerate projection.
+    def.fovDegrees = t.real("fov", def.fovDegrees, {0.0, 180.0, true, true});
+    def.orthographic = t.boolean("orthographic", def.orthographic);
+    def.orthoHeight = t.real("ortho_height", def.orthoHeight, Bounds::positive());
+    const glm::vec3 view = def.target - def.eye;
+    if (!(glm::length(view) > 1e-6f)) {
+        t.failAtKey(t.has("target") ? "target" : "eye",
+                    "the camera target must differ from its eye position");
+    }
+    if (glm::length(glm::cross(glm::normalize(view), def.up)) < 1e-3f) {
+        t.failAtKey(t.has("up") ? "up" : "target",
+                    "the up direction must not be parallel to the view direction "
+                    "(target - eye)");
+    }
+    return def;
+}
+
+RunDef parseRun(const Table& t) {
+    t.allowOnly({"dt", "steps"}, "[run]");
+    RunDef def;
+    def.dt = t.real("dt", def.dt, {0.0, 1.0, true, false});
+    def.steps = static_cast<std::uint32_t>(
+        t.integer("steps", def.steps, Bounds::between(1, static_cast<double>(kMaxSteps))));
+    return def;
+}
+
+// [world], [camera] and [run] are optional tables.
+template <class Def, class Fn>
+Def parseOptionalTable(const Table& root, std::string_view key, Fn parse) {
+    if (auto t = root.subTable(key)) {
+        return parse(*t);
+    }
+    return Def{};
+}
+
+void checkCount(const std::vector<Table>& tables, std::size_t limit, std::string_view kind) {
+    if (tables.size() > limit) {
+        tables[limit].fail(fmt::format("at most {} [[{}]] tables are supported, got {}", limit,
+                                       kind, tables.size()));
+    }
+}
+
+}  // namespace
+
+std::string NameTable::add(const Table& table) {
+    const Value value = table.require("name", "a string naming this " + kind_);
+    std::string name = value.string();
+    const auto line = value.node().source().begin.line;
+    const auto [it, inserted] =
+        entries_.try_emplace(name, Entry{static_cast<std::uint32_t>(entries_.size()), line});
+    if (!inserted) {
+        value.fail(
+            fmt::format("duplicate {} name \"{}\" (first used at line {}); names must be "
+                        "unique per kind",
+                        kind_, name, it->second.line));
+    }
+    return name;
+}
+
+std::uint32_t NameTable::resolve(const Value& reference) const {
+    const std::string name = reference.string();
+    if (auto it = entries_.find(name); it != entries_.end()) {
+        return it->second.index;
+    }
+    if (entries_.empty()) {
+        reference.fail(fmt::format("unknown {} \"{}\": the scene defines none", kind_, name));
+    }
+    std::vector<std::string_view> known;
+    for (const auto& [key, entry] : entries_) {
+        known.push_back(key);
+    }
+    const std::string_view typo = closestMatch(name, known);
+    if (!typo.empty()) {
+        reference.fail(fmt::format("unknown {} \"{}\" (did you mean \"{}\"?)", kind_, name, typo));
+    }
+    reference.fail(
+        fmt::format("unknown {} \"{}\"; expected one of {}", kind_, name, quotedList(known)));
+}
+
+std::string readDataFile(const Value& value, DataFileRef& ref) {
+    const std::string relative = value.string();
+    ref.path = (value.context().baseDir / relative).lexically_normal();
+    ref.display = ref.path.string();
+    ref.keyPath = value.path();
+    std::string error;
+    std::optional<std::string> text = readWholeFile(ref.path, error);
+    if (!text) {
+        value.fail(fmt::format("cannot read \"{}\" (resolved to \"{}\"): {}", relative, ref.display,
+                               error));
+    }
+    return *text;
+}
+
+}  // namespace scene
+
+using scene::Table;
+
+SceneDef parseScene(std::string_view text, const std::string& sourceName,
+                    const std::string& baseDir) {
+    const scene::ParseContext ctx{sourceName, baseDir.empty() ? "." : baseDir};
+    toml::table document;
+    try {
+        document = toml::parse(text, std::string_view(sourceName));
+    } catch (const toml::parse_error& e) {
+        throw SceneError(sourceName, static_cast<int>(e.source().begin.line),
+                         static_cast<int>(e.source().begin.column), "",
+                         "TOML syntax error: " + std::string(e.description()));
+    }
+    const Table root(ctx, document, "");
+    root.allowOnly({"world", "camera", "run", "flow_field", "force", "collider", "emitter"},
+                   "the scene");
+
+    SceneDef scene;
+    scene.source = sourceName;
+    scene.world = scene::parseOptionalTable<WorldDef>(root, "world", scene::parseWorld);
+    scene.camera = scene::parseOptionalTable<CameraDef>(root, "camera", scene::parseCamera);
+    scene.run = scene::parseOptionalTable<RunDef>(root, "run", scene::parseRun);
+
+    // Referenced kinds first, so every reference finds its target's name.
+    scene::NameTable flowNames("flow field");
+    scene::NameTable forceNames("force");
+    scene::NameTable colliderNames("collider");
+    scene::NameTable emitterNames("emitter");
+    for (const Table& t : scene::tableArray(root, "flow_field")) {
+        scene.flowFields.push_back(scene::parseFlowField(t, flowNames));
+    }
+    const std::vector<Table> forces = scene::tableArray(root, "force");
+    scene::checkCount(forces, scene::kMaxForces, "force");
+    for (const Table& t : forces) {
+        scene.forces.push_back(scene::parseForce(t, forceNames, flowNames));
+    }
+    const std::vector<Table> colliders = scene::tableArray(root, "collider");
+    scene::checkCount(colliders, scene::kMaxColliders, "collider");
+    for (const Table& t : colliders) {
+        scene.colliders.push_back(scene::parseCollider(t, colliderNames));
+    }
+    for (const Table& t : scene::tableArray(root, "emitter")) {
+        scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames));
+    }
+    return scene;
+}
+
+SceneDef loadScene(const std::string& path) {
+    std::string error;
+    std::optional<std::string> text = scene::readWholeFile(path, error);
+    if (!text) {
+        throw SceneError(path, 0, 0, "", "cannot read scene file: " + error);
+    }
+    const std::filesystem::path parent = std::filesystem::path(path).parent_path();
+    return parseScene(*text, path, parent.empty() ? "." : parent.string());
+}
+
+}  // namespace spindrift

@@ -1,0 +1,161 @@
+// Reading validated values out of a parsed TOML document.
+//
+// Every reader checks type, finiteness and range and, on the first problem,
+// throws a SceneError that points at the offending node (file, line, column,
+// key path) and says what was expected. Nothing here builds anything.
+#pragma once
+
+#include <spindrift/scene.h>
+
+#include <toml++/toml.h>
+
+#include <cstdint>
+#include <filesystem>
+#include <initializer_list>
+#include <limits>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+namespace spindrift::scene {
+
+/// Where errors point and where relative data paths start.
+struct ParseContext {
+    std::string file;               ///< scene name used in messages
+    std::filesystem::path baseDir;  ///< relative data paths resolve against this
+};
+
+/// Throws the SceneError for `region` (line and column 1-based; 0 = unknown).
+[[noreturn]] void fail(const ParseContext& ctx, const toml::source_region& region,
+                       const std::string& keyPath, const std::string& message);
+
+/// The accepted interval of a number. Bounds are inclusive unless open.
+struct Bounds {
+    double min = -std::numeric_limits<double>::infinity();
+    double max = std::numeric_limits<double>::infinity();
+    bool minOpen = false;
+    bool maxOpen = false;
+
+    static Bounds any() { return {}; }
+    static Bounds atLeast(double v) { return {v, std::numeric_limits<double>::infinity()}; }
+    static Bounds above(double v) {
+        return {v, std::numeric_limits<double>::infinity(), true, false};
+    }
+    static Bounds between(double lo, double hi) { return {lo, hi}; }
+    static Bounds positive() { return above(0.0); }
+    static Bounds nonNegative() { return atLeast(0.0); }
+    static Bounds unit() { return between(0.0, 1.0); }
+
+    bool contains(double v) const;
+    /// "a number > 0", "an integer in [1, 16]", "a number" ...
+    std::string describe(bool integer) const;
+};
+
+/// "\"a\", \"b\", \"c\"" for messages.
+std::string quotedList(const std::vector<std::string_view>& names);
+
+/// The candidate at most 2 edits from `word` (a likely typo), or "".
+std::string_view closestMatch(std::string_view word,
+                              const std::vector<std::string_view>& candidates);
+
+/// How a value looks in a message: 1.5, -1, "text", nan, an array ...
+std::string describeValue(const toml::node& node);
+
+/// The path of a child: "emitter[2]" + "shape" -> "emitter[2].shape".
+std::string joinPath(const std::string& parent, std::string_view key);
+std::string indexPath(const std::string& parent, std::size_t index);
+
+/// One value of the document together with its key path.
+class Value {
+public:
+    Value(const ParseContext& ctx, const toml::node& node, std::string path)
+        : ctx_(&ctx), node_(&node), path_(std::move(path)) {}
+
+    const toml::node& node() const { return *node_; }
+    const std::string& path() const { return path_; }
+    const ParseContext& context() const { return *ctx_; }
+    [[noreturn]] void fail(const std::string& message) const;
+    /// "expected <what>, got <value>".
+    [[noreturn]] void failExpected(const std::string& what) const;
+
+    double number(Bounds bounds = Bounds::any()) const;
+    float real(Bounds bounds = Bounds::any()) const;  ///< number() that also fits a float
+    std::int64_t integer(Bounds bounds) const;
+    bool boolean() const;
+    std::string string() const;  ///< non-empty
+    /// An array of exactly `n` numbers (n = 2, 3, 4 ...), each within bounds.
+    std::vector<float> numbers(std::size_t n, Bounds bounds = Bounds::any()) const;
+    glm::vec3 vec3(Bounds bounds = Bounds::any()) const;
+    glm::vec3 direction() const;  ///< a non-zero vec3, normalised
+    glm::vec4 vec4(Bounds bounds = Bounds::any()) const;
+    /// `x` or `[min, max]` with min <= max, each within bounds.
+    FloatRange range(Bounds bounds = Bounds::any()) const;
+    const toml::array& array() const;
+    Value element(std::size_t index) const;
+
+    /// One of a fixed set of names, e.g. {{"cpu", Backend::Cpu}, ...}.
+    template <class E>
+    E choice(std::initializer_list<std::pair<std::string_view, E>> options) const {
+        const std::string name = string();
+        for (const auto& [key, value] : options) {
+            if (key == name) {
+                return value;
+            }
+        }
+        std::vector<std::string_view> names;
+        for (const auto& option : options) {
+            names.push_back(option.first);
+        }
+        failExpected("one of " + quotedList(names));
+    }
+
+private:
+    const ParseContext* ctx_;
+    const toml::node* node_;
+    std::string path_;
+};
+
+/// A TOML table with its key path: key checks and defaulted reads.
+class Table {
+public:
+    Table(const ParseContext& ctx, const toml::table& table, std::string path)
+        : ctx_(&ctx), table_(&table), path_(std::move(path)) {}
+
+    /// Rejects the first key (in file order) not in `allowed`; `what` names
+    /// the table in the message, e.g. "a force of kind \"gravity\"".
+    void allowOnly(const std::vector<std::string_view>& allowed, const std::string& what) const;
+
+    bool has(std::string_view key) const { return table_->contains(key); }
+    std::optional<Value> find(std::string_view key) const;
+    /// The value of a required key; if missing, an error at this table's
+    /// position that says what was expected.
+    Value require(std::string_view key, const std::string& expected) const;
+    /// The sub-table at `key` (wrong type is an error); nullopt if absent.
+    std::optional<Table> subTable(std::string_view key) const;
+    [[noreturn]] void fail(const std::string& message) const;
+    /// Error at the key itself (not its value), for "not allowed here".
+    [[noreturn]] void failAtKey(std::string_view key, const std::string& message) const;
+
+    float real(std::string_view key, float fallback, Bounds bounds = Bounds::any()) const;
+    std::int64_t integer(std::string_view key, std::int64_t fallback, Bounds bounds) const;
+    bool boolean(std::string_view key, bool fallback) const;
+    glm::vec3 vec3(std::string_view key, glm::vec3 fallback, Bounds bounds = Bounds::any()) const;
+    glm::vec3 direction(std::string_view key, glm::vec3 fallback) const;
+    FloatRange range(std::string_view key, FloatRange fallback, Bounds bounds) const;
+
+    const toml::table& raw() const { return *table_; }
+    const std::string& path() const { return path_; }
+    const ParseContext& context() const { return *ctx_; }
+
+private:
+    const ParseContext* ctx_;
+    const toml::table* table_;
+    std::string path_;
+};
+
+/// The tables of an array of tables ([[emitter]]); empty if the key is absent.
+std::vector<Table> tableArray(const Table& root, std::string_view key);
+
+}  // namespace spindrift::scene

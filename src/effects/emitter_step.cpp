@@ -81,6 +81,20 @@ std::vector<float> scheduleBirths(EmitterState& e, double t0, float dt) {
     return ages;
 }
 
+// Adds chunk results to the step's counts in chunk order (deterministic) and
+// returns their dead slots to the free list.
+void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& stats, std::uint64_t& born,
+                 std::uint64_t& died) {
+    for (ChunkResult& c : chunks) {
+        born += c.born;
+        died += c.died;
+        for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
+            stats.colliderHits[k].hits += c.hits[k];
+        }
+        e.freeSlots.insert(e.freeSlots.end(), c.dead.begin(), c.dead.end());
+    }
+}
+
 }  // namespace
 
 void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
@@ -113,14 +127,7 @@ void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
 
     // Free the dead: their slots go on the free list in slot order.
     std::uint64_t born = 0, died = 0;
-    for (ChunkResult& c : chunks) {
-        born += c.born;
-        died += c.died;
-        for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
-            stats.colliderHits[k].hits += c.hits[k];
-        }
-        e.freeSlots.insert(e.freeSlots.end(), c.dead.begin(), c.dead.end());
-    }
+    mergeChunks(chunks, e, stats, born, died);
 
     // Emission (spawn mode): births owed this step take free slots; beyond
     // capacity they are dropped and counted, never overwriting live particles.
@@ -150,14 +157,7 @@ void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
             }
         });
         e.nextSerial += static_cast<std::uint32_t>(count);
-        for (ChunkResult& c : birthChunks) {
-            born += c.born;
-            died += c.died;
-            for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
-                stats.colliderHits[k].hits += c.hits[k];
-            }
-            e.freeSlots.insert(e.freeSlots.end(), c.dead.begin(), c.dead.end());
-        }
+        mergeChunks(birthChunks, e, stats, born, died);
     }
 
     // Tally.

@@ -20,6 +20,17 @@ struct ParticleUpdate {
     uint pad1;
 };
 
+// A particle whose step produced no events and no hits.
+SD_FN ParticleUpdate quietUpdate(Particle p) {
+    ParticleUpdate r;
+    r.particle = p;
+    r.events = 0u;
+    r.hitMask = 0u;
+    r.pad0 = 0u;
+    r.pad1 = 0u;
+    return r;
+}
+
 // Colour and size over life: start values (re-derived from the key) times the
 // curves at normalised age.
 SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
@@ -35,11 +46,7 @@ SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
 
 // Motion, damping, collisions and spin over dt for a live particle.
 SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float dt) {
-    ParticleUpdate r;
-    r.events = 0u;
-    r.hitMask = 0u;
-    r.pad0 = 0u;
-    r.pad1 = 0u;
+    ParticleUpdate r = quietUpdate(p);
     vec3 start = p.position;
     Motion m = integrateMotion(ctx, e, p.position, p.velocity, p.mass, 0.5f * p.size, dt);
     m.velocity = applySpeedRelaxation(ctx, e, m.position, m.velocity, dt);
@@ -98,14 +105,8 @@ SD_FN ParticleUpdate updateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParam
     float age = p.age + dt;
     if (p.age < 0.0f) {
         if (age < 0.0f || !recycle) {
-            ParticleUpdate r;
             p.age = recycle ? age : SD_DEAD_AGE;
-            r.particle = p;
-            r.events = 0u;
-            r.hitMask = 0u;
-            r.pad0 = 0u;
-            r.pad1 = 0u;
-            return r;
+            return quietUpdate(p);
         }
         return bornParticle(ctx, e, p.birth, age);
     }
@@ -115,12 +116,8 @@ SD_FN ParticleUpdate updateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParam
             r.events = r.events | SD_EVENT_DIED;
             return r;
         }
-        ParticleUpdate r;
-        r.particle = deadParticle(p);
+        ParticleUpdate r = quietUpdate(deadParticle(p));
         r.events = SD_EVENT_DIED;
-        r.hitMask = 0u;
-        r.pad0 = 0u;
-        r.pad1 = 0u;
         return r;
     }
     p.age = age;

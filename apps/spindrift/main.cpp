@@ -105,7 +105,7 @@ private:
 
 int validateCommand(const std::string& path) {
     const SceneDef scene = loadScene(path);
-    fmt::print("{}: ok ({} emitters, {} forces, {} colliders)\n", path, scene.emitters.size(),
+    fmt::print("{}: ok (emitters: {}, forces: {}, colliders: {})\n", path, scene.emitters.size(),
                scene.forces.size(), scene.colliders.size());
     return 0;
 }

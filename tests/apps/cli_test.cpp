@@ -167,8 +167,8 @@ TEST_F(CliTest, ValidateFountainCountsItsParts) {
     const Result r = cli("validate " + quoted(kFountain));
     EXPECT_EQ(r.code, 0) << r.err;
     std::ostringstream expected;
-    expected << kFountain.string() << ": ok (" << scene.emitters.size() << " emitters, "
-             << scene.forces.size() << " forces, " << scene.colliders.size() << " colliders)\n";
+    expected << kFountain.string() << ": ok (emitters: " << scene.emitters.size()
+             << ", forces: " << scene.forces.size() << ", colliders: " << scene.colliders.size() << ")\n";
     EXPECT_EQ(r.out, expected.str());
 }
 

@@ -4,8 +4,8 @@
 //
 // The radix sort is stable, so its result is unique: it is the same for every
 // thread count and every partition of the work (tests/effects/sort_test.cpp
-// checks 1, 2 and 4 threads). It runs in the caller's oneTBB arena; wrap the
-// call in a tbb::task_arena to limit the threads.
+// checks 1 and 2 threads, and partitions of 1 to 20 blocks). It runs in the
+// caller's oneTBB arena; wrap the call in a tbb::task_arena to limit threads.
 #pragma once
 
 #include <bit>

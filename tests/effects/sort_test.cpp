@@ -1,0 +1,349 @@
+// Back-to-front sort and the radix sort under it, checked against std::stable_sort
+// with a plain depth comparator (the independent reference).
+#include "effects/sort.h"
+
+#include <spindrift/world.h>
+
+#include <gtest/gtest.h>
+#include <tbb/task_arena.h>
+
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <limits>
+#include <numeric>
+#include <random>
+#include <vector>
+
+namespace {
+
+using spindrift::RadixDigitBits;
+
+constexpr float kInf = std::numeric_limits<float>::infinity();
+constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
+
+/// The reference: depth = dot(p - eye, normalize(forward)) with glm, farthest
+/// first, NaN depths last, ties in index order (std::stable_sort).
+std::vector<std::uint32_t> referenceOrder(const std::vector<glm::vec3>& positions, glm::vec3 eye,
+                                          glm::vec3 forward) {
+    glm::vec3 f = glm::normalize(forward);
+    std::vector<float> depth(positions.size());
+    for (std::size_t i = 0; i < positions.size(); ++i) {
+        depth[i] = glm::dot(positions[i] - eye, f);
+    }
+    std::vector<std::uint32_t> order(positions.size());
+    std::iota(order.begin(), order.end(), 0u);
+    std::stable_sort(order.begin(), order.end(), [&](std::uint32_t a, std::uint32_t b) {
+        float da = depth[a];
+        float db = depth[b];
+        if (std::isnan(da)) {
+            return false;
+        }
+        return std::isnan(db) || da > db;
+    });
+    return order;
+}
+
+bool isPermutation(const std::vector<std::uint32_t>& order) {
+    std::vector<bool> seen(order.size(), false);
+    for (std::uint32_t i : order) {
+        if (i >= order.size() || seen[i]) {
+            return false;
+        }
+        seen[i] = true;
+    }
+    return true;
+}
+
+/// Random positions mixing the hard cases: wide and tiny magnitudes, negative
+/// depths, exact duplicates, points at depth +-0, huge values (some depths
+/// overflow to +-inf), a few infinities.
+std::vector<glm::vec3> hardPositions(std::size_t n, std::uint32_t seed) {
+    std::mt19937 rng(seed);
+    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
+    std::uniform_int_distribution<int> kind(0, 15);
+    std::vector<glm::vec3> p;
+    p.reserve(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        glm::vec3 v(unit(rng), unit(rng), unit(rng));
+        switch (kind(rng)) {
+            case 0: v *= 1e-30f; break;                                   // tiny
+            case 1: v *= 3e38f; break;                                    // huge: overflow
+            case 2: v.z = (rng() & 1) ? 0.0f : -0.0f; v.x = v.y = 0; break;  // depth +-0
+            case 3: v.z = (rng() & 1) ? 0.0f : -0.0f; break;              // +-0 and sums
+            case 4: if (!p.empty()) { v = p[rng() % p.size()]; } break;   // duplicate
+            case 5: v = glm::vec3(0.0f, 0.0f, static_cast<float>(rng() % 4)); break;  // ties
+            case 6: v *= 1e6f; break;
+            case 7: if (rng() % 64 == 0) { v.z = (rng() & 1) ? kInf : -kInf; } break;
+            default: v *= 100.0f; break;
+        }
+        p.push_back(v);
+    }
+    return p;
+}
+
+TEST(SortBackToFront, FarthestFirstByHand) {
+    // forward = -z (unnormalised): depth = -z, so the most negative z is farthest.
+    std::vector<glm::vec3> p = {{0, 0, -1}, {5, 0, -10}, {0, 0, 3}, {0, -7, -5}, {0, 0, 0}};
+    std::vector<std::uint32_t> order =
+        spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, -4.0f));
+    EXPECT_EQ(order, (std::vector<std::uint32_t>{1, 3, 0, 4, 2}));
+}
+
+TEST(SortBackToFront, EyeOffsetDoesNotChangeOrderAlongView) {
+    std::vector<glm::vec3> p = {{0, 0, 1}, {0, 0, 2}, {0, 0, 3}};
+    // Looking along +z from z = 10: depth = z - 10 is negative for all three;
+    // z = 3 has the largest depth, so it comes first.
+    std::vector<std::uint32_t> order =
+        spindrift::sortBackToFront(p, glm::vec3(0, 0, 10), glm::vec3(0, 0, 1));
+    EXPECT_EQ(order, (std::vector<std::uint32_t>{2, 1, 0}));
+}
+
+TEST(SortBackToFront, TiesKeepIndexOrder) {
+    std::vector<glm::vec3> p(1000, glm::vec3(1.0f, 2.0f, 3.0f));
+    std::vector<std::uint32_t> expected(p.size());
+    std::iota(expected.begin(), expected.end(), 0u);
+    EXPECT_EQ(spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0, 0, 1)), expected);
+    // Two interleaved depths: each group in index order, farther group first.
+    for (std::size_t i = 0; i < p.size(); i += 2) {
+        p[i].z = 4.0f;
+    }
+    std::vector<std::uint32_t> order = spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+    for (std::size_t i = 0; i < 500; ++i) {
+        EXPECT_EQ(order[i], 2 * i);
+        EXPECT_EQ(order[500 + i], 2 * i + 1);
+    }
+}
+
+TEST(SortBackToFront, PlusAndMinusZeroDepthsTie) {
+    // Depths +0 and -0 are equal, so index order decides, not the sign bit.
+    // (-0, -0, -0) . (0, 0, 1) = -0 exactly; (0, 0, 0) gives +0.
+    const glm::vec3 minusZero(-0.0f);
+    std::vector<glm::vec3> p = {glm::vec3(0.0f), minusZero, glm::vec3(0.0f), minusZero,
+                                {0, 0, -1.0f}, {0, 0, 1.0f}};
+    ASSERT_TRUE(std::signbit(glm::dot(minusZero - glm::vec3(0.0f), glm::vec3(0, 0, 1))));
+    std::vector<std::uint32_t> order =
+        spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+    EXPECT_EQ(order, (std::vector<std::uint32_t>{5, 0, 1, 2, 3, 4}));
+    EXPECT_EQ(spindrift::backToFrontKey(0.0f), spindrift::backToFrontKey(-0.0f));
+}
+
+TEST(SortBackToFront, NaNDepthsGoLastInIndexOrder) {
+    std::vector<glm::vec3> p = {{0, 0, kNaN}, {0, 0, -kInf}, {0, 0, 1}, {kNaN, 0, 0},
+                                {0, 0, kInf}, {0, 0, -1}, {0, 0, -kNaN}};
+    std::vector<std::uint32_t> order =
+        spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+    // +inf farthest, -inf nearest of the numbers, then NaNs (also x = NaN: NaN * 0).
+    EXPECT_EQ(order, (std::vector<std::uint32_t>{4, 2, 5, 1, 0, 3, 6}));
+}
+
+TEST(SortBackToFront, MatchesStableSortOnRandomInputs) {
+    const glm::vec3 eyes[] = {glm::vec3(0.0f), glm::vec3(3.5f, -2.0f, 10.0f)};
+    const glm::vec3 forwards[] = {glm::vec3(0, 0, 1), glm::vec3(0.3f, -2.0f, 0.7f),
+                                  glm::vec3(-1e-3f, 0, 0)};
+    for (std::size_t n : {0u, 1u, 2u, 1000u, 100003u}) {
+        std::vector<glm::vec3> p = hardPositions(n, static_cast<std::uint32_t>(n) + 7u);
+        for (glm::vec3 eye : eyes) {
+            for (glm::vec3 forward : forwards) {
+                std::vector<std::uint32_t> expected = referenceOrder(p, eye, forward);
+                for (RadixDigitBits bits : {RadixDigitBits::Eight, RadixDigitBits::Eleven}) {
+                    std::vector<std::uint32_t> order =
+                        spindrift::sortBackToFront(p, eye, forward, bits);
+                    ASSERT_EQ(order.size(), n);
+                    ASSERT_TRUE(isPermutation(order));
+                    ASSERT_EQ(order, expected) << "n " << n << " bits " << static_cast<int>(bits);
+                }
+                EXPECT_EQ(spindrift::sortBackToFront(p, eye, forward), expected);
+            }
+        }
+    }
+}
+
+TEST(SortBackToFront, FarthestFirstOnRandomInputs) {
+    std::mt19937 rng(3);
+    std::uniform_real_distribution<float> u(-50.0f, 50.0f);
+    std::vector<glm::vec3> p(20000);
+    for (glm::vec3& v : p) {
+        v = glm::vec3(u(rng), u(rng), u(rng));
+    }
+    glm::vec3 eye(1, 2, 3);
+    glm::vec3 forward(1, 1, -1);
+    std::vector<std::uint32_t> order = spindrift::sortBackToFront(p, eye, forward);
+    ASSERT_TRUE(isPermutation(order));
+    // Checked in double precision: depths computed in float may round two
+    // nearly-equal depths together, so allow a relative slack of a few ulps.
+    glm::dvec3 f = glm::normalize(glm::dvec3(forward));
+    double previous = std::numeric_limits<double>::infinity();
+    for (std::uint32_t i : order) {
+        double d = glm::dot(glm::dvec3(p[i]) - glm::dvec3(eye), f);
+        EXPECT_LE(d, previous + 1e-4) << "index " << i;
+        previous = d;
+    }
+    double first = glm::dot(glm::dvec3(p[order.front()]) - glm::dvec3(eye), f);
+    double last = glm::dot(glm::dvec3(p[order.back()]) - glm::dvec3(eye), f);
+    EXPECT_GT(first, 70.0);
+    EXPECT_LT(last, -70.0);
+}
+
+TEST(SortBackToFront, SameResultForAnyThreadCount) {
+    std::vector<glm::vec3> p = hardPositions(300001, 11);
+    glm::vec3 eye(0.5f, 0.25f, -3.0f);
+    glm::vec3 forward(0.2f, 0.1f, 1.0f);
+    std::vector<std::uint32_t> expected = referenceOrder(p, eye, forward);
+    for (int threads : {1, 2}) {
+        tbb::task_arena arena(threads);
+        std::vector<std::uint32_t> order;
+        arena.execute([&] { order = spindrift::sortBackToFront(p, eye, forward); });
+        EXPECT_EQ(order, expected) << threads << " threads";
+    }
+}
+
+TEST(SortBackToFront, RejectsBadViews) {
+    std::vector<glm::vec3> p(3, glm::vec3(1.0f));
+    EXPECT_THROW(spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0.0f)), spindrift::Error);
+    EXPECT_THROW(spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(kNaN, 0, 1)),
+                 spindrift::Error);
+    EXPECT_THROW(spindrift::sortBackToFront(p, glm::vec3(kInf, 0, 0), glm::vec3(0, 0, 1)),
+                 spindrift::Error);
+    // Finite but extreme forward vectors are normalised, not rejected.
+    EXPECT_EQ(spindrift::sortBackToFront(p, glm::vec3(0.0f), glm::vec3(0, 0, 1e-30f)).size(), 3u);
+    glm::vec3 big = spindrift::normalizeViewDirection(glm::vec3(3e38f, 0, 3e38f));
+    EXPECT_NEAR(big.x, std::sqrt(0.5f), 1e-6f);
+    EXPECT_NEAR(big.z, std::sqrt(0.5f), 1e-6f);
+    glm::vec3 tiny = spindrift::normalizeViewDirection(glm::vec3(0, -1e-40f, 0));
+    EXPECT_EQ(tiny, glm::vec3(0, -1, 0));
+}
+
+TEST(SortDepthKey, OrderMatchesDescendingDepth) {
+    const float values[] = {kInf, 3e38f, 1e10f, 1.5f, 1.0f, std::nextafter(1.0f, 0.0f), 1e-30f,
+                            std::numeric_limits<float>::denorm_min(), 0.0f, -0.0f,
+                            -std::numeric_limits<float>::denorm_min(), -1e-30f, -1.0f, -1.5f,
+                            -3e38f, -kInf, kNaN, -kNaN};
+    for (float a : values) {
+        for (float b : values) {
+            bool aBeforeB = !std::isnan(a) && (std::isnan(b) || a > b);
+            EXPECT_EQ(spindrift::backToFrontKey(a) < spindrift::backToFrontKey(b), aBeforeB)
+                << a << " vs " << b;
+        }
+    }
+    EXPECT_EQ(spindrift::backToFrontKey(kNaN), 0xFFFFFFFFu);
+    EXPECT_EQ(spindrift::backToFrontKey(std::bit_cast<float>(0xFFC00001u)), 0xFFFFFFFFu);
+}
+
+/// Reference for the raw sort: stable sort of (key, index) pairs by key.
+void expectRadixMatchesStableSort(std::vector<std::uint32_t> keys, RadixDigitBits bits) {
+    std::vector<std::uint32_t> indices(keys.size());
+    std::mt19937 rng(static_cast<std::uint32_t>(keys.size()));
+    for (std::uint32_t& i : indices) {
+        i = rng();  // arbitrary payload, not just 0..n-1
+    }
+    std::vector<std::pair<std::uint32_t, std::uint32_t>> expected;
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        expected.emplace_back(keys[i], indices[i]);
+    }
+    std::stable_sort(expected.begin(), expected.end(),
+                     [](const auto& a, const auto& b) { return a.first < b.first; });
+    spindrift::RadixSortScratch scratch;
+    spindrift::radixSortKeyIndex(keys, indices, scratch, bits);
+    ASSERT_EQ(keys.size(), expected.size());
+    for (std::size_t i = 0; i < keys.size(); ++i) {
+        ASSERT_EQ(keys[i], expected[i].first) << "at " << i;
+        ASSERT_EQ(indices[i], expected[i].second) << "at " << i;
+    }
+}
+
+TEST(SortRadix, MatchesStableSortOnKeyDistributions) {
+    for (RadixDigitBits bits : {RadixDigitBits::Eight, RadixDigitBits::Eleven}) {
+        for (std::size_t n : {0u, 1u, 2u, 1000u, 100003u, 200000u}) {
+            std::mt19937 rng(static_cast<std::uint32_t>(n));
+            std::vector<std::uint32_t> keys(n);
+            // Full range: every pass runs (an even count with 8-bit digits, odd with 11).
+            for (std::uint32_t& k : keys) k = rng();
+            expectRadixMatchesStableSort(keys, bits);
+            // Few distinct keys: many ties, stability matters.
+            for (std::uint32_t& k : keys) k = rng() % 5;
+            expectRadixMatchesStableSort(keys, bits);
+            // Only the middle digit varies: all other passes are skipped (one pass).
+            for (std::uint32_t& k : keys) k = 0xA5000042u | ((rng() & 0x7Fu) << 12);
+            expectRadixMatchesStableSort(keys, bits);
+            // Two varying digits (even count of executed passes).
+            for (std::uint32_t& k : keys) k = 0x1200u | (rng() & 0xFF0000FFu);
+            expectRadixMatchesStableSort(keys, bits);
+            // All equal: nothing to do.
+            std::fill(keys.begin(), keys.end(), 0xDEADBEEFu);
+            expectRadixMatchesStableSort(keys, bits);
+            // Already sorted and reverse sorted.
+            std::iota(keys.begin(), keys.end(), 0u);
+            expectRadixMatchesStableSort(keys, bits);
+            std::reverse(keys.begin(), keys.end());
+            expectRadixMatchesStableSort(keys, bits);
+        }
+    }
+}
+
+TEST(SortRadix, UnalignedSpansAndLargeInputs) {
+    // Spans that start off a 64-byte line: the same offset for keys and indices
+    // (write-combined with a shifted line phase) and different offsets (plain
+    // scatter). 2.5M pairs need more than 32 blocks of 2^16, so blocks grow.
+    struct Case {
+        std::size_t n;
+        std::size_t keyOffset;
+        std::size_t indexOffset;
+    };
+    for (Case c : {Case{100003, 3, 3}, Case{100003, 1, 6}, Case{2500003, 5, 5}, Case{2500003, 0, 7}}) {
+        std::mt19937 rng(static_cast<std::uint32_t>(c.n + c.keyOffset));
+        std::vector<std::uint32_t> keyStorage(c.n + 16);
+        std::vector<std::uint32_t> indexStorage(c.n + 16);
+        std::span<std::uint32_t> keys(keyStorage.data() + c.keyOffset, c.n);
+        std::span<std::uint32_t> indices(indexStorage.data() + c.indexOffset, c.n);
+        std::vector<std::pair<std::uint32_t, std::uint32_t>> expected(c.n);
+        for (std::size_t i = 0; i < c.n; ++i) {
+            keys[i] = rng();
+            indices[i] = static_cast<std::uint32_t>(i);
+            expected[i] = {keys[i], indices[i]};
+        }
+        std::stable_sort(expected.begin(), expected.end(),
+                         [](const auto& a, const auto& b) { return a.first < b.first; });
+        spindrift::RadixSortScratch scratch;
+        spindrift::radixSortKeyIndex(keys, indices, scratch);
+        bool same = true;
+        for (std::size_t i = 0; i < c.n && same; ++i) {
+            same = keys[i] == expected[i].first && indices[i] == expected[i].second;
+        }
+        EXPECT_TRUE(same) << "n " << c.n << " offsets " << c.keyOffset << ", " << c.indexOffset;
+        // Nothing written outside the spans.
+        for (std::size_t i = 0; i < c.keyOffset; ++i) EXPECT_EQ(keyStorage[i], 0u);
+        for (std::size_t i = c.keyOffset + c.n; i < keyStorage.size(); ++i) EXPECT_EQ(keyStorage[i], 0u);
+        for (std::size_t i = 0; i < c.indexOffset; ++i) EXPECT_EQ(indexStorage[i], 0u);
+        for (std::size_t i = c.indexOffset + c.n; i < indexStorage.size(); ++i) EXPECT_EQ(indexStorage[i], 0u);
+    }
+}
+
+TEST(SortRadix, ScratchIsReusedAcrossSizes) {
+    spindrift::RadixSortScratch scratch;
+    for (std::size_t n : {100000u, 10u, 150000u, 3u}) {
+        std::mt19937 rng(static_cast<std::uint32_t>(n));
+        std::vector<std::uint32_t> keys(n);
+        std::vector<std::uint32_t> indices(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            keys[i] = rng() % 1000;
+            indices[i] = static_cast<std::uint32_t>(i);
+        }
+        std::vector<std::uint32_t> expected = indices;
+        std::stable_sort(expected.begin(), expected.end(),
+                         [&](std::uint32_t a, std::uint32_t b) { return keys[a] < keys[b]; });
+        spindrift::radixSortKeyIndex(keys, indices, scratch);
+        EXPECT_EQ(indices, expected);
+        EXPECT_TRUE(std::is_sorted(keys.begin(), keys.end()));
+    }
+}
+
+TEST(SortRadix, RejectsMismatchedSpans) {
+    std::vector<std::uint32_t> keys(3);
+    std::vector<std::uint32_t> indices(2);
+    spindrift::RadixSortScratch scratch;
+    EXPECT_THROW(spindrift::radixSortKeyIndex(keys, indices, scratch), spindrift::Error);
+}
+
+}  // namespace

@@ -82,9 +82,22 @@ ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed,
                                    std::uint32_t emitterIndex, float t);
 
 /// Back-to-front order for alpha blending: indices into `positions`, the
-/// farthest from the camera first, by view depth dot(p - eye, forward).
+/// farthest from the camera first, by view depth dot(p - eye, normalize(forward)).
+/// Stable: equal depths (+0 and -0 included) keep index order; NaN depths come
+/// last. Throws Error for a zero or non-finite `forward` or a non-finite `eye`.
+/// Radix sort; each calling thread keeps 16 bytes of scratch per position
+/// between calls.
 std::vector<std::uint32_t> sortBackToFront(std::span<const glm::vec3> positions,
                                            glm::vec3 eye, glm::vec3 forward);
+
+/// Bytes copied between host and device memory since the world was created.
+/// A GPU world moves particle data only on creation and readParticles; the
+/// CPU backend moves nothing and returns zeros.
+struct TransferStats {
+    std::uint64_t bytesUploaded = 0;
+    std::uint64_t bytesDownloaded = 0;
+};
+TransferStats transferStats(WorldId world);
 
 /// Library version, "MAJOR.MINOR.PATCH".
 const char* versionString();

@@ -2,6 +2,7 @@
 // out). Ids index 1-based arrays in creation order.
 #include "effects/params.h"
 #include "effects/world_internal.h"
+#include "gpu/gpu_world.h"
 
 #include <fmt/format.h>
 
@@ -89,10 +90,15 @@ EmitterState& emitterFromId(World& world, EmitterId id) {
 }
 
 WorldId createWorld(const WorldDef& def) {
-    if (def.backend == Backend::Vulkan) {
-        throw Error("backend 'vulkan' is not available yet in this build; use 'cpu' or 'auto'");
-    }
     auto world = std::make_unique<World>(def);
+    // Auto stays on the CPU backend for now: the Vulkan backend does not yet run
+    // spawn-mode emitters, flow fields, terrain or cube maps, so a scene that
+    // runs on the CPU could fail on a GPU. Once it does, auto takes a real GPU
+    // (gpu::hardwareGpuAvailable(); never lavapipe, which is slower than the CPU
+    // backend).
+    if (def.backend == Backend::Vulkan) {
+        world->gpu.reset(gpu::createGpuWorld().release());
+    }
     std::lock_guard lock(gWorldsMutex);
     for (std::size_t i = 0; i < gWorlds.size(); ++i) {
         if (!gWorlds[i].world) {
@@ -113,6 +119,10 @@ void destroyWorld(WorldId id) {
 FlowFieldId createFlowField(WorldId id, const FlowFieldDef& def) {
     World& w = worldFromId(id);
     validateFlowFieldDef(def);
+    if (w.gpu) {
+        throw Error(fmt::format("flow field '{}': flow fields are not supported on the vulkan backend yet; use backend 'cpu'",
+                                def.name));
+    }
     w.flowDefs.push_back(def);
     w.fields.flows.push_back(FlowGrid{def.nx, def.ny, def.nz, def.velocities});
     return {static_cast<std::uint32_t>(w.flowDefs.size())};
@@ -134,6 +144,9 @@ ForceId createForce(WorldId id, const ForceDef& def) {
     }
     w.forces.push_back(makeForceParams(def, flow, flowIndex));
     w.forceDefs.push_back(def);
+    if (w.gpu) {
+        gpu::uploadForces(*w.gpu, w.forces);
+    }
     return {static_cast<std::uint32_t>(w.forces.size())};
 }
 
@@ -144,6 +157,11 @@ ColliderId createCollider(WorldId id, const ColliderDef& def) {
     }
     std::uint32_t dataIndex = 0;
     kernels::ColliderParams params;
+    if (w.gpu && (def.kind == ColliderKind::Terrain || def.kind == ColliderKind::CubeMap)) {
+        throw Error(fmt::format("collider '{}': terrain and cube-map colliders are not supported on the vulkan "
+                                "backend yet; use backend 'cpu'",
+                                def.name));
+    }
     if (def.kind == ColliderKind::Terrain) {
         params = makeColliderParams(def, static_cast<std::uint32_t>(w.fields.heights.size()));
         w.fields.heights.push_back(HeightMap{def.terrainNx, def.terrainNz, def.heights});
@@ -155,6 +173,9 @@ ColliderId createCollider(WorldId id, const ColliderDef& def) {
     }
     w.colliders.push_back(params);
     w.colliderDefs.push_back(def);
+    if (w.gpu) {
+        gpu::uploadColliders(*w.gpu, w.colliders);
+    }
     return {static_cast<std::uint32_t>(w.colliders.size())};
 }
 
@@ -168,6 +189,12 @@ EmitterId createEmitter(WorldId id, const EmitterDef& def) {
     state->params = makeEmitterParams(def, w.def.seed, index, forceMask, colliderMask);
     if (!def.stateless) {
         initialiseSlots(*state);
+    }
+    if (w.gpu) {
+        // The same initial slots as the CPU backend, uploaded once; the device
+        // holds them from now on.
+        gpu::addEmitter(*w.gpu, *state);
+        state->particles = ParticleArrays{};
     }
     w.emitters.push_back(std::move(state));
     return {index + 1};
@@ -185,9 +212,13 @@ StepStats stepWorld(WorldId id, float dt) {
     for (std::size_t i = 0; i < w.colliders.size(); ++i) {
         stats.colliderHits[i].collider = {static_cast<std::uint32_t>(i + 1)};
     }
-    for (auto& emitter : w.emitters) {
-        if (!emitter->def.stateless) {
-            stepEmitter(w, *emitter, dt, stats);
+    if (w.gpu) {
+        gpu::stepEmitters(*w.gpu, w.emitters, dt, stats);
+    } else {
+        for (auto& emitter : w.emitters) {
+            if (!emitter->def.stateless) {
+                stepEmitter(w, *emitter, dt, stats);
+            }
         }
     }
     for (auto& emitter : w.emitters) {
@@ -201,6 +232,11 @@ StepStats stepWorld(WorldId id, float dt) {
     stats.time = w.time;
     stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
     return stats;
+}
+
+TransferStats transferStats(WorldId id) {
+    World& w = worldFromId(id);
+    return w.gpu ? gpu::transferStats(*w.gpu) : TransferStats{};
 }
 
 double worldTime(WorldId id) { return worldFromId(id).time; }
@@ -221,7 +257,11 @@ ParticleSnapshot readParticles(WorldId id, EmitterId emitterId) {
         return evaluateStateless(e.def, w.def.seed, emitterId.index - 1, static_cast<float>(w.time));
     }
     ParticleSnapshot s;
-    const ParticleArrays& p = e.particles;
+    ParticleArrays fromDevice;
+    if (w.gpu) {
+        fromDevice = gpu::readSlots(*w.gpu, emitterId.index - 1);
+    }
+    const ParticleArrays& p = w.gpu ? fromDevice : e.particles;
     for (std::uint32_t i = 0; i < e.def.capacity; ++i) {
         if (p.age[i] < 0.0f) {
             continue;

@@ -13,6 +13,14 @@
 
 namespace spindrift {
 
+namespace gpu {
+struct GpuWorld;
+/// Destroys a GPU world (defined in src/gpu, where GpuWorld is complete).
+struct GpuWorldDeleter {
+    void operator()(GpuWorld* w) const;
+};
+}  // namespace gpu
+
 struct World {
     explicit World(const WorldDef& d) : def(d), pool(d.threads) {}
 
@@ -27,6 +35,9 @@ struct World {
     std::vector<std::unique_ptr<EmitterState>> emitters;
     double time = 0.0;
     std::uint64_t stepIndex = 0;
+    /// Set when the world runs on Vulkan: then the particle data lives on the
+    /// device and EmitterState::particles stays empty.
+    std::unique_ptr<gpu::GpuWorld, gpu::GpuWorldDeleter> gpu;
 };
 
 World& worldFromId(WorldId id);

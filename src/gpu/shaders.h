@@ -1,0 +1,11 @@
+// SPIR-V of src/gpu/shaders/*.comp, compiled by glslc at build time and
+// embedded by src/gpu/embed_spirv.cmake (see CMakeLists.txt).
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+
+namespace spindrift::gpu::shaders {
+extern const std::uint32_t kEffectsUpdate[];
+extern const std::size_t kEffectsUpdateWords;
+}  // namespace spindrift::gpu::shaders

@@ -55,32 +55,6 @@ void countUpdate(const kernels::ParticleUpdate& r, ChunkResult& out) {
     }
 }
 
-// Ages (s, at the end of the step) of the particles the emitter owes this step:
-// bursts whose time falls in [t0, t1), then the rate's particles, each born at
-// the moment the running count crosses an integer (so emission does not band
-// into one sheet per frame).
-std::vector<float> scheduleBirths(EmitterState& e, double t0, float dt) {
-    std::vector<float> ages;
-    double t1 = t0 + dt;
-    for (const BurstDef& b : e.def.bursts) {
-        if (b.time >= t0 && b.time < t1) {
-            ages.insert(ages.end(), b.count, static_cast<float>(t1 - b.time));
-        }
-    }
-    double activeEnd = e.def.duration >= 0.0f ? std::min<double>(t1, e.def.duration) : t1;
-    double activeDt = std::max(0.0, activeEnd - t0);
-    if (e.def.rate > 0.0f && activeDt > 0.0) {
-        double owed = e.emissionCarry + e.def.rate * activeDt;
-        auto count = static_cast<std::uint64_t>(std::floor(owed));
-        for (std::uint64_t j = 0; j < count; ++j) {
-            double bornAfterStart = (static_cast<double>(j) + 1.0 - e.emissionCarry) / e.def.rate;
-            ages.push_back(static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, static_cast<double>(dt))));
-        }
-        e.emissionCarry = owed - static_cast<double>(count);
-    }
-    return ages;
-}
-
 // Adds chunk results to the step's counts in chunk order (deterministic) and
 // returns their dead slots to the free list.
 void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& stats, std::uint64_t& born,
@@ -96,6 +70,57 @@ void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& s
 }
 
 }  // namespace
+
+// Bursts whose time falls in [t0, t1) in definition order, then the rate's
+// particles, each born at the moment the running count crosses an integer (so
+// emission does not band into one sheet per frame).
+BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt) {
+    BirthSchedule s;
+    s.t0 = t0;
+    s.t1 = t0 + dt;
+    s.dt = dt;
+    s.rate = e.def.rate;
+    s.carry = e.emissionCarry;
+    for (const BurstDef& b : e.def.bursts) {
+        if (b.time >= s.t0 && b.time < s.t1) {
+            s.bursts.push_back({b.count, static_cast<float>(s.t1 - b.time)});
+        }
+    }
+    double activeEnd = e.def.duration >= 0.0f ? std::min<double>(s.t1, e.def.duration) : s.t1;
+    double activeDt = std::max(0.0, activeEnd - t0);
+    if (e.def.rate > 0.0f && activeDt > 0.0) {
+        double owed = e.emissionCarry + e.def.rate * activeDt;
+        auto count = static_cast<std::uint64_t>(std::floor(owed));
+        s.rateCount = count;
+        e.emissionCarry = owed - static_cast<double>(count);
+    }
+    return s;
+}
+
+std::uint64_t BirthSchedule::total() const {
+    std::uint64_t n = rateCount;
+    for (const BurstRun& b : bursts) {
+        n += b.count;
+    }
+    return n;
+}
+
+float BirthSchedule::rateAge(std::uint64_t j) const {
+    double bornAfterStart = (static_cast<double>(j) + 1.0 - carry) / rate;
+    return static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, dt));
+}
+
+std::vector<float> BirthSchedule::ages() const {
+    std::vector<float> out;
+    out.reserve(total());
+    for (const BurstRun& b : bursts) {
+        out.insert(out.end(), b.count, b.age);
+    }
+    for (std::uint64_t j = 0; j < rateCount; ++j) {
+        out.push_back(rateAge(j));
+    }
+    return out;
+}
 
 void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
     const kernels::KernelContext ctx{w.forces.data(), static_cast<std::uint32_t>(w.forces.size()),
@@ -132,7 +157,7 @@ void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
     // Emission (spawn mode): births owed this step take free slots; beyond
     // capacity they are dropped and counted, never overwriting live particles.
     if (spawnMode) {
-        std::vector<float> ages = scheduleBirths(e, w.time, dt);
+        std::vector<float> ages = scheduleBirths(e, w.time, dt).ages();
         std::size_t count = std::min(ages.size(), e.freeSlots.size());
         stats.clamped += ages.size() - count;
         std::vector<std::uint32_t> slots(e.freeSlots.end() - static_cast<std::ptrdiff_t>(count), e.freeSlots.end());

@@ -92,10 +92,9 @@ EmitterState& emitterFromId(World& world, EmitterId id) {
 WorldId createWorld(const WorldDef& def) {
     auto world = std::make_unique<World>(def);
     // Auto stays on the CPU backend for now: the Vulkan backend does not yet run
-    // spawn-mode emitters, flow fields, terrain or cube maps, so a scene that
-    // runs on the CPU could fail on a GPU. Once it does, auto takes a real GPU
-    // (gpu::hardwareGpuAvailable(); never lavapipe, which is slower than the CPU
-    // backend).
+    // flow fields, terrain or cube maps, so a scene that runs on the CPU could
+    // fail on a GPU. Once it does, auto takes a real GPU (gpu::hardwareGpuAvailable();
+    // never lavapipe, which is slower than the CPU backend).
     if (def.backend == Backend::Vulkan) {
         world->gpu.reset(gpu::createGpuWorld().release());
     }
@@ -213,7 +212,7 @@ StepStats stepWorld(WorldId id, float dt) {
         stats.colliderHits[i].collider = {static_cast<std::uint32_t>(i + 1)};
     }
     if (w.gpu) {
-        gpu::stepEmitters(*w.gpu, w.emitters, dt, stats);
+        gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, stats);
     } else {
         for (auto& emitter : w.emitters) {
             if (!emitter->def.stateless) {

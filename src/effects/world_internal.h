@@ -43,6 +43,29 @@ struct World {
 World& worldFromId(WorldId id);
 EmitterState& emitterFromId(World& world, EmitterId id);
 
+/// The births a spawn emitter owes in the step [t0, t0 + dt): bursts first, in
+/// definition order, then the rate's. Shared by both backends: birth k of the
+/// step gets serial nextSerial + k and age ages()[k] (s, at the end of the step).
+struct BirthSchedule {
+    struct BurstRun {
+        std::uint32_t count;
+        float age;
+    };
+    std::vector<BurstRun> bursts;
+    std::uint64_t rateCount = 0;
+    double t0 = 0.0, t1 = 0.0, dt = 0.0;
+    double rate = 0.0;
+    double carry = 0.0;  // the rate's carry before this step
+
+    std::uint64_t total() const;
+    /// Age of the rate's j-th birth of the step.
+    float rateAge(std::uint64_t j) const;
+    std::vector<float> ages() const;
+};
+
+/// The schedule of emitter `e`'s step from t0; advances its emission carry.
+BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt);
+
 /// Advances one emitter by dt; adds its births, deaths and hits to `stats`.
 void stepEmitter(World& world, EmitterState& emitter, float dt, StepStats& stats);
 

@@ -12,15 +12,43 @@
 #include <atomic>
 #include <cstdlib>
 #include <cstring>
+#include <limits>
 #include <string_view>
 
 namespace spindrift::gpu {
 namespace {
 
-// Bindings of effects_update.comp, in order: emitter parameters, forces,
-// colliders, the nine slot arrays (see GpuEmitter), the event counters.
+// Bindings of effects_update.comp, set 0 in order: emitter parameters,
+// forces, colliders, the nine slot arrays (see GpuEmitter), the event counters.
 constexpr std::uint32_t kBindingCount = 12;
+// Set 1 (spawn mode): dead stack, current alive list, next alive list, schedule.
+constexpr std::uint32_t kListBindingCount = 4;
 constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of effects_update.comp
+
+// The PASS specialization constant of effects_update.comp.
+enum class Pass : std::uint32_t { RecycleUpdate = 0, SpawnUpdate = 1, SpawnEmit = 2, SpawnFinish = 3 };
+
+// Headers of the spawn-mode buffers (see effects_update.comp).
+struct DeadHeader {
+    std::uint32_t dispatch[3];  // VkDispatchIndirectCommand of the next update pass
+    std::uint32_t deadCount;
+    std::uint32_t popped;
+    std::uint32_t pad[3];
+};
+static_assert(sizeof(DeadHeader) == 32);
+constexpr VkDeviceSize kAliveHeaderBytes = 16;
+
+struct ScheduleHeader {
+    std::uint32_t firstSerial;
+    std::uint32_t burstRuns;
+    std::uint32_t rateFirst;
+    std::uint32_t pad;
+    float rateSpan;
+    float rateCarry;
+    float rate;
+    float maxAge;
+};
+static_assert(sizeof(ScheduleHeader) == 32);
 
 struct PushConstants {
     float dt;
@@ -31,7 +59,8 @@ struct PushConstants {
 struct Counters {
     std::uint32_t born;
     std::uint32_t died;
-    std::uint32_t pad[2];
+    std::uint32_t clamped;
+    std::uint32_t pad;
     std::uint32_t hits[32];
 };
 static_assert(sizeof(Counters) == 144);
@@ -50,27 +79,28 @@ std::atomic<bool>& validationSetting() {
     return on;
 }
 
-VkDescriptorSetLayout createSetLayout(Device& d) {
+VkDescriptorSetLayout createSetLayout(Device& d, std::uint32_t count) {
     std::array<VkDescriptorSetLayoutBinding, kBindingCount> bindings{};
-    for (std::uint32_t i = 0; i < kBindingCount; ++i) {
+    for (std::uint32_t i = 0; i < count; ++i) {
         bindings[i].binding = i;
         bindings[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         bindings[i].descriptorCount = 1;
         bindings[i].stageFlags = VK_SHADER_STAGE_COMPUTE_BIT;
     }
     auto info = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-    info.bindingCount = kBindingCount;
+    info.bindingCount = count;
     info.pBindings = bindings.data();
     VkDescriptorSetLayout layout = VK_NULL_HANDLE;
     check(vkCreateDescriptorSetLayout(d.device, &info, nullptr, &layout), "vkCreateDescriptorSetLayout");
     return layout;
 }
 
-VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout) {
+VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout, VkDescriptorSetLayout listLayout) {
     VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(PushConstants)};
+    std::array<VkDescriptorSetLayout, 2> layouts{setLayout, listLayout};
     auto info = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-    info.setLayoutCount = 1;
-    info.pSetLayouts = &setLayout;
+    info.setLayoutCount = 2;
+    info.pSetLayouts = layouts.data();
     info.pushConstantRangeCount = 1;
     info.pPushConstantRanges = &range;
     VkPipelineLayout layout = VK_NULL_HANDLE;
@@ -78,7 +108,8 @@ VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout
     return layout;
 }
 
-VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::uint32_t* code, std::size_t words) {
+VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::uint32_t* code, std::size_t words,
+                                 Pass pass) {
     auto moduleInfo = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     moduleInfo.codeSize = words * sizeof(std::uint32_t);
     moduleInfo.pCode = code;
@@ -89,6 +120,9 @@ VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
+    VkSpecializationMapEntry entry{0, 0, sizeof(Pass)};
+    VkSpecializationInfo specialization{1, &entry, sizeof(pass), &pass};
+    info.stage.pSpecializationInfo = &specialization;
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
     VkResult r = vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
@@ -116,32 +150,56 @@ std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e) {
             &e.lifetimes, &e.births,    &e.sizes,     &e.rotations, &e.colors,     &e.counters};
 }
 
-void createDescriptorSet(GpuWorld& w, GpuEmitter& e) {
-    Device& d = *w.device;
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindingCount};
+VkDescriptorPool createDescriptorPool(Device& d, std::uint32_t sets, std::uint32_t buffers) {
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, buffers};
     auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-    poolInfo.maxSets = 1;
+    poolInfo.maxSets = sets;
     poolInfo.poolSizeCount = 1;
     poolInfo.pPoolSizes = &size;
-    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &e.descriptorPool), "vkCreateDescriptorPool");
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &pool), "vkCreateDescriptorPool");
+    return pool;
+}
+
+// Allocates a set of `layout` from `pool` and points binding i at buffers[i].
+VkDescriptorSet writeSet(Device& d, VkDescriptorPool pool, VkDescriptorSetLayout layout,
+                         std::span<Buffer* const> buffers) {
     auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-    alloc.descriptorPool = e.descriptorPool;
+    alloc.descriptorPool = pool;
     alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &w.setLayout;
-    check(vkAllocateDescriptorSets(d.device, &alloc, &e.descriptorSet), "vkAllocateDescriptorSets");
+    alloc.pSetLayouts = &layout;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    check(vkAllocateDescriptorSets(d.device, &alloc, &set), "vkAllocateDescriptorSets");
     std::array<VkDescriptorBufferInfo, kBindingCount> infos{};
     std::array<VkWriteDescriptorSet, kBindingCount> writes{};
-    std::array<Buffer*, kBindingCount> buffers = bindingBuffers(w, e);
-    for (std::uint32_t i = 0; i < kBindingCount; ++i) {
+    auto n = static_cast<std::uint32_t>(buffers.size());
+    for (std::uint32_t i = 0; i < n; ++i) {
         infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
         writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-        writes[i].dstSet = e.descriptorSet;
+        writes[i].dstSet = set;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
         writes[i].pBufferInfo = &infos[i];
     }
-    vkUpdateDescriptorSets(d.device, kBindingCount, writes.data(), 0, nullptr);
+    vkUpdateDescriptorSets(d.device, n, writes.data(), 0, nullptr);
+    return set;
+}
+
+// Set 0 of every emitter; a spawn emitter also gets its two set-1 variants,
+// one per role of its alive lists.
+void createDescriptorSets(GpuWorld& w, GpuEmitter& e) {
+    Device& d = *w.device;
+    e.descriptorPool = e.spawn ? createDescriptorPool(d, 3, kBindingCount + 2 * kListBindingCount)
+                               : createDescriptorPool(d, 1, kBindingCount);
+    std::array<Buffer*, kBindingCount> buffers = bindingBuffers(w, e);
+    e.descriptorSet = writeSet(d, e.descriptorPool, w.setLayout, buffers);
+    if (e.spawn) {
+        for (std::uint32_t p = 0; p < 2; ++p) {
+            std::array<Buffer*, kListBindingCount> lists{&e.dead, &e.alive[p], &e.alive[1 - p], &e.schedule};
+            e.listSets[p] = writeSet(d, e.descriptorPool, w.listLayout, lists);
+        }
+    }
 }
 
 void destroyEmitter(Device& d, GpuEmitter& e) {
@@ -149,7 +207,7 @@ void destroyEmitter(Device& d, GpuEmitter& e) {
         vkDestroyDescriptorPool(d.device, e.descriptorPool, nullptr);  // frees its set
     }
     for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.lifetimes, &e.births, &e.sizes,
-                      &e.rotations, &e.colors, &e.counters}) {
+                      &e.rotations, &e.colors, &e.counters, &e.dead, &e.alive[0], &e.alive[1], &e.schedule}) {
         destroyBuffer(d, *b);
     }
 }
@@ -168,6 +226,16 @@ void allocateSlots(Device& d, GpuEmitter& e) {
     e.colors = createStorageBuffer(d, n * 16);
     e.counters = createHostStorageBuffer(d, sizeof(Counters));
     std::memset(e.counters.mapped, 0, sizeof(Counters));
+    if (e.spawn) {
+        // The dead buffer's header is also the update pass's indirect dispatch.
+        e.dead = createBuffer(d, sizeof(DeadHeader) + n * 4,
+                              VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
+                                  VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
+                              VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        e.alive[0] = createStorageBuffer(d, kAliveHeaderBytes + n * 4);
+        e.alive[1] = createStorageBuffer(d, kAliveHeaderBytes + n * 4);
+        e.schedule = createHostStorageBuffer(d, sizeof(ScheduleHeader) + std::max<VkDeviceSize>(e.scheduleRuns, 1) * 8);
+    }
 }
 
 std::vector<glm::vec2> interleave(const std::vector<float>& a, const std::vector<float>& b) {
@@ -195,15 +263,70 @@ void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
                                              {&e.rotations, rotations.data(), n * 8},
                                              {&e.colors, p.color.data(), n * 16}}};
     upload(d, transfers);
+    if (e.spawn) {
+        // Every slot dead, stacked as the CPU's free list: slot 0 on top.
+        std::vector<std::uint32_t> dead(sizeof(DeadHeader) / 4 + s.freeSlots.size(), 0);
+        DeadHeader header{{0, 1, 1}, static_cast<std::uint32_t>(s.freeSlots.size()), 0, {0, 0, 0}};
+        std::memcpy(dead.data(), &header, sizeof(header));
+        std::copy(s.freeSlots.begin(), s.freeSlots.end(), dead.begin() + sizeof(DeadHeader) / 4);
+        std::array<std::uint32_t, 4> empty{};
+        const std::array<Transfer, 3> lists{{{&e.dead, dead.data(), dead.size() * 4},
+                                             {&e.alive[0], empty.data(), kAliveHeaderBytes},
+                                             {&e.alive[1], empty.data(), kAliveHeaderBytes}}};
+        upload(d, lists);
+    }
 }
 
-void recordUpdate(GpuWorld& w, VkCommandBuffer cmd, GpuEmitter& e, float dt) {
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 1, &e.descriptorSet, 0,
-                            nullptr);
-    PushConstants push{dt, e.capacity};
-    vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, (e.capacity + kWorkgroupSize - 1) / kWorkgroupSize, 1, 1);
+// Execution and memory dependency between passes (a global VkMemoryBarrier).
+void barrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+             VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
+    auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
 }
+
+void computeToCompute(VkCommandBuffer cmd) {
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+// Writes the spawn emitter's schedule for this step into its mapped buffer
+// (read by the emit pass after the submission; host writes before
+// vkQueueSubmit need no barrier) and returns how many births it owes.
+std::uint32_t writeSchedule(GpuEmitter& e, EmitterState& s, double time, float dt) {
+    BirthSchedule b = scheduleBirths(s, time, dt);
+    std::uint64_t total = b.total();
+    if (total > std::numeric_limits<std::uint32_t>::max()) {
+        throw Error(fmt::format("emitter '{}': {} births in one step", s.def.name, total));
+    }
+    ScheduleHeader h{};
+    h.firstSerial = s.nextSerial;
+    h.burstRuns = static_cast<std::uint32_t>(b.bursts.size());
+    h.rateSpan = static_cast<float>(b.t1 - b.t0);
+    h.rateCarry = static_cast<float>(b.carry);
+    h.rate = static_cast<float>(b.rate);
+    h.maxAge = static_cast<float>(b.dt);
+    auto* runs = reinterpret_cast<std::uint32_t*>(static_cast<char*>(e.schedule.mapped) + sizeof(h));
+    std::uint32_t end = 0;
+    for (std::size_t r = 0; r < b.bursts.size(); ++r) {
+        end += b.bursts[r].count;
+        runs[2 * r] = end;
+        std::memcpy(&runs[2 * r + 1], &b.bursts[r].age, 4);
+    }
+    h.rateFirst = end;
+    std::memcpy(e.schedule.mapped, &h, sizeof(h));
+    return static_cast<std::uint32_t>(total);
+}
+
+void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, GpuEmitter& e, float dt, std::uint32_t count) {
+    std::array<VkDescriptorSet, 2> sets{e.descriptorSet, e.spawn ? e.listSets[e.parity] : w.placeholderSet};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 2, sets.data(), 0, nullptr);
+    PushConstants push{dt, count};
+    vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+}
+
+std::uint32_t groupsFor(std::uint32_t threads) { return (threads + kWorkgroupSize - 1) / kWorkgroupSize; }
 
 // Takes the step's counts out of the mapped counters and zeroes them for the
 // next step (after the fence, so the device is done with them).
@@ -217,6 +340,13 @@ void collectCounters(GpuEmitter& e, EmitterState& s, StepStats& stats) {
     s.alive = s.alive + c.born - c.died;
     stats.born += c.born;
     stats.died += c.died;
+    stats.clamped += c.clamped;
+    if (e.spawn) {
+        // Every birth of a spawn emitter comes from the emit pass, which numbers
+        // them firstSerial + k in schedule order, as the CPU does.
+        s.nextSerial += c.born;
+        e.parity = 1 - e.parity;  // the next list becomes the current one
+    }
 }
 
 }  // namespace
@@ -233,10 +363,21 @@ std::unique_ptr<GpuWorld> createGpuWorld() {
     try {
         w->device = createDevice({validationSetting().load(), &worldDebugLog()});
         Device& d = *w->device;
-        w->setLayout = createSetLayout(d);
-        w->pipelineLayout = createPipelineLayout(d, w->setLayout);
-        w->updatePipeline =
-            createComputePipeline(d, w->pipelineLayout, shaders::kEffectsUpdate, shaders::kEffectsUpdateWords);
+        w->setLayout = createSetLayout(d, kBindingCount);
+        w->listLayout = createSetLayout(d, kListBindingCount);
+        w->pipelineLayout = createPipelineLayout(d, w->setLayout, w->listLayout);
+        for (auto [pipeline, pass] : {std::pair{&w->updatePipeline, Pass::RecycleUpdate},
+                                      std::pair{&w->spawnUpdatePipeline, Pass::SpawnUpdate},
+                                      std::pair{&w->spawnEmitPipeline, Pass::SpawnEmit},
+                                      std::pair{&w->spawnFinishPipeline, Pass::SpawnFinish}}) {
+            *pipeline = createComputePipeline(d, w->pipelineLayout, shaders::kEffectsUpdate,
+                                              shaders::kEffectsUpdateWords, pass);
+        }
+        w->placeholder = createStorageBuffer(d, 64);
+        w->placeholderPool = createDescriptorPool(d, 1, kListBindingCount);
+        std::array<Buffer*, kListBindingCount> placeholders{&w->placeholder, &w->placeholder, &w->placeholder,
+                                                             &w->placeholder};
+        w->placeholderSet = writeSet(d, w->placeholderPool, w->listLayout, placeholders);
         w->forces = createStorageBuffer(d, kHeaderBytes + kMaxForces * sizeof(kernels::ForceParams));
         w->colliders = createStorageBuffer(d, kHeaderBytes + kMaxColliders * sizeof(kernels::ColliderParams));
         uploadForces(*w, {});
@@ -262,16 +403,24 @@ void destroyGpuWorld(GpuWorld& w) {
             }
         }
         w.emitters.clear();
+        if (w.placeholderPool != VK_NULL_HANDLE) {
+            vkDestroyDescriptorPool(d.device, w.placeholderPool, nullptr);
+        }
+        destroyBuffer(d, w.placeholder);
         destroyBuffer(d, w.colliders);
         destroyBuffer(d, w.forces);
-        if (w.updatePipeline != VK_NULL_HANDLE) {
-            vkDestroyPipeline(d.device, w.updatePipeline, nullptr);
+        for (VkPipeline p : {w.spawnFinishPipeline, w.spawnEmitPipeline, w.spawnUpdatePipeline, w.updatePipeline}) {
+            if (p != VK_NULL_HANDLE) {
+                vkDestroyPipeline(d.device, p, nullptr);
+            }
         }
         if (w.pipelineLayout != VK_NULL_HANDLE) {
             vkDestroyPipelineLayout(d.device, w.pipelineLayout, nullptr);
         }
-        if (w.setLayout != VK_NULL_HANDLE) {
-            vkDestroyDescriptorSetLayout(d.device, w.setLayout, nullptr);
+        for (VkDescriptorSetLayout l : {w.listLayout, w.setLayout}) {
+            if (l != VK_NULL_HANDLE) {
+                vkDestroyDescriptorSetLayout(d.device, l, nullptr);
+            }
         }
     }
     destroyDevice(d);
@@ -291,11 +440,6 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
         w.emitters.push_back(nullptr);  // a closed form: evaluated where it is read
         return;
     }
-    if (initial.def.lifecycle != Lifecycle::Recycle) {
-        throw Error(fmt::format("emitter '{}': spawn-mode emitters are not supported on the vulkan backend yet; "
-                                "use lifecycle 'recycle', a stateless emitter, or backend 'cpu'",
-                                initial.def.name));
-    }
     Device& d = *w.device;
     auto groups = (initial.def.capacity + kWorkgroupSize - 1) / kWorkgroupSize;
     if (groups > d.properties.limits.maxComputeWorkGroupCount[0]) {
@@ -305,10 +449,12 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
     }
     auto e = std::make_unique<GpuEmitter>();
     e->capacity = initial.def.capacity;
+    e->spawn = initial.def.lifecycle == Lifecycle::Spawn;
+    e->scheduleRuns = static_cast<std::uint32_t>(initial.def.bursts.size());
     try {
         allocateSlots(d, *e);
         uploadSlots(d, *e, initial);
-        createDescriptorSet(w, *e);
+        createDescriptorSets(w, *e);
     } catch (...) {
         destroyEmitter(d, *e);
         throw;
@@ -316,24 +462,74 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
     w.emitters.push_back(std::move(e));
 }
 
-void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, float dt, StepStats& stats) {
+void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, double time, float dt,
+                  StepStats& stats) {
     Device& d = *w.device;
+    // Births owed this step, per emitter (spawn mode), from the shared schedule.
+    std::vector<std::uint32_t> births(w.emitters.size(), 0);
+    bool anySpawn = false;
+    for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+        GpuEmitter* e = w.emitters[i].get();
+        if (e && e->spawn) {
+            births[i] = writeSchedule(*e, *emitters[i], time, dt);
+            anySpawn = anySpawn || e->capacity > 0;
+        }
+    }
+    // Emitters touch disjoint buffers and only add to their own counters, so
+    // the dispatches of one pass need no barrier between them.
     submitOnce(d, [&](VkCommandBuffer cmd) {
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.updatePipeline);
-        // Emitters touch disjoint slot buffers and only add to their own
-        // counters, so their dispatches need no barrier between them.
+        // Earlier steps' and uploads' writes (lists, the indirect dispatch)
+        // before this step reads them, also as an indirect command.
+        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+        // Update: recycle emitters over every slot, spawn emitters over their
+        // current alive list (its size written by the GPU last step).
         for (auto& e : w.emitters) {
             if (e && e->capacity > 0) {
-                recordUpdate(w, cmd, *e, dt);
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
+                                  e->spawn ? w.spawnUpdatePipeline : w.updatePipeline);
+                bindEmitter(w, cmd, *e, dt, e->capacity);
+                if (e->spawn) {
+                    vkCmdDispatchIndirect(cmd, e->dead.buffer, 0);
+                } else {
+                    vkCmdDispatch(cmd, groupsFor(e->capacity), 1, 1);
+                }
             }
+        }
+        if (anySpawn) {
+            // Emit: the dead stack is complete once every update is done.
+            computeToCompute(cmd);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.spawnEmitPipeline);
+            for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+                GpuEmitter* e = w.emitters[i].get();
+                if (e && e->spawn && e->capacity > 0 && births[i] > 0) {
+                    bindEmitter(w, cmd, *e, dt, births[i]);
+                    // Births beyond the capacity cannot find a slot: thread 0
+                    // counts them, so the dispatch stays within the device limit.
+                    vkCmdDispatch(cmd, groupsFor(std::min(births[i], e->capacity)), 1, 1);
+                }
+            }
+            // Finish: pop the taken slots, write the next update's dispatch.
+            computeToCompute(cmd);
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.spawnFinishPipeline);
+            for (auto& e : w.emitters) {
+                if (e && e->spawn && e->capacity > 0) {
+                    bindEmitter(w, cmd, *e, dt, 1);
+                    vkCmdDispatch(cmd, 1, 1, 1);
+                }
+            }
+            // The next step's update reads the dispatch and the lists.
+            barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                    VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
         }
         // Counters are read through the mapping after the fence: make the
         // shader's writes available to the host (Vulkan spec 7.9, host access).
-        auto barrier = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-        barrier.srcAccessMask = VK_ACCESS_SHADER_WRITE_BIT;
-        barrier.dstAccessMask = VK_ACCESS_HOST_READ_BIT;
-        vkCmdPipelineBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_PIPELINE_STAGE_HOST_BIT, 0, 1, &barrier, 0,
-                             nullptr, 0, nullptr);
+        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+                VK_ACCESS_HOST_READ_BIT);
     });
     for (std::size_t i = 0; i < w.emitters.size(); ++i) {
         if (w.emitters[i]) {

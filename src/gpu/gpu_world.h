@@ -1,6 +1,8 @@
-// The Vulkan backend's world: forces, colliders and every recycle emitter's
-// slots live in device buffers; a step is one dispatch of effects_update.comp
-// per emitter and moves no particle data; readSlots copies one emitter back.
+// The Vulkan backend's world: forces, colliders and every state-preserving
+// emitter's slots live in device buffers; a step is one submission of the
+// passes of effects_update.comp and moves no particle data; readSlots copies
+// one emitter back. Spawn-mode emitters keep their dead-slot stack and alive
+// lists on the device too: birth and death happen there.
 #pragma once
 
 #include "effects/emitter_state.h"
@@ -19,16 +21,35 @@ namespace spindrift::gpu {
 struct GpuEmitter {
     std::uint32_t capacity = 0;
     Buffer params, positions, velocities, ages, lifetimes, births, sizes, rotations, colors;
-    Buffer counters;  // host-visible: born, died, 2 pads, hits[32]
+    Buffer counters;  // host-visible: born, died, clamped, pad, hits[32]
     VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
-    VkDescriptorSet descriptorSet = VK_NULL_HANDLE;
+    VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 0
+
+    // Spawn mode only (set 1 of effects_update.comp).
+    bool spawn = false;
+    Buffer dead;      // indirect dispatch args, dead count, popped, dead slot stack
+    Buffer alive[2];  // count, 3 pads, slot indices
+    Buffer schedule;  // host-visible: the step's births (see effects_update.comp)
+    std::uint32_t scheduleRuns = 0;  // burst runs the schedule buffer holds
+    /// listSets[p]: alive[p] is the current list, alive[1 - p] the next.
+    VkDescriptorSet listSets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
+    std::uint32_t parity = 0;
 };
 
 struct GpuWorld {
     std::unique_ptr<Device> device;
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkDescriptorSetLayout listLayout = VK_NULL_HANDLE;  // set 1: spawn-mode lists
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkPipeline updatePipeline = VK_NULL_HANDLE;
+    VkPipeline updatePipeline = VK_NULL_HANDLE;         // recycle: every slot
+    VkPipeline spawnUpdatePipeline = VK_NULL_HANDLE;    // spawn: the alive list
+    VkPipeline spawnEmitPipeline = VK_NULL_HANDLE;      // spawn: births
+    VkPipeline spawnFinishPipeline = VK_NULL_HANDLE;    // spawn: next step's dispatch
+    /// Set 1 of recycle emitters: the recycle pass never reads it, but the
+    /// shader module declares it, so something valid must be bound.
+    Buffer placeholder;
+    VkDescriptorPool placeholderPool = VK_NULL_HANDLE;
+    VkDescriptorSet placeholderSet = VK_NULL_HANDLE;
     Buffer forces;     // uint count, 3 pads, ForceParams[kMaxForces]
     Buffer colliders;  // uint count, 3 pads, ColliderParams[kMaxColliders]
     /// Indexed like World::emitters; null for stateless emitters.
@@ -47,14 +68,18 @@ void destroyGpuWorld(GpuWorld& w);
 void uploadForces(GpuWorld& w, std::span<const kernels::ForceParams> forces);
 void uploadColliders(GpuWorld& w, std::span<const kernels::ColliderParams> colliders);
 
-/// Appends an emitter: a recycle emitter's initialised slots (initialiseSlots)
-/// are uploaded once; a stateless one gets no device state. Throws Error for
-/// spawn mode (not supported on the GPU yet).
+/// Appends an emitter: a state-preserving emitter's initialised slots
+/// (initialiseSlots) are uploaded once, with, in spawn mode, its dead stack in
+/// the order of the CPU's free list; a stateless one gets no device state.
 void addEmitter(GpuWorld& w, const EmitterState& initial);
 
-/// One step of every state-preserving emitter: one submission, one dispatch
-/// each. Adds births, deaths and hits to `stats` and updates EmitterState::alive.
-void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, float dt, StepStats& stats);
+/// One step [time, time + dt) of every state-preserving emitter: one
+/// submission. Spawn emitters' births follow the CPU's schedule
+/// (scheduleBirths); their emission carry and serials advance as on the CPU.
+/// Adds births, deaths, clamped births and hits to `stats` and updates
+/// EmitterState::alive.
+void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, double time, float dt,
+                  StepStats& stats);
 
 /// Copies all slots of emitter `index` back to the host.
 ParticleArrays readSlots(GpuWorld& w, std::size_t index);

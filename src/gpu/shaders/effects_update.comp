@@ -1,9 +1,21 @@
 #version 450
-// One step of every slot of one emitter: the shared updateParticle of
-// src/kernels/update.glsl over structure-of-arrays storage buffers. The physics
-// lives only in src/kernels/*.glsl; this file only binds data to the hooks of
-// context_hooks.glsl and counts events.
+// The passes of one emitter's step over structure-of-arrays storage buffers:
+// the shared updateParticle and bornParticle of src/kernels/update.glsl. The
+// physics lives only in src/kernels/*.glsl; this file only binds data to the
+// hooks of context_hooks.glsl, keeps the spawn-mode slot lists and counts
+// events. The pass is a specialization constant, one pipeline each:
+//   0 recycle update: every slot (direct dispatch of the capacity);
+//   1 spawn update: the current alive list (indirect dispatch); the dead go on
+//     the dead stack, survivors on the next alive list;
+//   2 spawn emit: birth k of the step's schedule pops a dead slot, or is clamped;
+//   3 spawn finish: one thread writes the next step's indirect dispatch.
 #include "types.glsl"
+
+layout(constant_id = 0) const uint PASS = 0u;
+const uint PASS_RECYCLE_UPDATE = 0u;
+const uint PASS_SPAWN_UPDATE = 1u;
+const uint PASS_SPAWN_EMIT = 2u;
+const uint PASS_SPAWN_FINISH = 3u;
 
 layout(local_size_x = 64) in;
 
@@ -21,7 +33,34 @@ layout(std430, set = 0, binding = 8) buffer Sizes { float sizes[]; };
 layout(std430, set = 0, binding = 9) buffer Rotations { vec2 rotations[]; };  // rotation, angular velocity
 layout(std430, set = 0, binding = 10) buffer Colors { vec4 colors[]; };
 // Events of the step, read by the CPU through a host-visible mapping.
-layout(std430, set = 0, binding = 11) buffer Counters { uint born; uint died; uint pad6, pad7; uint hits[32]; };
+layout(std430, set = 0, binding = 11) buffer Counters { uint born; uint died; uint clamped, pad7; uint hits[32]; };
+
+// Spawn mode (set 1; recycle emitters bind a placeholder that is never read).
+// The dead stack, its top at deadSlots[deadCount - 1], starts as the CPU's free
+// list (slot 0 on top); the header's first three words are the indirect
+// dispatch of the next update pass. popped: slots taken by the emit pass.
+layout(std430, set = 1, binding = 0) buffer Dead {
+    uint dispatchX, dispatchY, dispatchZ, deadCount;
+    uint popped, pad8, pad9, pad10;
+    uint deadSlots[];
+};
+// Slots alive at the start of the step, and those alive at its end; the CPU
+// swaps the two between steps by binding the other descriptor set.
+layout(std430, set = 1, binding = 1) buffer AliveIn { uint aliveInCount; uint pad11, pad12, pad13; uint aliveIn[]; };
+layout(std430, set = 1, binding = 2) buffer AliveOut { uint aliveOutCount; uint pad14, pad15, pad16; uint aliveOut[]; };
+// The step's births (BirthSchedule of src/effects/world_internal.h, written by
+// the CPU): burst runs (end index, age) first, then the rate's births.
+layout(std430, set = 1, binding = 3) readonly buffer Schedule {
+    uint firstSerial;  // serial of birth 0 of the step
+    uint burstRuns;
+    uint rateFirst;    // index of the rate's first birth
+    uint pad17;
+    float rateSpan;    // t1 - t0 (s)
+    float rateCarry;
+    float rate;        // 1/s
+    float maxAge;      // dt (s)
+    uvec2 runs[];      // x: end index (exclusive), y: floatBitsToUint(age)
+};
 
 layout(push_constant) uniform Step { float dt; uint count; } step;
 
@@ -82,14 +121,89 @@ void countEvents(ParticleUpdate r) {
     }
 }
 
-void main() {
-    uint i = gl_GlobalInvocationID.x;
+void recycleUpdate(KernelContext ctx, uint i) {
     if (i >= step.count) {
         return;
     }
-    KernelContext ctx;
-    ctx.unused = 0u;
     ParticleUpdate r = updateParticle(ctx, emitter, loadParticle(i), step.dt);
     storeParticle(i, r.particle);
     countEvents(r);
+}
+
+void spawnUpdate(KernelContext ctx, uint i) {
+    if (i >= aliveInCount) {
+        return;
+    }
+    uint slot = aliveIn[i];
+    ParticleUpdate r = updateParticle(ctx, emitter, loadParticle(slot), step.dt);
+    storeParticle(slot, r.particle);
+    countEvents(r);
+    if ((r.events & SD_EVENT_DIED) != 0u) {
+        deadSlots[atomicAdd(deadCount, 1u)] = slot;
+    } else {
+        aliveOut[atomicAdd(aliveOutCount, 1u)] = slot;
+    }
+}
+
+// Age of birth k at the end of the step: BirthSchedule::ages() in float (the
+// CPU works in double; the two agree to a few ulp).
+float birthAge(uint k) {
+    for (uint b = 0u; b < burstRuns; ++b) {
+        if (k < runs[b].x) {
+            return uintBitsToFloat(runs[b].y);
+        }
+    }
+    float bornAfterStart = (float(k - rateFirst) + 1.0f - rateCarry) / rate;
+    return clamp(rateSpan - bornAfterStart, 0.0f, maxAge);
+}
+
+// step.count births are owed; the dispatch covers at most the capacity of
+// them (the rest cannot find a slot) and thread 0 counts the remainder.
+void spawnEmit(KernelContext ctx, uint k) {
+    uint dispatched = min(step.count, emitter.capacity);
+    if (k == 0u && step.count > dispatched) {
+        atomicAdd(clamped, step.count - dispatched);
+    }
+    if (k >= dispatched) {
+        return;
+    }
+    if (k >= deadCount) {
+        atomicAdd(clamped, 1u);  // no free slot: dropped, never over a live one
+        return;
+    }
+    ParticleUpdate r = bornParticle(ctx, emitter, firstSerial + k, birthAge(k));
+    if (r.particle.age >= r.particle.lifetime) {
+        // Killed at once by a collision: born and dead, its slot stays free.
+        r.events = r.events | SD_EVENT_DIED;
+        countEvents(r);
+        return;
+    }
+    uint slot = deadSlots[deadCount - 1u - atomicAdd(popped, 1u)];
+    storeParticle(slot, r.particle);
+    aliveOut[atomicAdd(aliveOutCount, 1u)] = slot;
+    countEvents(r);
+}
+
+void spawnFinish() {
+    deadCount -= popped;
+    popped = 0u;
+    dispatchX = (aliveOutCount + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
+    dispatchY = 1u;
+    dispatchZ = 1u;
+    aliveInCount = 0u;  // the next step's output list
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    KernelContext ctx;
+    ctx.unused = 0u;
+    if (PASS == PASS_RECYCLE_UPDATE) {
+        recycleUpdate(ctx, i);
+    } else if (PASS == PASS_SPAWN_UPDATE) {
+        spawnUpdate(ctx, i);
+    } else if (PASS == PASS_SPAWN_EMIT) {
+        spawnEmit(ctx, i);
+    } else if (i == 0u) {
+        spawnFinish();
+    }
 }

@@ -6,6 +6,6 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install-deps.sh
 cmake --preset release
-cmake --build --preset release
+cmake --build --preset release --target spindrift_cli
 build/release/spindrift run scenes/default.toml --out out/default --every 60
 echo "spindrift: caches and summary.json written to out/default/"

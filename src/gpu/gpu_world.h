@@ -2,19 +2,47 @@
 // emitter's slots live in device buffers; a step is one submission of the
 // passes of effects_update.comp and moves no particle data; readSlots copies
 // one emitter back. Spawn-mode emitters keep their dead-slot stack and alive
-// lists on the device too: birth and death happen there.
+// lists on the device too: birth and death happen there. Flow fields, terrain
+// height maps and depth cube maps are images sampled with the hardware's linear
+// filter (set 2 of effects_update.comp), uploaded once.
 #pragma once
 
 #include "effects/emitter_state.h"
+#include "effects/fields.h"
 #include "gpu/vulkan_buffer.h"
 
 #include <spindrift/world.h>
 
 #include <memory>
 #include <span>
+#include <string>
 #include <vector>
 
 namespace spindrift::gpu {
+
+/// Most sampled fields of each kind one Vulkan world holds: the sizes of the
+/// sampler arrays of effects_update.comp (set 2; keep the two in step).
+/// Creating one more throws Error.
+inline constexpr std::uint32_t kMaxGpuFlowFields = 8;
+inline constexpr std::uint32_t kMaxGpuHeightMaps = 8;
+inline constexpr std::uint32_t kMaxGpuCubeMaps = 8;
+
+/// The sampled fields of a world: one image per field, one linear
+/// clamp-to-edge sampler, one descriptor set (set 2) whose unused array
+/// elements show a 1x1 placeholder image.
+struct GpuFields {
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    Image placeholder3d, placeholder2d, placeholderCube;
+    std::vector<Image> flows, heights, cubes;
+    /// Formats chosen at creation: 32-bit float where the device filters it
+    /// linearly, else 16-bit float; VK_FORMAT_UNDEFINED: neither (refused).
+    VkFormat flowFormat = VK_FORMAT_UNDEFINED;    // xyz velocity, w unused
+    VkFormat heightFormat = VK_FORMAT_UNDEFINED;  // height
+    VkFormat cubeFormat = VK_FORMAT_UNDEFINED;    // normal xyz, depth w
+};
 
 /// One state-preserving emitter on the device (structure of arrays, as the
 /// CPU's ParticleArrays; rotation and angular velocity interleaved as vec2).
@@ -52,6 +80,7 @@ struct GpuWorld {
     VkDescriptorSet placeholderSet = VK_NULL_HANDLE;
     Buffer forces;     // uint count, 3 pads, ForceParams[kMaxForces]
     Buffer colliders;  // uint count, 3 pads, ColliderParams[kMaxColliders]
+    GpuFields fields;
     /// Indexed like World::emitters; null for stateless emitters.
     std::vector<std::unique_ptr<GpuEmitter>> emitters;
 };
@@ -67,6 +96,14 @@ void destroyGpuWorld(GpuWorld& w);
 
 void uploadForces(GpuWorld& w, std::span<const kernels::ForceParams> forces);
 void uploadColliders(GpuWorld& w, std::span<const kernels::ColliderParams> colliders);
+
+/// Append one sampled field, indexed from 0 in the order of the calls (as
+/// ForceParams::flowField and ColliderParams::dataIndex count them), uploaded
+/// once. Throws Error naming `name` beyond the maximum counts above, the
+/// device's image size limits, or without linear filtering of float formats.
+void addFlowField(GpuWorld& w, const FlowGrid& grid, const std::string& name);
+void addHeightMap(GpuWorld& w, const HeightMap& map, const std::string& name);
+void addCubeMap(GpuWorld& w, const DepthCubeMap& cube, const std::string& name);
 
 /// Appends an emitter: a state-preserving emitter's initialised slots
 /// (initialiseSlots) are uploaded once, with, in spawn mode, its dead stack in

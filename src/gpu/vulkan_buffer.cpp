@@ -31,7 +31,132 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
     vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
+VkImageSubresourceRange wholeImage(const ImageShape& shape) {
+    return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, shape.layers()};
+}
+
+// Layout transition of the whole image with its execution and memory dependency.
+void transition(VkCommandBuffer cmd, VkImage image, const ImageShape& shape, VkImageLayout from, VkImageLayout to,
+                VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+                VkAccessFlags dstAccess) {
+    auto b = vkStruct<VkImageMemoryBarrier>(VK_STRUCTURE_TYPE_IMAGE_MEMORY_BARRIER);
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    b.oldLayout = from;
+    b.newLayout = to;
+    b.srcQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.dstQueueFamilyIndex = VK_QUEUE_FAMILY_IGNORED;
+    b.image = image;
+    b.subresourceRange = wholeImage(shape);
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 0, nullptr, 0, nullptr, 1, &b);
+}
+
+// UNDEFINED -> TRANSFER_DST_OPTIMAL, `fill` records the transfer, then
+// TRANSFER_DST_OPTIMAL -> SHADER_READ_ONLY_OPTIMAL for compute shaders.
+template <class F>
+void fillImage(Device& d, Image& image, const ImageShape& shape, F&& fill) {
+    submitOnce(d, [&](VkCommandBuffer cmd) {
+        transition(cmd, image.image, shape, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+        fill(cmd);
+        transition(cmd, image.image, shape, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                   VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+    });
+}
+
 }  // namespace
+
+bool linearFilterable(const Device& d, VkFormat format) {
+    VkFormatProperties props{};
+    vkGetPhysicalDeviceFormatProperties(d.physical, format, &props);
+    const VkFormatFeatureFlags needed = VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT |
+                                        VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT |
+                                        VK_FORMAT_FEATURE_TRANSFER_DST_BIT;
+    return (props.optimalTilingFeatures & needed) == needed;
+}
+
+Image createSampledImage(Device& d, const ImageShape& shape) {
+    Image img;
+    const bool cube = shape.viewType == VK_IMAGE_VIEW_TYPE_CUBE;
+    const bool volume = shape.viewType == VK_IMAGE_VIEW_TYPE_3D;
+    auto info = vkStruct<VkImageCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_CREATE_INFO);
+    info.flags = cube ? VK_IMAGE_CREATE_CUBE_COMPATIBLE_BIT : 0;
+    info.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
+    info.format = shape.format;
+    info.extent = {shape.width, shape.height, volume ? shape.depth : 1u};
+    info.mipLevels = 1;
+    info.arrayLayers = shape.layers();
+    info.samples = VK_SAMPLE_COUNT_1_BIT;
+    info.tiling = VK_IMAGE_TILING_OPTIMAL;
+    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    check(vkCreateImage(d.device, &info, nullptr, &img.image), "vkCreateImage");
+    try {
+        VkMemoryRequirements req;
+        vkGetImageMemoryRequirements(d.device, img.image, &req);
+        auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+        alloc.allocationSize = req.size;
+        alloc.memoryTypeIndex = findMemoryType(d, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
+        check(vkAllocateMemory(d.device, &alloc, nullptr, &img.memory), "vkAllocateMemory");
+        check(vkBindImageMemory(d.device, img.image, img.memory, 0), "vkBindImageMemory");
+        auto view = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
+        view.image = img.image;
+        view.viewType = shape.viewType;
+        view.format = shape.format;
+        view.subresourceRange = wholeImage(shape);
+        check(vkCreateImageView(d.device, &view, nullptr, &img.view), "vkCreateImageView");
+    } catch (...) {
+        destroyImage(d, img);
+        throw;
+    }
+    return img;
+}
+
+void uploadImage(Device& d, Image& image, const ImageShape& shape, const void* texels, VkDeviceSize bytes) {
+    Buffer staging = createBuffer(d, bytes, VK_BUFFER_USAGE_TRANSFER_SRC_BIT,
+                                  VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    try {
+        std::memcpy(staging.mapped, texels, bytes);
+        fillImage(d, image, shape, [&](VkCommandBuffer cmd) {
+            VkBufferImageCopy region{};
+            region.bufferOffset = 0;
+            region.bufferRowLength = 0;  // tightly packed
+            region.bufferImageHeight = 0;
+            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, shape.layers()};
+            region.imageOffset = {0, 0, 0};
+            region.imageExtent = {shape.width, shape.height, shape.viewType == VK_IMAGE_VIEW_TYPE_3D ? shape.depth : 1u};
+            vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+        });
+    } catch (...) {
+        destroyBuffer(d, staging);
+        throw;
+    }
+    destroyBuffer(d, staging);
+    d.bytesUploaded += bytes;
+}
+
+void clearImage(Device& d, Image& image, const ImageShape& shape) {
+    fillImage(d, image, shape, [&](VkCommandBuffer cmd) {
+        VkClearColorValue zero{};
+        VkImageSubresourceRange range = wholeImage(shape);
+        vkCmdClearColorImage(cmd, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &zero, 1, &range);
+    });
+}
+
+void destroyImage(Device& d, Image& image) {
+    if (image.view != VK_NULL_HANDLE) {
+        vkDestroyImageView(d.device, image.view, nullptr);
+    }
+    if (image.image != VK_NULL_HANDLE) {
+        vkDestroyImage(d.device, image.image, nullptr);
+    }
+    if (image.memory != VK_NULL_HANDLE) {
+        vkFreeMemory(d.device, image.memory, nullptr);
+    }
+    image = Image{};
+}
 
 Buffer createBuffer(Device& d, VkDeviceSize size, VkBufferUsageFlags usage, VkMemoryPropertyFlags memoryFlags) {
     Buffer b;

@@ -34,6 +34,38 @@ struct Transfer {
 /// Copies every host range into its buffer through one staging buffer and one
 /// submission; makes them visible to compute shaders. Counts the bytes.
 void upload(Device& d, std::span<const Transfer> transfers);
+/// A sampled image with its own memory and one view of the whole image.
+struct Image {
+    VkImage image = VK_NULL_HANDLE;
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    VkImageView view = VK_NULL_HANDLE;
+};
+
+/// Shape of a sampled image: a 3D image (depth > 1 allowed), a 2D image, or a
+/// cube (cube-compatible 2D image of 6 layers, width == height, view CUBE).
+struct ImageShape {
+    VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    std::uint32_t width = 1, height = 1, depth = 1;
+    std::uint32_t layers() const { return viewType == VK_IMAGE_VIEW_TYPE_CUBE ? 6u : 1u; }
+};
+
+/// True when `format` with optimal tiling can be sampled with VK_FILTER_LINEAR
+/// and copied into (vkGetPhysicalDeviceFormatProperties).
+bool linearFilterable(const Device& d, VkFormat format);
+/// A device-local image that can be copied into and sampled, in layout
+/// UNDEFINED; fill it with uploadImage or clearImage.
+Image createSampledImage(Device& d, const ImageShape& shape);
+/// Copies `bytes` of tightly packed texels (layer, then z, y, x; x fastest)
+/// through a staging buffer into the whole image, with the layout transitions
+/// UNDEFINED -> TRANSFER_DST_OPTIMAL -> SHADER_READ_ONLY_OPTIMAL and barriers
+/// that make the copy visible to compute shaders. Counts the bytes as uploaded.
+void uploadImage(Device& d, Image& image, const ImageShape& shape, const void* texels, VkDeviceSize bytes);
+/// Fills the whole image with zeros on the device (no transfer from the host)
+/// and leaves it in SHADER_READ_ONLY_OPTIMAL: a placeholder.
+void clearImage(Device& d, Image& image, const ImageShape& shape);
+void destroyImage(Device& d, Image& image);
+
 /// Waits for earlier compute writes, copies every buffer into its host range
 /// through one staging buffer and one submission. Counts the bytes.
 void download(Device& d, std::span<const Transfer> transfers);

@@ -143,7 +143,14 @@ std::vector<Candidate> rankDevices(VkInstance instance) {
     return out;
 }
 
-VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t family) {
+// Enables the few optional features the backend uses, where the device has them
+// (vkGetPhysicalDeviceFeatures): indexing the field sampler arrays of
+// effects_update.comp with a dynamically uniform value.
+VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t family, VkPhysicalDeviceFeatures& enabled) {
+    VkPhysicalDeviceFeatures available{};
+    vkGetPhysicalDeviceFeatures(physical, &available);
+    enabled = VkPhysicalDeviceFeatures{};
+    enabled.shaderSampledImageArrayDynamicIndexing = available.shaderSampledImageArrayDynamicIndexing;
     float priority = 1.0f;
     auto queue = vkStruct<VkDeviceQueueCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_QUEUE_CREATE_INFO);
     queue.queueFamilyIndex = family;
@@ -152,6 +159,7 @@ VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t family) {
     auto info = vkStruct<VkDeviceCreateInfo>(VK_STRUCTURE_TYPE_DEVICE_CREATE_INFO);
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
+    info.pEnabledFeatures = &enabled;
     VkDevice device = VK_NULL_HANDLE;
     check(vkCreateDevice(physical, &info, nullptr, &device), "vkCreateDevice");
     return device;
@@ -263,7 +271,7 @@ std::unique_ptr<Device> createDevice(const DeviceOptions& options) {
         d->queueFamily = candidates.front().family;
         vkGetPhysicalDeviceProperties(d->physical, &d->properties);
         vkGetPhysicalDeviceMemoryProperties(d->physical, &d->memory);
-        d->device = createLogicalDevice(d->physical, d->queueFamily);
+        d->device = createLogicalDevice(d->physical, d->queueFamily, d->features);
         vkGetDeviceQueue(d->device, d->queueFamily, 0, &d->queue);
         d->commandPool = createCommandPool(d->device, d->queueFamily);
     } catch (...) {

@@ -41,6 +41,9 @@ struct Device {
     VkPhysicalDevice physical = VK_NULL_HANDLE;
     VkPhysicalDeviceProperties properties{};
     VkPhysicalDeviceMemoryProperties memory{};
+    /// The optional features enabled on `device` (createDevice enables
+    /// shaderSampledImageArrayDynamicIndexing where the device has it).
+    VkPhysicalDeviceFeatures features{};
     DeviceKind kind = DeviceKind::Other;
     VkDevice device = VK_NULL_HANDLE;
     std::uint32_t queueFamily = 0;

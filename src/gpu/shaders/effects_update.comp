@@ -64,8 +64,24 @@ layout(std430, set = 1, binding = 3) readonly buffer Schedule {
 
 layout(push_constant) uniform Step { float dt; uint count; } step;
 
-// Flow fields, height maps and cube maps are refused when they are created in
-// a Vulkan world (not supported yet), so no emitter here can reach the samplers.
+// Sampled fields of the world (set 2), bound by gpu_world.cpp: one linear,
+// clamp-to-edge sampler, normalised coordinates, level 0, so texel i of n has
+// its centre at (i + 0.5) / n as context_hooks.glsl requires. Array sizes are
+// kMaxGpuFlowFields, kMaxGpuHeightMaps and kMaxGpuCubeMaps of gpu_world.h;
+// unused elements show a placeholder.
+layout(set = 2, binding = 0) uniform sampler3D flowFields[8];   // xyz velocity (m/s)
+layout(set = 2, binding = 1) uniform sampler2D heightMaps[8];   // height (m)
+layout(set = 2, binding = 2) uniform samplerCube cubeMaps[8];   // outward normal xyz, depth w (m)
+
+// NOT SAMPLED YET: flow fields, height maps and cube maps are still refused
+// when created in a Vulkan world (src/effects/world.cpp). The hooks would be
+// textureLod(flowFields[field], uvw, 0.0f).xyz and so on, but on lavapipe
+// (Mesa 22.3) the ~26 inlined sample sites of the kernels (RK4's four
+// accelerationAt, the sampled-collider march, bisection and normals) make
+// llvmpipe's per-dispatch compile take 15 s per pipeline with one texture per
+// kind and minutes with dynamically indexed arrays, which stalls every test.
+// lavapipe 22.3 also lacks shaderSampledImageArrayDynamicIndexing: index the
+// arrays through a switch of constant indices there.
 struct KernelContext { uint unused; };
 uint forceCount(KernelContext ctx) { return forceTotal; }
 ForceParams forceAt(KernelContext ctx, uint i) { return forces[i]; }

@@ -248,23 +248,29 @@ std::vector<glm::vec2> interleave(const std::vector<float>& a, const std::vector
     return out;
 }
 
+// The slot arrays of an emitter paired with host arrays of the same layout;
+// serves both directions (upload at creation, download on readParticles).
+std::array<Transfer, 8> slotTransfers(GpuEmitter& e, ParticleArrays& p, std::vector<glm::vec2>& rotations) {
+    const VkDeviceSize n = e.capacity;
+    return {{{&e.positions, p.position.data(), n * 12},
+             {&e.velocities, p.velocity.data(), n * 12},
+             {&e.ages, p.age.data(), n * 4},
+             {&e.lifetimes, p.lifetime.data(), n * 4},
+             {&e.births, p.birth.data(), n * 4},
+             {&e.sizes, p.size.data(), n * 4},
+             {&e.rotations, rotations.data(), n * 8},
+             {&e.colors, p.color.data(), n * 16}}};
+}
+
 void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
     // Transfer's host pointer serves both directions, so it is not const: work
     // on a copy (once per emitter, at creation only).
     kernels::EmitterParams params = s.params;
     ParticleArrays p = s.particles;
     std::vector<glm::vec2> rotations = interleave(p.rotation, p.angularVelocity);
-    const VkDeviceSize n = e.capacity;
-    const std::array<Transfer, 9> transfers{{{&e.params, &params, sizeof(params)},
-                                             {&e.positions, p.position.data(), n * 12},
-                                             {&e.velocities, p.velocity.data(), n * 12},
-                                             {&e.ages, p.age.data(), n * 4},
-                                             {&e.lifetimes, p.lifetime.data(), n * 4},
-                                             {&e.births, p.birth.data(), n * 4},
-                                             {&e.sizes, p.size.data(), n * 4},
-                                             {&e.rotations, rotations.data(), n * 8},
-                                             {&e.colors, p.color.data(), n * 16}}};
-    upload(d, transfers);
+    const std::array<Transfer, 1> parameters{{{&e.params, &params, sizeof(params)}}};
+    upload(d, parameters);
+    upload(d, slotTransfers(e, p, rotations));
     if (e.spawn) {
         // Every slot dead, stacked as the CPU's free list: slot 0 on top.
         std::vector<std::uint32_t> dead(sizeof(DeadHeader) / 4 + s.freeSlots.size(), 0);
@@ -765,15 +771,7 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index) {
     ParticleArrays p;
     p.resize(n);
     std::vector<glm::vec2> rotations(n);
-    const std::array<Transfer, 8> transfers{{{&e.positions, p.position.data(), n * 12},
-                                             {&e.velocities, p.velocity.data(), n * 12},
-                                             {&e.ages, p.age.data(), n * 4},
-                                             {&e.lifetimes, p.lifetime.data(), n * 4},
-                                             {&e.births, p.birth.data(), n * 4},
-                                             {&e.sizes, p.size.data(), n * 4},
-                                             {&e.rotations, rotations.data(), n * 8},
-                                             {&e.colors, p.color.data(), n * 16}}};
-    download(*w.device, transfers);
+    download(*w.device, slotTransfers(e, p, rotations));
     for (std::size_t i = 0; i < n; ++i) {
         p.rotation[i] = rotations[i].x;
         p.angularVelocity[i] = rotations[i].y;

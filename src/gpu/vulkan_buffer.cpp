@@ -31,6 +31,16 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
     vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &barrier, 0, nullptr, 0, nullptr);
 }
 
+// Memory for one resource, of a type that has `flags`.
+VkDeviceMemory allocateMemory(Device& d, const VkMemoryRequirements& req, VkMemoryPropertyFlags flags) {
+    auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
+    alloc.allocationSize = req.size;
+    alloc.memoryTypeIndex = findMemoryType(d, req.memoryTypeBits, flags);
+    VkDeviceMemory memory = VK_NULL_HANDLE;
+    check(vkAllocateMemory(d.device, &alloc, nullptr, &memory), "vkAllocateMemory");
+    return memory;
+}
+
 VkImageSubresourceRange wholeImage(const ImageShape& shape) {
     return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, shape.layers()};
 }
@@ -96,10 +106,7 @@ Image createSampledImage(Device& d, const ImageShape& shape) {
     try {
         VkMemoryRequirements req;
         vkGetImageMemoryRequirements(d.device, img.image, &req);
-        auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-        alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = findMemoryType(d, req.memoryTypeBits, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        check(vkAllocateMemory(d.device, &alloc, nullptr, &img.memory), "vkAllocateMemory");
+        img.memory = allocateMemory(d, req, VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
         check(vkBindImageMemory(d.device, img.image, img.memory, 0), "vkBindImageMemory");
         auto view = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
         view.image = img.image;
@@ -169,10 +176,7 @@ Buffer createBuffer(Device& d, VkDeviceSize size, VkBufferUsageFlags usage, VkMe
     try {
         VkMemoryRequirements req;
         vkGetBufferMemoryRequirements(d.device, b.buffer, &req);
-        auto alloc = vkStruct<VkMemoryAllocateInfo>(VK_STRUCTURE_TYPE_MEMORY_ALLOCATE_INFO);
-        alloc.allocationSize = req.size;
-        alloc.memoryTypeIndex = findMemoryType(d, req.memoryTypeBits, memoryFlags);
-        check(vkAllocateMemory(d.device, &alloc, nullptr, &b.memory), "vkAllocateMemory");
+        b.memory = allocateMemory(d, req, memoryFlags);
         check(vkBindBufferMemory(d.device, b.buffer, b.memory, 0), "vkBindBufferMemory");
         if ((memoryFlags & VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT) != 0) {
             check(vkMapMemory(d.device, b.memory, 0, VK_WHOLE_SIZE, 0, &b.mapped), "vkMapMemory");

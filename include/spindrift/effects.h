@@ -194,7 +194,9 @@ struct ColliderDef {
 
     float friction = 0.0f;    ///< mu, fraction of tangential velocity removed
     float resilience = 0.5f;  ///< e, fraction of normal velocity kept
-    /// Below this tangential speed (m/s) friction is not applied.
+    /// Below this tangential speed (m/s) friction is not applied, and a contact
+    /// approaching slower than this is resting, not an impact: it is not
+    /// counted as a hit and does not trigger kill or life loss.
     float restSpeed = 0.01f;
 };
 

@@ -64,7 +64,12 @@ SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterPar
             vec3 contactVelocity = mix(p.velocity, m.velocity, h.t);
             m.velocity = collisionVelocity(c, h.normal, contactVelocity);
             m.position = h.point + h.normal * SD_COLLISION_SKIN;
-            r.hitMask = r.hitMask | (1u << i);
+            // An impact counts (events, kill, life loss) only when the particle
+            // approaches faster than the rest speed: a particle resting on the
+            // ground is pushed out every step but is not hitting it.
+            if (-dot(contactVelocity, h.normal) > c.restSpeed) {
+                r.hitMask = r.hitMask | (1u << i);
+            }
         }
     }
     p.position = m.position;

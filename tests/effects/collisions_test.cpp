@@ -212,3 +212,42 @@ TEST(Collisions, KillOnCollisionAndLifeLossAndPerColliderCounts) {
 
 }  // namespace
 }  // namespace spindrift
+
+namespace spindrift {
+namespace {
+
+// A particle resting on the ground is pushed out every step (gravity moves it
+// g dt^2 into the plane), but approaches at only g dt = 0.16 m/s per step,
+// below the rest speed: no hits are counted after it settles, and life loss on
+// collision does not drain a resting particle.
+TEST(Collisions, RestingContactIsNotAnImpact) {
+    test::ScopedWorld w;
+    createForce(w.id, test::gravity({0.0f, -9.81f, 0.0f}));
+    ColliderDef floor = test::groundPlane(0.0f);
+    floor.restSpeed = 0.5f;
+    createCollider(w.id, floor);
+    test::OneShot o;
+    o.start = {0.0f, 0.5f, 0.0f};
+    o.lifetime = 100.0f;
+    EmitterDef e = test::oneShotEmitter(o);
+    e.collision.lifeLossOnCollision = 0.5f;
+    EmitterId id = createEmitter(w.id, e);
+    std::uint64_t hits = 0;
+    for (int i = 0; i < 120; ++i) {
+        hits += stepWorld(w.id, 1.0f / 60.0f).collisions;
+    }
+    EXPECT_EQ(hits, 1u);  // the landing at 3.1 m/s, then rest
+    std::uint64_t restingHits = 0;
+    for (int i = 0; i < 120; ++i) {
+        restingHits += stepWorld(w.id, 1.0f / 60.0f).collisions;
+    }
+    EXPECT_EQ(restingHits, 0u);
+    ParticleSnapshot p = readParticles(w.id, id);
+    ASSERT_EQ(p.count(), 1u);
+    EXPECT_NEAR(p.position[0].y, 0.0f, 1e-3f);  // on the ground
+    // One impact at age ~0.32 s took half of the remaining ~99.7 s; nothing since.
+    EXPECT_NEAR(p.age[0], 4.0f + 0.5f * 99.68f, 0.05f);
+}
+
+}  // namespace
+}  // namespace spindrift

@@ -72,6 +72,12 @@ spindrift::RadixDigitBits digitBitsArg(std::int64_t bits) {
 }
 
 /// The public call: depths, keys, radix sort, a fresh index vector returned.
+// Both radix benchmarks run 1 and 2 threads with 8- and 11-bit digits.
+void threadAndDigitArgs(benchmark::internal::Benchmark* b) {
+    b->ArgNames({"threads", "bits"})->Args({1, 8})->Args({2, 8})->Args({1, 11})->Args({2, 11});
+    b->Unit(benchmark::kMillisecond)->UseRealTime();
+}
+
 void BM_SortBackToFront(benchmark::State& state) {
     const int threads = static_cast<int>(state.range(0));
     const spindrift::RadixDigitBits bits = digitBitsArg(state.range(1));
@@ -87,13 +93,7 @@ void BM_SortBackToFront(benchmark::State& state) {
     state.counters["digit_bits"] = static_cast<double>(state.range(1));
 }
 BENCHMARK(BM_SortBackToFront)
-    ->ArgNames({"threads", "bits"})
-    ->Args({1, 8})
-    ->Args({2, 8})
-    ->Args({1, 11})
-    ->Args({2, 11})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+    ->Apply(threadAndDigitArgs);
 
 /// The raw (key, index) radix sort with reused scratch (what a renderer would
 /// call every frame); restoring the unsorted input is not timed.
@@ -117,13 +117,7 @@ void BM_RadixSortKeyIndex(benchmark::State& state) {
     state.counters["digit_bits"] = static_cast<double>(state.range(1));
 }
 BENCHMARK(BM_RadixSortKeyIndex)
-    ->ArgNames({"threads", "bits"})
-    ->Args({1, 8})
-    ->Args({2, 8})
-    ->Args({1, 11})
-    ->Args({2, 11})
-    ->Unit(benchmark::kMillisecond)
-    ->UseRealTime();
+    ->Apply(threadAndDigitArgs);
 
 /// Baseline for sortBackToFront: the same result with std::sort (depths, then
 /// indices by (depth descending, index ascending)). One thread.

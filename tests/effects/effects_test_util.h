@@ -39,8 +39,9 @@ inline EmitterDef oneShotEmitter(const OneShot& o) {
 
 /// A world owned by the test, destroyed at scope end.
 struct ScopedWorld {
-    explicit ScopedWorld(std::uint32_t threads = 1, std::uint32_t seed = 7) {
+    explicit ScopedWorld(std::uint32_t threads = 1, std::uint32_t seed = 7, Backend backend = Backend::Cpu) {
         WorldDef def;
+        def.backend = backend;
         def.threads = threads;
         def.seed = seed;
         id = createWorld(def);

@@ -2,6 +2,8 @@
 // world, and a validation message of any severity >= warning fails the test.
 #pragma once
 
+#include "effects/effects_test_util.h"
+
 #include "gpu/gpu_world.h"
 #include "gpu/vulkan_device.h"
 
@@ -28,19 +30,9 @@ protected:
     }
 };
 
-/// A world owned by the test on the given backend.
-struct BackendWorld {
-    explicit BackendWorld(Backend backend, std::uint32_t seed = 7) {
-        WorldDef def;
-        def.backend = backend;
-        def.threads = 1;
-        def.seed = seed;
-        id = createWorld(def);
-    }
-    ~BackendWorld() { destroyWorld(id); }
-    BackendWorld(const BackendWorld&) = delete;
-    BackendWorld& operator=(const BackendWorld&) = delete;
-    WorldId id;
+/// A world owned by the test on the given backend (one CPU thread).
+struct BackendWorld : ScopedWorld {
+    explicit BackendWorld(Backend backend, std::uint32_t seed = 7) : ScopedWorld(1, seed, backend) {}
 };
 
 }  // namespace spindrift::test

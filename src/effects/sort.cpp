@@ -385,12 +385,13 @@ void radixSortKeyIndexImpl(std::span<std::uint32_t> keys, std::span<std::uint32_
     }
 }
 
-/// keys[i] = backToFrontKey(dot(p[i] - eye, f)) for i in [begin, end): a
+/// keys[i] = backToFrontKey(dot(p[i] - eye, f)) for i in [begin, end), with the
+/// depth and key of src/kernels/sort_key.glsl that the GPU sort uses too: a
 /// separate loop from the counting, so that it vectorises.
 void computeKeys(const glm::vec3* __restrict p, glm::vec3 eye, glm::vec3 f,
                  std::uint32_t* __restrict keys, std::size_t begin, std::size_t end) {
     for (std::size_t i = begin; i < end; ++i) {
-        keys[i] = backToFrontKey(glm::dot(p[i] - eye, f));
+        keys[i] = backToFrontKey(kernels::viewDepth(p[i], eye, f));
     }
 }
 

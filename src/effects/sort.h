@@ -8,6 +8,8 @@
 // caller's oneTBB arena; wrap the call in a tbb::task_arena to limit threads.
 #pragma once
 
+#include "kernels/sort_key.glsl"
+
 #include <bit>
 #include <cstddef>
 #include <cstdint>
@@ -28,15 +30,9 @@ namespace spindrift {
 /// Positives: flip every bit but the sign bit; negatives: keep the bits. That is
 /// the usual order-preserving float -> uint map (flip the sign bit of positives,
 /// all bits of negatives) with every bit then inverted, so that larger depths
-/// come first.
-/// (Branch-free, so that loops over it vectorise.)
-inline std::uint32_t backToFrontKey(float depth) noexcept {
-    std::uint32_t nan = 0u - static_cast<std::uint32_t>(depth != depth);  // all ones for NaN
-    depth += 0.0f;  // -0 + +0 = +0 (round to nearest): -0 and +0 get one key
-    std::uint32_t u = std::bit_cast<std::uint32_t>(depth);
-    std::uint32_t negative = 0u - (u >> 31);  // all ones for negative depths
-    return (u ^ (~negative & 0x7FFFFFFFu)) | nan;
-}
+/// come first. The one definition is kernels::backToFrontKey in
+/// src/kernels/sort_key.glsl, which the GPU sort compiles too.
+inline std::uint32_t backToFrontKey(float depth) noexcept { return kernels::backToFrontKey(depth); }
 
 /// Digit width of the LSD radix sort. 8 bits: 4 passes of 256 buckets; 11 bits:
 /// 3 passes (11, 11, 10 bits) of 2048 buckets. Passes whose digit is the same

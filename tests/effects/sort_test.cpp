@@ -83,6 +83,33 @@ std::vector<glm::vec3> hardPositions(std::size_t n, std::uint32_t seed) {
     return p;
 }
 
+// backToFrontKey works on the float's bits (src/kernels/sort_key.glsl, so the
+// GPU can run it); here it is checked against the definition by float
+// compares: -0 folded into +0 by adding +0, NaN found by x != x. All 2^32
+// bit patterns agreed when this was written (a one-off run); the test walks a
+// stride of them plus every pattern near the boundaries, fast enough for ASan.
+TEST(SortBackToFront, KeyMatchesTheFloatCompareDefinition) {
+    auto reference = [](float depth) {
+        std::uint32_t nan = depth != depth ? 0xFFFFFFFFu : 0u;
+        depth += 0.0f;  // -0 + +0 = +0
+        std::uint32_t u = std::bit_cast<std::uint32_t>(depth);
+        return (u >> 31 != 0 ? u : u ^ 0x7FFFFFFFu) | nan;
+    };
+    auto check = [&](std::uint32_t bits) {
+        float depth = std::bit_cast<float>(bits);
+        ASSERT_EQ(spindrift::backToFrontKey(depth), reference(depth)) << std::hex << bits;
+    };
+    for (std::uint64_t u = 0; u <= 0xFFFFFFFFull; u += 4099) {
+        check(static_cast<std::uint32_t>(u));
+    }
+    for (std::uint32_t edge : {0x00000000u, 0x7F800000u, 0x80000000u, 0xFF800000u, 0xFFFFFFFFu}) {
+        for (std::uint32_t d = 0; d < 64; ++d) {
+            check(edge + d);
+            check(edge - d);
+        }
+    }
+}
+
 TEST(SortBackToFront, FarthestFirstByHand) {
     // forward = -z (unnormalised): depth = -z, so the most negative z is farthest.
     std::vector<glm::vec3> p = {{0, 0, -1}, {5, 0, -10}, {0, 0, 3}, {0, -7, -5}, {0, 0, 0}};

@@ -588,6 +588,7 @@ void destroyGpuWorld(GpuWorld& w) {
     Device& d = *w.device;
     if (d.device != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(d.device);
+        w.sort.reset();
         for (auto& e : w.emitters) {
             if (e) {
                 destroyEmitter(d, *e);

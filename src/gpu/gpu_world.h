@@ -9,6 +9,7 @@
 
 #include "effects/emitter_state.h"
 #include "effects/fields.h"
+#include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
 
 #include <spindrift/world.h>
@@ -83,6 +84,8 @@ struct GpuWorld {
     GpuFields fields;
     /// Indexed like World::emitters; null for stateless emitters.
     std::vector<std::unique_ptr<GpuEmitter>> emitters;
+    /// Back-to-front sort (gpu_sort.h), created at the first sort.
+    std::unique_ptr<GpuSort> sort;
 };
 
 /// Validation for GPU worlds created from now on. Default: on when the

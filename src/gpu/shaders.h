@@ -8,4 +8,6 @@
 namespace spindrift::gpu::shaders {
 extern const std::uint32_t kEffectsUpdate[];
 extern const std::size_t kEffectsUpdateWords;
+extern const std::uint32_t kBackToFrontSort[];
+extern const std::size_t kBackToFrontSortWords;
 }  // namespace spindrift::gpu::shaders

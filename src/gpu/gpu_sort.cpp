@@ -1,0 +1,297 @@
+// Back-to-front sort on the device: pipelines, scratch and the recorded passes
+// of back_to_front_sort.comp (the algorithm and its reasons are there).
+#include "gpu/gpu_sort.h"
+
+#include "gpu/gpu_world.h"
+#include "gpu/shaders.h"
+#include "kernels/sort_key.glsl"
+
+#include <spindrift/effects.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <span>
+#include <utility>
+
+namespace spindrift::gpu {
+namespace {
+
+constexpr std::uint32_t kBindings = 8;  // set 0 of back_to_front_sort.comp
+constexpr std::uint32_t kFlagAges = 1;  // FLAG_AGES of the shader
+constexpr VkDeviceSize kHeaderBytes = 16;
+
+// The PASS specialization constant of back_to_front_sort.comp.
+enum class SortPass : std::uint32_t { Keys = 0, Count = 1, Scan = 2, Scatter = 3 };
+
+// The shader's push constant block (std430: two vec4 then four uints).
+struct SortPush {
+    glm::vec4 eye;
+    glm::vec4 forward;
+    std::uint32_t count;
+    std::uint32_t tiles;
+    std::uint32_t shift;
+    std::uint32_t flags;
+};
+static_assert(sizeof(SortPush) == 48);
+static_assert(kernels::SD_SORT_TILE == kernels::SD_SORT_WORKGROUP * kernels::SD_SORT_ITEMS_PER_THREAD);
+static_assert(kernels::SD_SORT_RADIX == 1u << kernels::SD_SORT_DIGIT_BITS);
+static_assert(kernels::SD_SORT_PASSES * kernels::SD_SORT_DIGIT_BITS == 32);
+// The count and scatter passes give one invocation per digit a row to scan.
+static_assert(kernels::SD_SORT_WORKGROUP >= kernels::SD_SORT_RADIX);
+// An even number of passes leaves the result in the first buffer pair.
+static_assert(kernels::SD_SORT_PASSES % 2 == 0);
+
+VkPipeline createSortPipeline(Device& d, VkPipelineLayout layout, SortPass pass) {
+    auto moduleInfo = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
+    moduleInfo.codeSize = shaders::kBackToFrontSortWords * sizeof(std::uint32_t);
+    moduleInfo.pCode = shaders::kBackToFrontSort;
+    VkShaderModule module = VK_NULL_HANDLE;
+    check(vkCreateShaderModule(d.device, &moduleInfo, nullptr, &module), "vkCreateShaderModule(back_to_front_sort)");
+    VkSpecializationMapEntry entry{0, 0, sizeof(SortPass)};
+    VkSpecializationInfo specialization{1, &entry, sizeof(pass), &pass};
+    auto info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
+    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
+    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
+    info.stage.module = module;
+    info.stage.pName = "main";
+    info.stage.pSpecializationInfo = &specialization;
+    info.layout = layout;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+    VkResult r = vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
+    // A module may be destroyed once its pipelines exist (Vulkan spec, vkDestroyShaderModule).
+    vkDestroyShaderModule(d.device, module, nullptr);
+    check(r, "vkCreateComputePipelines(back_to_front_sort)");
+    return pipeline;
+}
+
+void createLayouts(GpuSort& s) {
+    Device& d = *s.device;
+    std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
+    for (std::uint32_t i = 0; i < kBindings; ++i) {
+        bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    }
+    auto setInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    setInfo.bindingCount = kBindings;
+    setInfo.pBindings = bindings.data();
+    check(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &s.setLayout), "vkCreateDescriptorSetLayout(sort)");
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(SortPush)};
+    auto layoutInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &s.setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    check(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &s.pipelineLayout), "vkCreatePipelineLayout(sort)");
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kBindings};
+    auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    poolInfo.maxSets = 2;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &s.pool), "vkCreateDescriptorPool(sort)");
+    std::array<VkDescriptorSetLayout, 2> layouts{s.setLayout, s.setLayout};
+    auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    alloc.descriptorPool = s.pool;
+    alloc.descriptorSetCount = 2;
+    alloc.pSetLayouts = layouts.data();
+    check(vkAllocateDescriptorSets(d.device, &alloc, s.sets), "vkAllocateDescriptorSets(sort)");
+}
+
+std::uint32_t tilesFor(std::uint32_t count) {
+    return (count + kernels::SD_SORT_TILE - 1) / kernels::SD_SORT_TILE;
+}
+
+// Scratch for `count` pairs, in whole tiles (at least one: no buffer may be
+// empty). Only between submissions: the old buffers must be idle.
+void reserve(GpuSort& s, std::uint32_t count) {
+    const std::uint32_t tiles = std::max(tilesFor(count), 1u);
+    const std::uint32_t pairs = tiles * kernels::SD_SORT_TILE;
+    if (pairs <= s.capacity) {
+        return;
+    }
+    Device& d = *s.device;
+    for (Buffer* b : {&s.keys[0], &s.keys[1], &s.values[0], &s.values[1], &s.tileCounts}) {
+        destroyBuffer(d, *b);
+    }
+    s.capacity = 0;
+    for (int p = 0; p < 2; ++p) {
+        s.keys[p] = createStorageBuffer(d, VkDeviceSize{pairs} * 4);
+        s.values[p] = createStorageBuffer(d, VkDeviceSize{pairs} * 4);
+    }
+    s.tileCounts = createStorageBuffer(d, VkDeviceSize{tiles} * kernels::SD_SORT_RADIX * 4);
+    s.capacity = pairs;
+}
+
+// Points both sets at the input and the scratch; set p reads pair p and
+// writes pair 1 - p.
+void writeSets(GpuSort& s, const SortInput& in) {
+    const Buffer* ages = in.ages != nullptr ? in.ages : in.positions;  // not read without FLAG_AGES
+    std::array<VkDescriptorBufferInfo, 2 * kBindings> infos{};
+    std::array<VkWriteDescriptorSet, 2 * kBindings> writes{};
+    for (std::uint32_t p = 0; p < 2; ++p) {
+        const std::array<const Buffer*, kBindings> buffers{in.positions,     ages,          &s.keys[p],
+                                                           &s.values[p],     &s.keys[1 - p], &s.values[1 - p],
+                                                           &s.tileCounts,    &s.header};
+        for (std::uint32_t i = 0; i < kBindings; ++i) {
+            const std::uint32_t k = p * kBindings + i;
+            infos[k] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+            writes[k] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+            writes[k].dstSet = s.sets[p];
+            writes[k].dstBinding = i;
+            writes[k].descriptorCount = 1;
+            writes[k].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+            writes[k].pBufferInfo = &infos[k];
+        }
+    }
+    vkUpdateDescriptorSets(s.device->device, 2 * kBindings, writes.data(), 0, nullptr);
+}
+
+void barrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
+             VkAccessFlags dstAccess) {
+    auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
+    b.srcAccessMask = srcAccess;
+    b.dstAccessMask = dstAccess;
+    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
+}
+
+void computeToCompute(VkCommandBuffer cmd) {
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+void dispatch(const GpuSort& s, VkCommandBuffer cmd, VkPipeline pipeline, int set, const SortPush& push,
+              std::uint32_t groups) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelineLayout, 0, 1, &s.sets[set], 0, nullptr);
+    vkCmdPushConstants(cmd, s.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, groups, 1, 1);
+}
+
+void requireBytes(const Buffer* b, VkDeviceSize bytes, const char* what) {
+    if (b == nullptr || b->buffer == VK_NULL_HANDLE || b->size < bytes) {
+        throw Error(fmt::format("gpu sort: the {} buffer holds {} bytes, {} needed", what,
+                                b != nullptr ? b->size : VkDeviceSize{0}, bytes));
+    }
+}
+
+}  // namespace
+
+GpuSort::~GpuSort() {
+    if (device == nullptr || device->device == VK_NULL_HANDLE) {
+        return;
+    }
+    Device& d = *device;
+    for (Buffer* b : {&header, &tileCounts, &values[1], &values[0], &keys[1], &keys[0]}) {
+        destroyBuffer(d, *b);
+    }
+    if (pool != VK_NULL_HANDLE) {
+        vkDestroyDescriptorPool(d.device, pool, nullptr);  // frees its sets
+    }
+    for (VkPipeline p : {scatterPipeline, scanPipeline, countPipeline, keysPipeline}) {
+        if (p != VK_NULL_HANDLE) {
+            vkDestroyPipeline(d.device, p, nullptr);
+        }
+    }
+    if (pipelineLayout != VK_NULL_HANDLE) {
+        vkDestroyPipelineLayout(d.device, pipelineLayout, nullptr);
+    }
+    if (setLayout != VK_NULL_HANDLE) {
+        vkDestroyDescriptorSetLayout(d.device, setLayout, nullptr);
+    }
+}
+
+std::unique_ptr<GpuSort> createGpuSort(Device& d) {
+    auto s = std::make_unique<GpuSort>();  // destroys what was made if a step throws
+    s->device = &d;
+    createLayouts(*s);
+    for (auto [pipeline, pass] : {std::pair{&s->keysPipeline, SortPass::Keys},
+                                  std::pair{&s->countPipeline, SortPass::Count},
+                                  std::pair{&s->scanPipeline, SortPass::Scan},
+                                  std::pair{&s->scatterPipeline, SortPass::Scatter}}) {
+        *pipeline = createSortPipeline(d, s->pipelineLayout, pass);
+    }
+    s->header = createStorageBuffer(d, kHeaderBytes);
+    return s;
+}
+
+void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& in) {
+    const std::uint32_t n = in.count;
+    const std::uint32_t tiles = tilesFor(n);
+    const std::uint32_t maxGroups = s.device->properties.limits.maxComputeWorkGroupCount[0];
+    if (tiles > maxGroups) {
+        throw Error(fmt::format("gpu sort: {} keys need {} workgroups of {}; this device dispatches at most {}", n,
+                                tiles, kernels::SD_SORT_TILE, maxGroups));
+    }
+    requireBytes(in.positions, VkDeviceSize{n} * 12, "positions");
+    if (in.ages != nullptr) {
+        requireBytes(in.ages, VkDeviceSize{n} * 4, "ages");
+    }
+    reserve(s, n);
+    writeSets(s, in);
+
+    // The positions' writers (an update pass, an upload) before the keys pass;
+    // the header is zeroed by a transfer, then counted into by the keys pass.
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, s.header.buffer, 0, kHeaderBytes, 0u);
+    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    if (n > 0) {
+        SortPush push{glm::vec4(in.eye, 0.0f), glm::vec4(in.forward, 0.0f), n, tiles, 0,
+                      in.ages != nullptr ? kFlagAges : 0u};
+        dispatch(s, cmd, s.keysPipeline, 0, push, tiles);
+        for (std::uint32_t pass = 0; pass < kernels::SD_SORT_PASSES; ++pass) {
+            const int set = static_cast<int>(pass % 2);
+            push.shift = pass * kernels::SD_SORT_DIGIT_BITS;
+            computeToCompute(cmd);
+            dispatch(s, cmd, s.countPipeline, set, push, tiles);
+            computeToCompute(cmd);
+            dispatch(s, cmd, s.scanPipeline, set, push, 1);
+            computeToCompute(cmd);
+            dispatch(s, cmd, s.scatterPipeline, set, push, tiles);
+        }
+    }
+    // The order and the live count for whoever reads them next: a compute pass
+    // (the renderer's, or an indirect dispatch) or a copy.
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+            VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
+            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+}
+
+const Buffer& sortedIndices(const GpuSort& s) { return s.values[0]; }
+const Buffer& liveCount(const GpuSort& s) { return s.header; }
+
+std::uint32_t readLiveCount(GpuSort& s) {
+    std::uint32_t live = 0;
+    Transfer t{&s.header, &live, sizeof(live)};
+    download(*s.device, std::span(&t, 1));
+    return live;
+}
+
+std::vector<std::uint32_t> readSortedIndices(GpuSort& s, std::uint32_t count) {
+    std::vector<std::uint32_t> order(count);
+    if (count > 0) {
+        Transfer t{&s.values[0], order.data(), VkDeviceSize{count} * 4};
+        download(*s.device, std::span(&t, 1));
+    }
+    return order;
+}
+
+std::vector<std::uint32_t> sortEmitterSlots(GpuWorld& w, std::size_t index, glm::vec3 eye, glm::vec3 forward) {
+    GpuEmitter& e = *w.emitters.at(index);
+    if (e.capacity == 0) {
+        return {};
+    }
+    if (!w.sort) {
+        w.sort = createGpuSort(*w.device);
+    }
+    GpuSort& s = *w.sort;
+    SortInput in{&e.positions, &e.ages, e.capacity, eye, forward};
+    submitOnce(*w.device, [&](VkCommandBuffer cmd) { recordSortBackToFront(s, cmd, in); });
+    return readSortedIndices(s, readLiveCount(s));
+}
+
+}  // namespace spindrift::gpu

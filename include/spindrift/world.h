@@ -2,6 +2,7 @@
 #pragma once
 
 #include <spindrift/effects.h>
+#include <spindrift/fluid.h>
 
 #include <cstdint>
 #include <span>
@@ -37,6 +38,8 @@ struct StepStats {
     /// Births asked for beyond capacity in this step (spawn mode), dropped.
     std::uint64_t clamped = 0;
     std::vector<ColliderStepStats> colliderHits;
+    /// One entry per fluid, in id order.
+    std::vector<FluidStepStats> fluids;
     double milliseconds = 0.0;    ///< wall time of the step
 };
 

@@ -220,6 +220,7 @@ StepStats stepWorld(WorldId id, float dt) {
             }
         }
     }
+    stepFluids(w, dt, stats);
     for (auto& emitter : w.emitters) {
         stats.alive += emitter->alive;
     }

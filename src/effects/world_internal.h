@@ -21,6 +21,14 @@ struct GpuWorldDeleter {
 };
 }  // namespace gpu
 
+namespace fluid {
+struct FluidState;
+/// Destroys a fluid (defined in src/fluid, where FluidState is complete).
+struct FluidStateDeleter {
+    void operator()(FluidState* f) const;
+};
+}  // namespace fluid
+
 struct World {
     explicit World(const WorldDef& d) : def(d), pool(d.threads) {}
 
@@ -38,6 +46,8 @@ struct World {
     /// Set when the world runs on Vulkan: then the particle data lives on the
     /// device and EmitterState::particles stays empty.
     std::unique_ptr<gpu::GpuWorld, gpu::GpuWorldDeleter> gpu;
+    /// Constraint fluids (src/fluid), stepped after the emitters.
+    std::vector<std::unique_ptr<fluid::FluidState, fluid::FluidStateDeleter>> fluids;
 };
 
 World& worldFromId(WorldId id);
@@ -65,6 +75,9 @@ struct BirthSchedule {
 
 /// The schedule of emitter `e`'s step from t0; advances its emission carry.
 BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt);
+
+/// Advances every fluid by dt; appends one FluidStepStats per fluid to `stats`.
+void stepFluids(World& world, float dt, StepStats& stats);
 
 /// Advances one emitter by dt; adds its births, deaths and hits to `stats`.
 void stepEmitter(World& world, EmitterState& emitter, float dt, StepStats& stats);

@@ -1,0 +1,137 @@
+// spindrift public API: constraint fluids (Sprinkle style). Each fluid particle
+// is a velocity constraint that keeps the density around it at rest; fluids
+// live in a world and stepWorld() steps them with the emitters. CPU backend only
+// for now.
+#pragma once
+
+#include <spindrift/effects.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spindrift {
+
+struct FluidId { std::uint32_t index = 0; };
+
+enum class FluidSolver : std::uint32_t {
+    /// Gauss-Seidel over four (2D) or eight (3D) colour groups of grid cells,
+    /// cells of one colour in parallel; bit-identical for any thread count.
+    Parallel = 0,
+    /// One thread, particles in grid order, exactly the slides' loop.
+    Sequential = 1,
+};
+
+/// A box of fluid filled with particles on a lattice at the fluid's spacing:
+/// the first particle half a spacing inside `min`, as many as fit before `max`.
+/// In 2D the z coordinates are ignored.
+struct FluidBlockDef {
+    glm::vec3 min{0.0f};
+    glm::vec3 max{1.0f};
+    glm::vec3 velocity{0.0f};  ///< m/s, initial velocity of every particle
+};
+
+/// A nozzle that emits particles at `rate` per second with `speed` along
+/// `direction`, spread over a segment (2D) or disk (3D) of `radius` across the
+/// direction at the fluid's spacing.
+struct FluidJetDef {
+    glm::vec3 position{0.0f};
+    glm::vec3 direction{1.0f, 0.0f, 0.0f};
+    float speed = 2.0f;    ///< m/s, > 0
+    float rate = 200.0f;   ///< particles/s, >= 0
+    float radius = 0.0f;   ///< m; 0: a single stream
+    float start = 0.0f;    ///< s, world time at which it opens
+    float duration = -1.0f;///< s; < 0: never closes
+};
+
+/// A convex polygon obstacle in the xy plane, extruded along z; vertices in
+/// either winding (at most 16, not all on one line).
+struct FluidPolygonDef {
+    std::vector<glm::vec2> vertices;
+};
+
+struct FluidDef {
+    std::string name;
+    /// 2: particles in the xy plane; 3: in space.
+    std::uint32_t dimension = 2;
+    /// Particle spacing (m) of blocks and jets; the particle's radius for
+    /// collisions is half of it.
+    float spacing = 0.02f;
+    /// Smoothing length h (m); 0: 3 x spacing (about 25 neighbours in 2D; at
+    /// 2 x spacing, 12 neighbours, the density error of a resting tank is
+    /// several times larger, see docs/performance.md).
+    float smoothing = 0.0f;
+    /// Solver iterations per step, 1 to 16.
+    std::uint32_t iterations = 4;
+    /// Velocity steering toward the rest density (slide 34): the bias is
+    /// (rho0 - rho) x baumgarte x h / dt, in [0, 1].
+    float baumgarte = 0.1f;
+    /// Fraction of the previous step's pressure applied before iterating
+    /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
+    /// 0.5 measured best: 1 re-applies a step's corrective kicks in the next.
+    float warmStart = 0.5f;
+    /// Most neighbours kept per particle; more are counted as overflows and
+    /// ignored. 0: 48 in 2D, 160 in 3D.
+    std::uint32_t maxNeighbours = 0;
+    FluidSolver solver = FluidSolver::Parallel;
+    glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
+    /// Coulomb friction coefficient of particles against colliders (0:
+    /// frictionless, as the slides' particle body).
+    float friction = 0.0f;
+    /// Most particles at once; jets stop emitting when it is reached.
+    /// 0: the blocks' particles plus 10,000 per jet.
+    std::uint32_t capacity = 0;
+    /// Rest density in units of the kernel sum (a lone particle has density
+    /// 1); 0: that of an interior particle of a block at `spacing`, so a block
+    /// starts at rest.
+    float restDensity = 0.0f;
+    std::vector<FluidBlockDef> blocks;
+    std::vector<FluidJetDef> jets;
+    /// Obstacles for this fluid only; the world's plane, sphere and box
+    /// colliders act on every fluid too.
+    std::vector<FluidPolygonDef> polygons;
+};
+
+/// What one step of one fluid did. Densities are measured at the start of the
+/// step's solve; the error of a particle is rho / rho0 - 1.
+struct FluidStepStats {
+    FluidId fluid;
+    std::uint64_t particles = 0;
+    std::uint64_t born = 0;             ///< particles emitted by jets this step
+    /// Mean over particles of max(rho / rho0 - 1, 0): compression only, since a
+    /// free surface is under-dense by nature and the constraint never pulls.
+    double meanDensityError = 0.0;
+    double maxDensityError = 0.0;       ///< max of rho / rho0 - 1
+    double meanNeighbours = 0.0;
+    double maxSpeed = 0.0;              ///< m/s, after the step
+    std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours)
+};
+
+/// A copy of a fluid's particles, in creation order.
+struct FluidSnapshot {
+    std::vector<glm::vec3> position;  ///< m (z = 0 in 2D)
+    std::vector<glm::vec3> velocity;  ///< m/s
+    /// rho / rho0 at the start of the last step (1: rest density).
+    std::vector<float> density;
+    /// Accumulated constraint impulse of the last step (m/s, >= 0): the
+    /// pressure, in velocity units.
+    std::vector<float> pressure;
+    std::vector<std::uint32_t> id;    ///< creation serial
+    std::size_t count() const { return position.size(); }
+};
+
+/// Adds a fluid to a CPU world with its blocks, jets and polygons; throws Error
+/// for a bad definition or a Vulkan world.
+FluidId createFluid(WorldId world, const FluidDef& def);
+/// Adds a block of particles now (at the world's current time).
+void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockDef& block);
+/// Adds a jet; its start time is world time.
+void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
+
+std::uint32_t fluidCount(WorldId world);
+const FluidDef& fluidDef(WorldId world, FluidId fluid);
+/// Rest density (kernel-sum units) the fluid uses, derived or given.
+float fluidRestDensity(WorldId world, FluidId fluid);
+FluidSnapshot readFluid(WorldId world, FluidId fluid);
+
+}  // namespace spindrift

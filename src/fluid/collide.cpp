@@ -1,0 +1,146 @@
+// Collisions of fluid particles with static colliders (slide 51): velocity
+// constraints solved after the fluid's, the particle a small rotationless body
+// of radius spacing / 2; then position integration, which puts back any
+// particle whose path still crossed a collider, so none ever passes through.
+#include "effects/cpu_kernels.h"
+#include "effects/world_internal.h"
+#include "fluid/fluid_state.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift::fluid {
+namespace {
+
+/// Fraction of an overlap removed per step (m per m): a gentle push, so a
+/// particle that starts inside a wall does not shoot out.
+constexpr float kOverlapPush = 0.2f;
+/// Distance (m) a put-back particle keeps from the surface, so rounding does
+/// not leave it inside for the next step.
+constexpr float kSkin = 1e-5f;
+
+template <int D>
+glm::vec3 to3(Vec<D> v) {
+    if constexpr (D == 2) return glm::vec3(v.x, v.y, 0.0f); else return v;
+}
+
+template <int D>
+Vec<D> from3(glm::vec3 v) {
+    if constexpr (D == 2) return Vec<D>(v.x, v.y); else return v;
+}
+
+bool isFluidCollider(const kernels::ColliderParams& c) {
+    return c.kind == kernels::SD_COLLIDER_PLANE || c.kind == kernels::SD_COLLIDER_SPHERE ||
+           c.kind == kernels::SD_COLLIDER_BOX;
+}
+
+/// In 2D a normal with a z part (a sphere's or a box's seen off-centre) is
+/// projected into the plane, so the fluid stays in it.
+template <int D>
+kernels::FluidSurface flatten(kernels::FluidSurface s) {
+    if constexpr (D == 2) {
+        const glm::vec2 n(s.normal.x, s.normal.y);
+        const float len = glm::length(n);
+        s.normal = len > 0.0f ? glm::vec3(n / len, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    }
+    return s;
+}
+
+/// Calls fn(surface) for every collider surface at x.
+template <int D, class Fn>
+void forEachSurface(const World& world, const FluidState& f, glm::vec3 x, Fn&& fn) {
+    for (const kernels::ColliderParams& c : world.colliders) {
+        if (isFluidCollider(c)) fn(flatten<D>(kernels::fluidColliderSurface(c, x)));
+    }
+    for (const kernels::FluidPolygon& poly : f.polygons) {
+        fn(kernels::fluidPolygonSurface(poly, x));
+    }
+}
+
+}  // namespace
+
+template <int D>
+void findContacts(WorkerPool& pool, FluidState& f, const World& world, float dt) {
+    Particles<D>& p = f.particles<D>();
+    f.contacts.resize(WorkerPool::chunkCount(p.size(), kParticleChunk));
+    for (auto& list : f.contacts) list.clear();
+    if (world.colliders.empty() && f.polygons.empty()) return;
+    const float radius = f.radius;
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<Contact>& out = f.contacts[chunk];
+        for (std::size_t i = begin; i < end; ++i) {
+            const glm::vec3 x = to3<D>(p.position[i]);
+            // Speculative (a surface the particle could reach this step, with
+            // a spacing to spare for what the fluid adds while solving).
+            const float reach = radius + glm::length(p.velocity[i]) * dt + f.def.spacing;
+            forEachSurface<D>(world, f, x, [&](const kernels::FluidSurface& s) {
+                if (s.distance < reach) out.push_back(Contact{s, static_cast<std::uint32_t>(i)});
+            });
+        }
+    });
+}
+
+template <int D>
+void solveContacts(WorkerPool& pool, FluidState& f, float dt) {
+    Particles<D>& p = f.particles<D>();
+    const float invDt = 1.0f / dt;
+    const float radius = f.radius;
+    const float mu = f.def.friction;
+    pool.forChunks(f.contacts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
+        for (const Contact& c : f.contacts[chunk]) {
+            const glm::vec3 v = to3<D>(p.velocity[c.particle]);
+            p.velocity[c.particle] = from3<D>(kernels::fluidContactVelocity(v, c.surface, radius, invDt, kOverlapPush, mu));
+        }
+    });
+}
+
+template <int D>
+void integratePositions(WorkerPool& pool, FluidState& f, const World& world, float dt, FluidStepStats& stats) {
+    Particles<D>& p = f.particles<D>();
+    std::vector<float> maxSpeed(WorkerPool::chunkCount(p.size(), kParticleChunk), 0.0f);
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        float fastest = 0.0f;
+        for (std::size_t i = begin; i < end; ++i) {
+            const glm::vec3 x0 = to3<D>(p.position[i]);
+            glm::vec3 v = to3<D>(p.velocity[i]);
+            glm::vec3 x1 = x0 + v * dt;
+            // Path tests (as the effects' collisions): a path that crosses a
+            // plane, sphere or box ends at the contact, moving no further in.
+            for (const kernels::ColliderParams& c : world.colliders) {
+                if (!isFluidCollider(c)) continue;
+                kernels::Hit hit = c.kind == kernels::SD_COLLIDER_PLANE    ? kernels::intersectPlane(c, x0, x1)
+                                   : c.kind == kernels::SD_COLLIDER_SPHERE ? kernels::intersectSphere(c, x0, x1)
+                                                                           : kernels::intersectBox(c, x0, x1);
+                if (hit.hit != 0u) {
+                    const glm::vec3 n = flatten<D>(kernels::makeSurface(0.0f, hit.normal)).normal;
+                    x1 = hit.point + n * kSkin;
+                    v -= n * std::min(glm::dot(v, n), 0.0f);
+                }
+            }
+            // Polygons: an end point inside goes out through the nearest edge.
+            for (const kernels::FluidPolygon& poly : f.polygons) {
+                const kernels::FluidSurface s = kernels::fluidPolygonSurface(poly, x1);
+                if (s.distance < 0.0f) {
+                    x1 += s.normal * (kSkin - s.distance);
+                    v -= s.normal * std::min(glm::dot(v, s.normal), 0.0f);
+                }
+            }
+            p.position[i] = from3<D>(x1);
+            p.velocity[i] = from3<D>(v);
+            fastest = std::max(fastest, glm::length(from3<D>(v)));
+        }
+        maxSpeed[chunk] = fastest;
+    });
+    float fastest = 0.0f;
+    for (float s : maxSpeed) fastest = std::max(fastest, s);
+    stats.maxSpeed = fastest;
+}
+
+template void findContacts<2>(WorkerPool&, FluidState&, const World&, float);
+template void findContacts<3>(WorkerPool&, FluidState&, const World&, float);
+template void solveContacts<2>(WorkerPool&, FluidState&, float);
+template void solveContacts<3>(WorkerPool&, FluidState&, float);
+template void integratePositions<2>(WorkerPool&, FluidState&, const World&, float, FluidStepStats&);
+template void integratePositions<3>(WorkerPool&, FluidState&, const World&, float, FluidStepStats&);
+
+}  // namespace spindrift::fluid

@@ -1,0 +1,164 @@
+// The CPU constraint fluid: particle arrays, grid and neighbour lists of one
+// fluid, and the passes of its step (fluid_step.cpp lists them in order). One
+// source serves 2D and 3D: everything hot is a template on the dimension D.
+#pragma once
+
+#include "core/parallel.h"
+#include "kernels/fluid.glsl"
+
+#include <spindrift/fluid.h>
+
+#include <array>
+#include <cstdint>
+#include <vector>
+
+namespace spindrift {
+struct World;
+}
+
+namespace spindrift::fluid {
+
+template <int D>
+using Vec = glm::vec<D, float, glm::defaultp>;
+
+/// Particles per chunk of the per-particle passes: fixed, so per-chunk sums
+/// are combined in the same order for any thread count (determinism).
+inline constexpr std::size_t kParticleChunk = 2048;
+/// Grid cells per chunk of one colour of the parallel solver.
+inline constexpr std::size_t kCellChunk = 32;
+
+/// Hot per-particle data, one array per attribute, kept in grid order (sorted
+/// by cell every step so neighbours are close in memory).
+template <int D>
+struct Particles {
+    std::vector<Vec<D>> position;  // m
+    std::vector<Vec<D>> velocity;  // m/s
+    std::vector<float> pressure;   // accumulated impulse (m/s), warm start of the next step
+    std::vector<float> density;    // rho / rho0 at the last setup
+    std::vector<std::uint32_t> id; // creation serial
+
+    std::size_t size() const { return position.size(); }
+    void push(Vec<D> x, Vec<D> v, std::uint32_t serial) {
+        position.push_back(x);
+        velocity.push_back(v);
+        pressure.push_back(0.0f);
+        density.push_back(1.0f);
+        id.push_back(serial);
+    }
+};
+
+/// One neighbour as the solver reads it (slide 52: stored with the particle so
+/// the solver walks memory linearly): g = w * unit direction from the particle
+/// to the neighbour, and the neighbour's index. 12 bytes in 2D, 16 in 3D.
+template <int D>
+struct Neighbour {
+    Vec<D> g;
+    std::uint32_t index;
+};
+static_assert(sizeof(Neighbour<2>) == 12 && sizeof(Neighbour<3>) == 16);
+
+/// Uniform grid of cells 2h wide, each split into 2^D sub-cells ("quadrants",
+/// slide 46-48) h wide. Particles are sorted by key = cell * 2^D + quadrant, so
+/// every sub-cell is one contiguous range of particles: a particle searches
+/// the 3^D sub-cells around its own, i.e. its own cell and only the quadrants
+/// of the neighbouring cells that face its quadrant.
+template <int D>
+struct Grid {
+    Vec<D> origin{0.0f};        // m, corner of sub-cell 0
+    float h = 0.0f;             // sub-cell size (m)
+    std::array<int, 3> cells{1, 1, 1};  // cells per axis (z = 1 in 2D)
+    std::vector<std::uint32_t> keyStart;  // particles of key k: [keyStart[k], keyStart[k + 1])
+    std::vector<std::uint32_t> key;       // per particle, in grid order
+    /// Non-empty cells of each colour (cell coordinates' parities): cells of
+    /// one colour are at least 2h apart, so their constraints share no
+    /// particle and can be solved at the same time.
+    std::array<std::vector<std::uint32_t>, 8> colourCells;
+    std::vector<std::uint32_t> order;     // scratch: grid order -> previous index
+    std::vector<std::uint32_t> counts;    // scratch
+};
+
+/// Per-particle constraint data of one step (slide 35).
+struct Constraints {
+    std::vector<float> bias;      // m/s
+    std::vector<float> invMass;   // 1 / A
+    std::vector<std::uint32_t> count;  // neighbours stored
+};
+
+/// A particle near a collider surface this step (found once per step; the
+/// surface does not move while the solver iterates). 24 bytes.
+struct Contact {
+    kernels::FluidSurface surface;  // at the particle's position
+    std::uint32_t particle;
+};
+
+struct Jet {
+    FluidJetDef def;
+    double openedAt = 0.0;  // s, world time when the jet was added
+    double carry = 0.0;     // fraction of a particle owed from earlier steps
+    std::uint64_t emitted = 0;
+};
+
+struct FluidState {
+    FluidDef def;
+    float h = 0.0f;            // m
+    float restDensity = 0.0f;  // kernel-sum units
+    float radius = 0.0f;       // m, particle radius against colliders
+    std::uint32_t maxNeighbours = 0;
+    std::uint32_t capacity = 0;
+    std::uint32_t nextSerial = 0;
+    std::vector<kernels::FluidPolygon> polygons;
+    std::vector<Jet> jets;
+
+    Particles<2> p2;
+    Particles<3> p3;
+    Grid<2> g2;
+    Grid<3> g3;
+    std::vector<Neighbour<2>> n2;
+    std::vector<Neighbour<3>> n3;
+    Constraints constraints;
+    /// Contacts of each chunk of kParticleChunk particles, in particle order.
+    std::vector<std::vector<Contact>> contacts;
+    /// Wall time (ms) spent in each pass since creation: grid, neighbours and
+    /// setup, solve, collisions, integration; and the steps taken.
+    std::array<double, 5> passMs{};
+    std::uint64_t steps = 0;
+
+    template <int D> Particles<D>& particles() {
+        if constexpr (D == 2) return p2; else return p3;
+    }
+    template <int D> Grid<D>& grid() {
+        if constexpr (D == 2) return g2; else return g3;
+    }
+    template <int D> std::vector<Neighbour<D>>& neighbours() {
+        if constexpr (D == 2) return n2; else return n3;
+    }
+    std::size_t size() const { return def.dimension == 2 ? p2.size() : p3.size(); }
+};
+
+/// Smoothing length, rest density, limits and polygons from a validated def.
+void initialiseFluid(FluidState& f);
+/// Throws Error for a definition the solver cannot run.
+void validateFluidDef(const FluidDef& def);
+/// Rest density of an interior particle of a lattice at `spacing` (kernel-sum
+/// units, the particle itself counting 1).
+float latticeRestDensity(std::uint32_t dimension, float spacing, float h);
+
+void addBlock(FluidState& f, const FluidBlockDef& block);
+/// Emits the jets' particles of the step [t0, t0 + dt); returns how many.
+std::uint64_t emitJets(FluidState& f, double t0, float dt);
+
+// The passes of one step, in order (fluid_step.cpp).
+template <int D> void buildGrid(WorkerPool& pool, FluidState& f);
+template <int D> void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats& stats);
+template <int D> void findContacts(WorkerPool& pool, FluidState& f, const World& world, float dt);
+/// Warm start and iterations; each sweep over the fluid constraints is
+/// followed by one over the contacts (slide 51: contacts after the fluid), so
+/// the walls' reactions reach the fluid within the step.
+template <int D> void solveConstraints(WorkerPool& pool, FluidState& f, float dt);
+template <int D> void solveContacts(WorkerPool& pool, FluidState& f, float dt);
+template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const World& world, float dt,
+                                         FluidStepStats& stats);
+
+FluidStepStats stepFluid(World& world, FluidState& f, FluidId id, float dt);
+
+}  // namespace spindrift::fluid

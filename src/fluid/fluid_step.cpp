@@ -1,0 +1,85 @@
+// One step of one constraint fluid: a named list of passes (DESIGN.md, the
+// Sprinkle recipe of slides 12-13 and 35-51).
+#include "effects/world_internal.h"
+#include "fluid/fluid_state.h"
+
+#include <chrono>
+
+namespace spindrift::fluid {
+namespace {
+
+using Clock = std::chrono::steady_clock;
+
+double msSince(Clock::time_point start) {
+    return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+template <int D>
+void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
+    WorkerPool& pool = w.pool;
+    Particles<D>& p = f.particles<D>();
+    auto t = Clock::now();
+
+    // External forces: gravity changes velocities before the constraints see
+    // them, so pressure answers this step's weight (semi-implicit Euler).
+    {
+        const Vec<D> dv = Vec<D>(glm::vec3(f.def.gravity) * dt);
+        pool.forChunks(p.size(), kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) p.velocity[i] += dv;
+        });
+    }
+
+    // Grid: counting sort by cell and quadrant; arrays gathered into grid order.
+    {
+        buildGrid<D>(pool, f);
+        f.passMs[0] += msSince(t);
+        t = Clock::now();
+    }
+
+    // Neighbours and constraint setup: density, bias, effective mass.
+    {
+        setupConstraints<D>(pool, f, dt, stats);
+        f.passMs[1] += msSince(t);
+        t = Clock::now();
+    }
+
+    // Contacts: particles within reach of a collider surface.
+    {
+        findContacts<D>(pool, f, w, dt);
+        f.passMs[3] += msSince(t);
+        t = Clock::now();
+    }
+
+    // Solve: warm start, then the iterations, each a sweep over the fluid
+    // constraints followed by one over the contacts (slide 51).
+    {
+        solveConstraints<D>(pool, f, dt);
+        f.passMs[2] += msSince(t);
+        t = Clock::now();
+    }
+
+    // Positions, never through a collider.
+    {
+        integratePositions<D>(pool, f, w, dt, stats);
+        f.passMs[4] += msSince(t);
+    }
+}
+
+}  // namespace
+
+FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
+    FluidStepStats stats;
+    stats.fluid = id;
+    // Emission: the jets' particles born during this step join before binning.
+    stats.born = emitJets(f, w.time, dt);
+    if (f.def.dimension == 2) {
+        stepPasses<2>(w, f, dt, stats);
+    } else {
+        stepPasses<3>(w, f, dt, stats);
+    }
+    stats.particles = f.size();
+    f.steps += 1;
+    return stats;
+}
+
+}  // namespace spindrift::fluid

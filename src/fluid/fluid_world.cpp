@@ -1,0 +1,380 @@
+// Fluids in the world: creation and validation, blocks and jets, read-back,
+// and stepping every fluid from stepWorld().
+#include "effects/world_internal.h"
+#include "fluid/fluid_state.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift {
+
+namespace fluid {
+namespace {
+
+constexpr std::uint32_t kMaxNeighboursLimit = 1024;
+/// Default neighbour capacity: at h = 3 spacings a square lattice has 24
+/// neighbours within h (28 hexagonally packed), a cubic one 122; room for
+/// compression and splashes landing.
+constexpr std::uint32_t kDefaultNeighbours2 = 48;
+constexpr std::uint32_t kDefaultNeighbours3 = 160;
+constexpr std::uint32_t kDefaultJetCapacity = 10000;
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+std::string label(const FluidDef& def) { return fmt::format("fluid '{}'", def.name); }
+
+/// Lattice points per axis of a block: particles at min + spacing (i + 1/2)
+/// while inside [min, max].
+std::array<std::uint32_t, 3> blockCounts(const FluidDef& def, const FluidBlockDef& b) {
+    std::array<std::uint32_t, 3> n{1, 1, 1};
+    for (std::uint32_t a = 0; a < def.dimension; ++a) {
+        // 1e-4 of a spacing of slack, so a block of exactly k spacings holds k.
+        const double cells = (static_cast<double>(b.max[a]) - b.min[a]) / def.spacing + 1e-4;
+        n[a] = cells > 0.0 ? static_cast<std::uint32_t>(std::floor(cells)) : 0u;
+    }
+    return n;
+}
+
+std::uint64_t blockParticles(const FluidDef& def, const FluidBlockDef& b) {
+    const auto n = blockCounts(def, b);
+    return static_cast<std::uint64_t>(n[0]) * n[1] * n[2];
+}
+
+void validateBlock(const FluidDef& def, const FluidBlockDef& b, std::size_t index) {
+    if (!finite(b.min) || !finite(b.max) || !finite(b.velocity)) {
+        throw Error(fmt::format("{}: block {}: min, max and velocity must be finite", label(def), index));
+    }
+    if (blockParticles(def, b) == 0) {
+        throw Error(fmt::format("{}: block {}: holds no particle; each extent (max - min) must be at least "
+                                "the spacing {} m",
+                                label(def), index, def.spacing));
+    }
+}
+
+void validateJet(const FluidDef& def, const FluidJetDef& j, std::size_t index) {
+    if (!finite(j.position) || !finite(j.direction) || glm::length(j.direction) <= 0.0f) {
+        throw Error(fmt::format("{}: jet {}: position must be finite and direction non-zero", label(def), index));
+    }
+    if (def.dimension == 2 && glm::length(glm::vec2(j.direction)) <= 0.0f) {
+        throw Error(fmt::format("{}: jet {}: a 2D jet needs a direction in the xy plane", label(def), index));
+    }
+    if (!(j.speed > 0.0f) || !std::isfinite(j.speed) || !(j.rate >= 0.0f) || !std::isfinite(j.rate) ||
+        !(j.radius >= 0.0f) || !std::isfinite(j.radius) || !std::isfinite(j.start) || !std::isfinite(j.duration)) {
+        throw Error(fmt::format("{}: jet {}: speed must be > 0 m/s, rate >= 0 /s, radius >= 0 m, start and "
+                                "duration finite",
+                                label(def), index));
+    }
+}
+
+/// Counter-clockwise copy of a convex polygon; throws if it is not convex.
+kernels::FluidPolygon makePolygon(const FluidDef& def, const FluidPolygonDef& poly, std::size_t index) {
+    const std::size_t n = poly.vertices.size();
+    if (n < 3 || n > kernels::SD_FLUID_MAX_POLYGON_VERTICES) {
+        throw Error(fmt::format("{}: polygon {}: needs 3 to {} vertices, got {}", label(def), index,
+                                kernels::SD_FLUID_MAX_POLYGON_VERTICES, n));
+    }
+    double area = 0.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec2 a = poly.vertices[i];
+        const glm::vec2 b = poly.vertices[(i + 1) % n];
+        if (!std::isfinite(a.x) || !std::isfinite(a.y)) {
+            throw Error(fmt::format("{}: polygon {}: vertex {} is not finite", label(def), index, i));
+        }
+        area += static_cast<double>(a.x) * b.y - static_cast<double>(b.x) * a.y;
+    }
+    if (std::abs(area) <= 0.0) {
+        throw Error(fmt::format("{}: polygon {}: has no area", label(def), index));
+    }
+    const double sign = area > 0.0 ? 1.0 : -1.0;
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2 a = poly.vertices[i];
+        const glm::dvec2 b = poly.vertices[(i + 1) % n];
+        const glm::dvec2 c = poly.vertices[(i + 2) % n];
+        const double turn = (b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x);
+        if (turn * sign < 0.0) {
+            throw Error(fmt::format("{}: polygon {}: is not convex (turns the other way at vertex {})",
+                                    label(def), index, (i + 1) % n));
+        }
+    }
+    kernels::FluidPolygon out{};
+    out.count = static_cast<std::uint32_t>(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::vec2 v = sign > 0.0 ? poly.vertices[i] : poly.vertices[n - 1 - i];
+        out.vertices[i] = glm::vec4(v, 0.0f, 0.0f);
+    }
+    return out;
+}
+
+void checkColliders(const World& w) {
+    for (const ColliderDef& c : w.colliderDefs) {
+        if (c.kind == ColliderKind::Terrain || c.kind == ColliderKind::CubeMap) {
+            throw Error(fmt::format("collider '{}': fluids collide with plane, sphere and box colliders and "
+                                    "their own polygons only; terrain and cube maps are not supported for fluids",
+                                    c.name));
+        }
+    }
+}
+
+FluidState& fluidFromId(World& w, FluidId id) {
+    if (id.index == 0 || id.index > w.fluids.size()) {
+        throw Error(fmt::format("fluid id {} does not exist in this world", id.index));
+    }
+    return *w.fluids[id.index - 1];
+}
+
+/// Orthonormal pair across a unit direction (3D jets).
+void basisAcross(glm::vec3 d, glm::vec3& u, glm::vec3& v) {
+    const glm::vec3 helper = std::abs(d.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+    u = glm::normalize(glm::cross(d, helper));
+    v = glm::cross(d, u);
+}
+
+/// Nozzle lattice points of a jet (offsets across its direction, m).
+std::vector<glm::vec3> nozzlePoints(const FluidState& f, const FluidJetDef& jet) {
+    const float s = f.def.spacing;
+    const int k = static_cast<int>(std::floor(jet.radius / s + 1e-4f));
+    std::vector<glm::vec3> points;
+    if (f.def.dimension == 2) {
+        const glm::vec2 d = glm::normalize(glm::vec2(jet.direction));
+        const glm::vec3 across(-d.y, d.x, 0.0f);
+        for (int i = -k; i <= k; ++i) points.push_back(across * (static_cast<float>(i) * s));
+    } else {
+        glm::vec3 u, v;
+        basisAcross(glm::normalize(jet.direction), u, v);
+        for (int j = -k; j <= k; ++j) {
+            for (int i = -k; i <= k; ++i) {
+                if (i * i + j * j <= k * k) points.push_back((u * static_cast<float>(i) + v * static_cast<float>(j)) * s);
+            }
+        }
+    }
+    return points;
+}
+
+template <int D>
+void pushParticle(FluidState& f, glm::vec3 x, glm::vec3 v) {
+    if constexpr (D == 2) {
+        f.p2.push(glm::vec2(x), glm::vec2(v), f.nextSerial++);
+    } else {
+        f.p3.push(x, v, f.nextSerial++);
+    }
+}
+
+void push(FluidState& f, glm::vec3 x, glm::vec3 v) {
+    if (f.def.dimension == 2) pushParticle<2>(f, x, v); else pushParticle<3>(f, x, v);
+}
+
+template <int D>
+void copyOut(const Particles<D>& p, FluidSnapshot& s) {
+    const std::size_t n = p.size();
+    s.position.resize(n);
+    s.velocity.resize(n);
+    s.density.resize(n);
+    s.pressure.resize(n);
+    s.id.resize(n);
+    // Creation order: ids are 0..n-1 (nothing dies), so id is the output slot.
+    for (std::size_t i = 0; i < n; ++i) {
+        const std::size_t o = p.id[i];
+        if constexpr (D == 2) {
+            s.position[o] = glm::vec3(p.position[i], 0.0f);
+            s.velocity[o] = glm::vec3(p.velocity[i], 0.0f);
+        } else {
+            s.position[o] = p.position[i];
+            s.velocity[o] = p.velocity[i];
+        }
+        s.density[o] = p.density[i];
+        s.pressure[o] = p.pressure[i];
+        s.id[o] = p.id[i];
+    }
+}
+
+}  // namespace
+
+void validateFluidDef(const FluidDef& def) {
+    if (def.dimension != 2 && def.dimension != 3) {
+        throw Error(fmt::format("{}: dimension must be 2 or 3, got {}", label(def), def.dimension));
+    }
+    if (!(def.spacing > 0.0f) || !std::isfinite(def.spacing)) {
+        throw Error(fmt::format("{}: spacing must be a finite length > 0 m, got {}", label(def), def.spacing));
+    }
+    if (!(def.smoothing >= 0.0f) || !std::isfinite(def.smoothing) ||
+        (def.smoothing > 0.0f && def.smoothing <= def.spacing)) {
+        throw Error(fmt::format("{}: smoothing length h must be 0 (3 x spacing) or greater than the spacing "
+                                "{} m, got {}",
+                                label(def), def.spacing, def.smoothing));
+    }
+    if (def.iterations < 1 || def.iterations > 16) {
+        throw Error(fmt::format("{}: iterations must be 1 to 16, got {}", label(def), def.iterations));
+    }
+    if (!(def.baumgarte >= 0.0f && def.baumgarte <= 1.0f)) {
+        throw Error(fmt::format("{}: baumgarte must be in [0, 1], got {}", label(def), def.baumgarte));
+    }
+    if (!(def.warmStart >= 0.0f && def.warmStart <= 1.0f)) {
+        throw Error(fmt::format("{}: warm start must be in [0, 1], got {}", label(def), def.warmStart));
+    }
+    if (def.maxNeighbours > kMaxNeighboursLimit) {
+        throw Error(fmt::format("{}: max neighbours must be at most {}, got {}", label(def), kMaxNeighboursLimit,
+                                def.maxNeighbours));
+    }
+    if (!(def.friction >= 0.0f) || !std::isfinite(def.friction) || !finite(def.gravity) ||
+        !(def.restDensity >= 0.0f) || !std::isfinite(def.restDensity)) {
+        throw Error(fmt::format("{}: friction and rest density must be finite and >= 0, gravity finite", label(def)));
+    }
+    for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i + 1);
+    for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i + 1);
+    for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i + 1);
+}
+
+float latticeRestDensity(std::uint32_t dimension, float spacing, float h) {
+    // Sum of w over the lattice points within h of one of them, itself
+    // included (w(0) = 1): what the constraint setup measures for an interior
+    // particle of a freshly laid block, in the same float arithmetic.
+    const int reach = static_cast<int>(std::ceil(h / spacing));
+    const int zReach = dimension == 3 ? reach : 0;
+    const float invH2 = 1.0f / (h * h);
+    float sum = 1.0f;
+    for (int k = -zReach; k <= zReach; ++k) {
+        for (int j = -reach; j <= reach; ++j) {
+            for (int i = -reach; i <= reach; ++i) {
+                if (i == 0 && j == 0 && k == 0) continue;
+                const glm::vec3 o = glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * spacing;
+                sum += kernels::fluidWeight(glm::dot(o, o), invH2);
+            }
+        }
+    }
+    return sum;
+}
+
+void initialiseFluid(FluidState& f) {
+    const FluidDef& def = f.def;
+    f.h = def.smoothing > 0.0f ? def.smoothing : 3.0f * def.spacing;
+    f.restDensity = def.restDensity > 0.0f ? def.restDensity : latticeRestDensity(def.dimension, def.spacing, f.h);
+    f.radius = 0.5f * def.spacing;
+    f.maxNeighbours = def.maxNeighbours > 0 ? def.maxNeighbours
+                                            : (def.dimension == 2 ? kDefaultNeighbours2 : kDefaultNeighbours3);
+    std::uint64_t capacity = def.capacity;
+    if (capacity == 0) {
+        for (const FluidBlockDef& b : def.blocks) capacity += blockParticles(def, b);
+        capacity += static_cast<std::uint64_t>(kDefaultJetCapacity) * def.jets.size();
+    }
+    if (capacity > 0xFFFFFFF0u / std::max<std::uint32_t>(f.maxNeighbours, 1)) {
+        throw Error(fmt::format("{}: capacity {} x {} neighbours is too large", label(def), capacity, f.maxNeighbours));
+    }
+    f.capacity = static_cast<std::uint32_t>(capacity);
+    for (std::size_t i = 0; i < def.polygons.size(); ++i) f.polygons.push_back(makePolygon(def, def.polygons[i], i + 1));
+}
+
+void addBlock(FluidState& f, const FluidBlockDef& b) {
+    const auto n = blockCounts(f.def, b);
+    if (f.size() + blockParticles(f.def, b) > f.capacity) {
+        throw Error(fmt::format("{}: a block of {} particles does not fit: {} of capacity {} in use", label(f.def),
+                                blockParticles(f.def, b), f.size(), f.capacity));
+    }
+    const float s = f.def.spacing;
+    for (std::uint32_t k = 0; k < n[2]; ++k) {
+        for (std::uint32_t j = 0; j < n[1]; ++j) {
+            for (std::uint32_t i = 0; i < n[0]; ++i) {
+                glm::vec3 x = b.min + (glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) +
+                                       0.5f) * s;
+                if (f.def.dimension == 2) x.z = 0.0f;
+                push(f, x, b.velocity);
+            }
+        }
+    }
+}
+
+std::uint64_t emitJets(FluidState& f, double t0, float dt) {
+    const double t1 = t0 + dt;
+    std::uint64_t born = 0;
+    for (Jet& jet : f.jets) {
+        const double open = jet.openedAt + jet.def.start;
+        const double close = jet.def.duration >= 0.0f ? open + jet.def.duration : t1;
+        const double from = std::max(t0, open);
+        const double to = std::min(t1, close);
+        if (!(to > from) || jet.def.rate <= 0.0f) continue;
+        const double owed = jet.carry + jet.def.rate * (to - from);
+        const auto count = static_cast<std::uint64_t>(std::floor(owed));
+        const std::vector<glm::vec3> points = nozzlePoints(f, jet.def);
+        glm::vec3 d = glm::normalize(jet.def.direction);
+        if (f.def.dimension == 2) d = glm::vec3(glm::normalize(glm::vec2(d)), 0.0f);
+        for (std::uint64_t k = 0; k < count; ++k) {
+            if (f.size() >= f.capacity) break;
+            // Particle k is born when the running count crosses k + 1, and has
+            // flown for the rest of the step.
+            const double bornAt = from + (static_cast<double>(k) + 1.0 - jet.carry) / jet.def.rate;
+            const float age = static_cast<float>(std::clamp(t1 - bornAt, 0.0, static_cast<double>(dt)));
+            const glm::vec3 offset = points[jet.emitted % points.size()];
+            glm::vec3 x = jet.def.position + offset + d * (jet.def.speed * age);
+            if (f.def.dimension == 2) x.z = 0.0f;
+            push(f, x, d * jet.def.speed);
+            jet.emitted += 1;
+            born += 1;
+        }
+        jet.carry = owed - static_cast<double>(count);
+    }
+    return born;
+}
+
+void FluidStateDeleter::operator()(FluidState* f) const { delete f; }
+
+}  // namespace fluid
+
+void stepFluids(World& w, float dt, StepStats& stats) {
+    if (w.fluids.empty()) return;
+    fluid::checkColliders(w);
+    for (std::size_t i = 0; i < w.fluids.size(); ++i) {
+        stats.fluids.push_back(fluid::stepFluid(w, *w.fluids[i], FluidId{static_cast<std::uint32_t>(i + 1)}, dt));
+    }
+}
+
+FluidId createFluid(WorldId id, const FluidDef& def) {
+    World& w = worldFromId(id);
+    if (w.gpu) {
+        throw Error(fmt::format("fluid '{}': fluids run on the cpu backend only for now; use backend 'cpu'", def.name));
+    }
+    fluid::validateFluidDef(def);
+    fluid::checkColliders(w);
+    std::unique_ptr<fluid::FluidState, fluid::FluidStateDeleter> f(new fluid::FluidState);
+    f->def = def;
+    fluid::initialiseFluid(*f);
+    for (const FluidBlockDef& b : def.blocks) fluid::addBlock(*f, b);
+    for (const FluidJetDef& j : def.jets) f->jets.push_back(fluid::Jet{j, w.time, 0.0, 0});
+    w.fluids.push_back(std::move(f));
+    return {static_cast<std::uint32_t>(w.fluids.size())};
+}
+
+void addFluidBlock(WorldId id, FluidId fluidId, const FluidBlockDef& block) {
+    World& w = worldFromId(id);
+    fluid::FluidState& f = fluid::fluidFromId(w, fluidId);
+    fluid::validateBlock(f.def, block, f.def.blocks.size() + 1);
+    fluid::addBlock(f, block);
+    f.def.blocks.push_back(block);
+}
+
+void addFluidJet(WorldId id, FluidId fluidId, const FluidJetDef& jet) {
+    World& w = worldFromId(id);
+    fluid::FluidState& f = fluid::fluidFromId(w, fluidId);
+    fluid::validateJet(f.def, jet, f.def.jets.size() + 1);
+    f.jets.push_back(fluid::Jet{jet, w.time, 0.0, 0});
+    f.def.jets.push_back(jet);
+}
+
+std::uint32_t fluidCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).fluids.size()); }
+
+const FluidDef& fluidDef(WorldId id, FluidId fluidId) {
+    return fluid::fluidFromId(worldFromId(id), fluidId).def;
+}
+
+float fluidRestDensity(WorldId id, FluidId fluidId) {
+    return fluid::fluidFromId(worldFromId(id), fluidId).restDensity;
+}
+
+FluidSnapshot readFluid(WorldId id, FluidId fluidId) {
+    const fluid::FluidState& f = fluid::fluidFromId(worldFromId(id), fluidId);
+    FluidSnapshot s;
+    if (f.def.dimension == 2) fluid::copyOut<2>(f.p2, s); else fluid::copyOut<3>(f.p3, s);
+    return s;
+}
+
+}  // namespace spindrift

@@ -1,0 +1,160 @@
+// Binning into the uniform grid (slide 46): a counting sort of the particles by
+// cell and quadrant, then every particle array gathered into that order, so
+// that neighbours sit close together in memory for the passes that follow.
+#include "fluid/fluid_state.h"
+
+#include <algorithm>
+#include <cmath>
+#include <limits>
+
+namespace spindrift::fluid {
+namespace {
+
+/// At most this many cells in the grid: a particle flung far away must not
+/// make the grid (one counter per sub-cell) huge. Particles beyond the capped
+/// grid are clamped into its edge cells, which keeps every neighbour pair in
+/// adjacent sub-cells (clamping never increases a distance in cells).
+std::size_t cellBudget(std::size_t particles) { return std::max<std::size_t>(1u << 16, 2 * particles); }
+
+template <int D>
+struct Bounds {
+    Vec<D> lo{std::numeric_limits<float>::max()};
+    Vec<D> hi{-std::numeric_limits<float>::max()};
+};
+
+template <int D>
+Bounds<D> particleBounds(WorkerPool& pool, const std::vector<Vec<D>>& x) {
+    std::vector<Bounds<D>> chunks(WorkerPool::chunkCount(x.size(), kParticleChunk));
+    pool.forChunks(x.size(), kParticleChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
+        Bounds<D> b;
+        for (std::size_t i = begin; i < end; ++i) {
+            b.lo = glm::min(b.lo, x[i]);
+            b.hi = glm::max(b.hi, x[i]);
+        }
+        chunks[c] = b;
+    });
+    Bounds<D> all;  // min and max are exact: any combination order gives the same box
+    for (const Bounds<D>& b : chunks) {
+        all.lo = glm::min(all.lo, b.lo);
+        all.hi = glm::max(all.hi, b.hi);
+    }
+    return all;
+}
+
+}  // namespace
+
+/// Sub-cell coordinate of x along one axis, clamped into the grid.
+inline int subCell(float x, float origin, float invH, int subCells) {
+    float s = std::floor((x - origin) * invH);
+    return static_cast<int>(std::clamp(s, 0.0f, static_cast<float>(subCells - 1)));
+}
+
+template <int D>
+std::uint32_t keyOf(const Grid<D>& g, Vec<D> x, float invH) {
+    std::uint32_t cell = 0;
+    std::uint32_t quadrant = 0;
+    std::uint32_t stride = 1;
+    for (int a = 0; a < D; ++a) {
+        int s = subCell(x[a], g.origin[a], invH, 2 * g.cells[a]);
+        cell += static_cast<std::uint32_t>(s >> 1) * stride;
+        quadrant |= static_cast<std::uint32_t>(s & 1) << a;
+        stride *= static_cast<std::uint32_t>(g.cells[a]);
+    }
+    return cell * (1u << D) + quadrant;
+}
+
+template <int D>
+void buildGrid(WorkerPool& pool, FluidState& f) {
+    Particles<D>& p = f.particles<D>();
+    Grid<D>& g = f.grid<D>();
+    const std::size_t n = p.size();
+    constexpr std::uint32_t kQuadrants = 1u << D;
+
+    // Bounds: the grid covers the particles' box, capped at the cell budget.
+    {
+        Bounds<D> box = particleBounds<D>(pool, p.position);
+        if (n == 0) {
+            box.lo = box.hi = Vec<D>(0.0f);
+        }
+        g.h = f.h;
+        g.origin = box.lo;
+        const double budget = static_cast<double>(cellBudget(n));
+        const int axisCap = std::max(2, static_cast<int>(std::pow(budget, 1.0 / D)));
+        g.cells = {1, 1, 1};
+        for (int a = 0; a < D; ++a) {
+            const double span = static_cast<double>(box.hi[a]) - static_cast<double>(box.lo[a]);
+            g.cells[a] = std::clamp(static_cast<int>(span / (2.0 * f.h)) + 1, 1, axisCap);
+        }
+    }
+
+    // Keys: cell and quadrant of every particle.
+    const float invH = 1.0f / g.h;
+    const std::size_t cellTotal = static_cast<std::size_t>(g.cells[0]) * g.cells[1] * g.cells[2];
+    const std::size_t keyTotal = cellTotal * kQuadrants;
+    {
+        g.key.resize(n);
+        pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+            for (std::size_t i = begin; i < end; ++i) {
+                g.key[i] = keyOf<D>(g, p.position[i], invH);
+            }
+        });
+    }
+
+    // Counting sort by key (stable, so equal keys keep their previous order and
+    // the result does not depend on anything but the data).
+    {
+        g.keyStart.assign(keyTotal + 1, 0);
+        for (std::size_t i = 0; i < n; ++i) {
+            g.keyStart[g.key[i] + 1] += 1;
+        }
+        for (std::size_t k = 0; k < keyTotal; ++k) {
+            g.keyStart[k + 1] += g.keyStart[k];
+        }
+        g.counts.assign(g.keyStart.begin(), g.keyStart.end() - 1);
+        g.order.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            g.order[g.counts[g.key[i]]++] = static_cast<std::uint32_t>(i);
+        }
+    }
+
+    // Gather every particle array into grid order.
+    {
+        auto gather = [&](auto& array) {
+            auto sorted = array;
+            pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) {
+                    sorted[i] = array[g.order[i]];
+                }
+            });
+            array.swap(sorted);
+        };
+        gather(p.position);
+        gather(p.velocity);
+        gather(p.pressure);
+        gather(p.density);
+        gather(p.id);
+        gather(g.key);
+    }
+
+    // Colour groups: non-empty cells by the parities of their coordinates.
+    {
+        for (auto& list : g.colourCells) {
+            list.clear();
+        }
+        for (std::size_t cell = 0; cell < cellTotal; ++cell) {
+            if (g.keyStart[cell * kQuadrants] == g.keyStart[(cell + 1) * kQuadrants]) {
+                continue;
+            }
+            const int cx = static_cast<int>(cell % g.cells[0]);
+            const int cy = static_cast<int>((cell / g.cells[0]) % g.cells[1]);
+            const int cz = static_cast<int>(cell / (static_cast<std::size_t>(g.cells[0]) * g.cells[1]));
+            const int colour = (cx & 1) | ((cy & 1) << 1) | ((cz & 1) << 2);
+            g.colourCells[colour].push_back(static_cast<std::uint32_t>(cell));
+        }
+    }
+}
+
+template void buildGrid<2>(WorkerPool&, FluidState&);
+template void buildGrid<3>(WorkerPool&, FluidState&);
+
+}  // namespace spindrift::fluid

@@ -1,0 +1,197 @@
+// The constraint fluid's per-particle math (Sprinkle, Gustafsson; slides 32-39
+// and 51): kernel weight, constraint setup, the impulse of one solver visit and
+// the velocity constraint of a particle against a static collider. Shared by
+// the CPU solver (src/fluid/) and, later, compute shaders.
+//
+// Sign conventions, derived here because the slides' are loose (DESIGN.md):
+//   dir   unit vector from particle p to its neighbour n;
+//   g     = w * dir, the neighbour's "gradient" entry (slide 36 scales the
+//           projected relative velocity by the weight);
+//   C'    = sum_n dot(g, v_n - v_p): positive when the neighbours move away,
+//           i.e. the density at p is falling;
+//   lambda  the impulse magnitude: v_n += g lambda, v_p -= g lambda, so a
+//           positive lambda pushes the neighbours apart and raises C' by
+//           A lambda with A = sum 2 w^2 (slide 35's effective mass).
+//   The constraint asks C' + bias' = 0 with bias' = -bias, bias = (rho0 - rho)
+//   * baumgarte (velocity steering, slide 34): an over-dense particle
+//   (bias < 0) wants its neighbours to separate at -bias. Hence
+//   lambda = -(C' + bias) / A, and the accumulated lambda is clamped to >= 0
+//   (slide 38: clamp the accumulated impulse, not the per-iteration one) so
+//   pressure only ever pushes. At rest density with no relative motion lambda
+//   is 0: a tank at rest stays at rest.
+#ifndef SPINDRIFT_KERNELS_FLUID
+#define SPINDRIFT_KERNELS_FLUID
+#include "types.glsl"
+SD_BEGIN
+
+// Kernel of slide 35: w = (1 - d^2)^3, d = distance / h; 0 at and beyond h.
+// Takes the squared distance so the caller needs no square root to reject.
+SD_FN float fluidWeight(float distanceSquared, float invHSquared) {
+    float q = 1.0f - distanceSquared * invHSquared;
+    return q > 0.0f ? q * q * q : 0.0f;
+}
+
+// Velocity steering toward the rest density (slide 34-35), in m/s: a density
+// error of (rho0 - rho) (in units of the kernel sum, where a particle alone has
+// density 1) corrected over about 1 / baumgarte steps, as a separation speed
+// of that fraction of h per step.
+SD_FN float fluidBias(float density, float restDensity, float baumgarte, float h, float invDt) {
+    return (restDensity - density) * baumgarte * h * invDt;
+}
+
+// One visit of the solver to particle p's constraint.
+struct FluidImpulse {
+    float accumulated;  // new accumulated impulse (m/s), >= 0: the pressure
+    float delta;        // impulse to apply now (m/s): v_n += g delta, v_p -= g delta
+};
+
+// rate: C' = sum_n dot(w dir, v_n - v_p) (m/s); bias (m/s) from fluidBias;
+// invMass: 1 / A (0 for a particle without neighbours).
+SD_FN FluidImpulse fluidSolveImpulse(float rate, float bias, float invMass, float accumulated) {
+    float lambda = -(rate + bias) * invMass;
+    float total = max(accumulated + lambda, 0.0f);
+    FluidImpulse r;
+    r.accumulated = total;
+    r.delta = total - accumulated;
+    return r;
+}
+
+// --- Static colliders ----------------------------------------------------------
+// A fluid particle is a small rotationless body of radius r (slide 51); its
+// contact with a collider is a velocity constraint solved after the fluid's.
+
+struct FluidSurface {
+    float distance;  // signed distance of the point to the surface (m), > 0 outside
+    vec3 normal;     // unit, pointing out of the collider
+};
+
+SD_FN FluidSurface makeSurface(float distance, vec3 normal) {
+    FluidSurface s;
+    s.distance = distance;
+    s.normal = normal;
+    return s;
+}
+
+// Plane, sphere and oriented box of the world (types.glsl's ColliderParams).
+// Other kinds are not fluid colliders: far away, never touched.
+SD_FN FluidSurface fluidColliderSurface(SD_IN(ColliderParams) c, vec3 p) {
+    if (c.kind == SD_COLLIDER_PLANE) {
+        vec3 n = vec3(c.normal);
+        return makeSurface(dot(p - vec3(c.position), n), n);
+    }
+    if (c.kind == SD_COLLIDER_SPHERE) {
+        vec3 offset = p - vec3(c.position);
+        float len = length(offset);
+        vec3 n = len > 0.0f ? offset / len : vec3(0.0f, 1.0f, 0.0f);
+        return makeSurface(len - c.position.w, n);
+    }
+    if (c.kind == SD_COLLIDER_BOX) {
+        vec3 offset = p - vec3(c.position);
+        vec3 q = vec3(dot(offset, vec3(c.axisX)), dot(offset, vec3(c.axisY)), dot(offset, vec3(c.axisZ)));
+        vec3 s = vec3(q.x >= 0.0f ? 1.0f : -1.0f, q.y >= 0.0f ? 1.0f : -1.0f, q.z >= 0.0f ? 1.0f : -1.0f);
+        vec3 gap = abs(q) - vec3(c.halfExtents);  // > 0: outside that slab
+        vec3 outside = max(gap, vec3(0.0f));
+        float outsideLength = length(outside);
+        vec3 local;
+        float distance;
+        if (outsideLength > 0.0f) {
+            local = outside * s / outsideLength;
+            distance = outsideLength;
+        } else {
+            // Inside: out through the nearest face.
+            if (gap.x >= gap.y && gap.x >= gap.z) {
+                local = vec3(s.x, 0.0f, 0.0f);
+                distance = gap.x;
+            } else if (gap.y >= gap.z) {
+                local = vec3(0.0f, s.y, 0.0f);
+                distance = gap.y;
+            } else {
+                local = vec3(0.0f, 0.0f, s.z);
+                distance = gap.z;
+            }
+        }
+        vec3 n = vec3(c.axisX) * local.x + vec3(c.axisY) * local.y + vec3(c.axisZ) * local.z;
+        return makeSurface(distance, n);
+    }
+    return makeSurface(3.0e38f, vec3(0.0f, 1.0f, 0.0f));
+}
+
+SD_CONST uint SD_FLUID_MAX_POLYGON_VERTICES = 16u;
+
+// A convex polygon in the xy plane, extruded along z; vertices counter-
+// clockwise. 272 bytes.
+struct FluidPolygon {
+    vec4 vertices[16];  // xy (m); zw unused
+    uint count;
+    uint pad0, pad1, pad2;
+};
+
+// Signed distance in the xy plane: outside, the distance to the nearest edge;
+// inside, minus the distance to the nearest edge line (the convex polygon is
+// the intersection of its edges' half-planes).
+SD_FN FluidSurface fluidPolygonSurface(SD_IN(FluidPolygon) poly, vec3 p) {
+    vec2 x = vec2(p.x, p.y);
+    float insideDistance = -3.0e38f;
+    vec2 insideNormal = vec2(0.0f, 1.0f);
+    float outsideSquared = 3.0e38f;
+    vec2 outsideNormal = vec2(0.0f, 1.0f);
+    bool outside = false;
+    for (uint i = 0u; i < poly.count; ++i) {
+        vec2 a = vec2(poly.vertices[i].x, poly.vertices[i].y);
+        uint j = i + 1u == poly.count ? 0u : i + 1u;
+        vec2 b = vec2(poly.vertices[j].x, poly.vertices[j].y);
+        vec2 edge = b - a;
+        float len = length(edge);
+        // Counter-clockwise: the outward normal is the edge turned clockwise.
+        vec2 n = len > 0.0f ? vec2(edge.y, -edge.x) / len : vec2(0.0f, 1.0f);
+        float side = dot(x - a, n);
+        if (side > 0.0f) {
+            outside = true;
+        }
+        if (side > insideDistance) {
+            insideDistance = side;
+            insideNormal = n;
+        }
+        float t = len > 0.0f ? clamp(dot(x - a, edge) / (len * len), 0.0f, 1.0f) : 0.0f;
+        vec2 closest = a + edge * t;
+        vec2 away = x - closest;
+        float d2 = dot(away, away);
+        if (d2 < outsideSquared) {
+            outsideSquared = d2;
+            outsideNormal = d2 > 0.0f ? away / sqrt(d2) : n;
+        }
+    }
+    if (outside) {
+        return makeSurface(sqrt(outsideSquared), vec3(outsideNormal.x, outsideNormal.y, 0.0f));
+    }
+    return makeSurface(insideDistance, vec3(insideNormal.x, insideNormal.y, 0.0f));
+}
+
+// The contact of slide 51 as a speculative velocity constraint: with
+// separation s = distance - radius, the normal velocity may not fall below
+// -s / dt (the particle may close the gap in this step, not more). A particle
+// already overlapping (s < 0) is pushed out at `push` of the overlap per step.
+// Friction (Coulomb, mu) removes tangential velocity up to mu times the
+// normal velocity change. Returns the new velocity.
+SD_FN vec3 fluidContactVelocity(vec3 v, FluidSurface surface, float radius, float invDt, float push, float mu) {
+    float separation = surface.distance - radius;
+    float target = separation >= 0.0f ? -separation * invDt : -separation * push * invDt;
+    float vn = dot(v, surface.normal);
+    if (vn >= target) {
+        return v;
+    }
+    float dvn = target - vn;
+    vec3 out1 = v + surface.normal * dvn;
+    if (mu > 0.0f) {
+        vec3 tangent = out1 - surface.normal * dot(out1, surface.normal);
+        float speed = length(tangent);
+        if (speed > 0.0f) {
+            float drop = min(speed, mu * dvn);
+            out1 = out1 - tangent * (drop / speed);
+        }
+    }
+    return out1;
+}
+
+SD_END
+#endif

@@ -25,7 +25,7 @@ using Vec = glm::vec<D, float, glm::defaultp>;
 /// are combined in the same order for any thread count (determinism).
 inline constexpr std::size_t kParticleChunk = 2048;
 /// Grid cells per chunk of one colour of the parallel solver.
-inline constexpr std::size_t kCellChunk = 32;
+inline constexpr std::size_t kCellChunk = 8;
 
 /// Hot per-particle data, one array per attribute, kept in grid order (sorted
 /// by cell every step so neighbours are close in memory).

@@ -93,6 +93,16 @@ ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed,
 std::vector<std::uint32_t> sortBackToFront(std::span<const glm::vec3> positions,
                                            glm::vec3 eye, glm::vec3 forward);
 
+/// Back-to-front order of one emitter's live particles: their slots
+/// (ParticleSnapshot::slot of readParticles), farthest first. The order is
+/// exactly sortBackToFront over readParticles' positions, mapped to slots:
+/// ties in slot order, NaN depths last. On the vulkan backend the sort runs on
+/// the device, over the positions there, and only the live count and the order
+/// (4 bytes per live particle) are copied back; stateless emitters are sorted
+/// on the CPU from their closed form. Throws Error as sortBackToFront does.
+std::vector<std::uint32_t> sortEmitterBackToFront(WorldId world, EmitterId emitter,
+                                                  glm::vec3 eye, glm::vec3 forward);
+
 /// Bytes copied between host and device memory since the world was created.
 /// A GPU world moves particle data only on creation and readParticles; the
 /// CPU backend moves nothing and returns zeros.

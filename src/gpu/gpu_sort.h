@@ -9,6 +9,13 @@
 // a spawn emitter's alive list keeps ties in slot order: the alive list is
 // filled with atomics, so its order changes from run to run, and a stable sort
 // of it would break ties differently each time.
+//
+// "Exactly" assumes the device rounds float add and multiply to nearest and
+// keeps subnormals, infinities and NaNs, as lavapipe (and the CPU) do. Vulkan
+// lets a device round toward zero or flush subnormals unless it reports
+// shaderRoundingModeRTEFloat32 / shaderDenormPreserveFloat32 (Vulkan 1.2
+// spec, "Precision and Operation of SPIR-V Instructions"); there, depths can
+// differ in the last bit and near-equal particles swap.
 #pragma once
 
 #include "gpu/vulkan_buffer.h"

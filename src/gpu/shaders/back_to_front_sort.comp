@@ -5,9 +5,10 @@
 // first, with ties in slot order: exactly the CPU's sortBackToFront.
 //
 // Why radix and not bitonic: radix is O(n) with 8 passes that each read and
-// write every pair once (about 160 B per key in all); a bitonic network over
-// pairs padded to 2^20 makes 210 compare-exchange steps, about 1 GB of traffic
-// for 1M keys even when the short steps run in shared memory. Radix is stable
+// write every pair about once (about 210 B per key in all, see
+// docs/performance.md); a bitonic network over pairs padded to 2^20 makes 210
+// compare-exchange steps, about 1 GB of traffic for 1M keys even when the
+// short steps run in shared memory. Radix is stable
 // by construction; bitonic would need the index in the compare to be.
 //
 // Stability without subgroup operations (lavapipe 22.3 has them, but a device

@@ -105,8 +105,9 @@ private:
 
 int validateCommand(const std::string& path) {
     const SceneDef scene = loadScene(path);
-    fmt::print("{}: ok (emitters: {}, forces: {}, colliders: {})\n", path, scene.emitters.size(),
-               scene.forces.size(), scene.colliders.size());
+    const std::string fluids = scene.fluids.empty() ? std::string() : fmt::format(", fluids: {}", scene.fluids.size());
+    fmt::print("{}: ok (emitters: {}, forces: {}, colliders: {}{})\n", path, scene.emitters.size(),
+               scene.forces.size(), scene.colliders.size(), fluids);
     return 0;
 }
 
@@ -145,6 +146,23 @@ std::vector<std::string> cacheStems(WorldId world) {
     return names;
 }
 
+/// File stem per fluid: its name, or "<name>_fluid" when an emitter's stem
+/// (or an earlier fluid's) already uses it; then made unique with its id.
+std::vector<std::string> fluidStems(WorldId world, const std::vector<std::string>& emitterStems) {
+    std::set<std::string> used;
+    for (const std::string& stem : emitterStems) used.insert(io::cacheFileName(stem, 0, io::CacheFormat::Csv));
+    std::vector<std::string> stems;
+    for (std::uint32_t i = 0; i < fluidCount(world); ++i) {
+        std::string stem = fluidDef(world, FluidId{i + 1}).name;
+        if (stem.empty()) stem = "fluid";
+        if (used.count(io::cacheFileName(stem, 0, io::CacheFormat::Csv)) > 0) stem += "_fluid";
+        if (used.count(io::cacheFileName(stem, 0, io::CacheFormat::Csv)) > 0) stem += fmt::format("_{}", i + 1);
+        used.insert(io::cacheFileName(stem, 0, io::CacheFormat::Csv));
+        stems.push_back(stem);
+    }
+    return stems;
+}
+
 std::vector<io::CacheFormat> cacheFormats(const std::vector<std::string>& names) {
     std::set<std::string> seen;
     std::vector<io::CacheFormat> formats;
@@ -157,9 +175,16 @@ std::vector<io::CacheFormat> cacheFormats(const std::vector<std::string>& names)
 
 /// Writes every emitter's particles in every format; returns files written.
 std::uint64_t dumpCaches(WorldId world, const fs::path& dir, std::uint64_t step,
-                         const std::vector<std::string>& stems,
+                         const std::vector<std::string>& stems, const std::vector<std::string>& fluids,
                          const std::vector<io::CacheFormat>& formats) {
     std::uint64_t files = 0;
+    for (std::uint32_t i = 0; i < fluids.size(); ++i) {
+        const FluidSnapshot particles = readFluid(world, FluidId{i + 1});
+        for (io::CacheFormat format : formats) {
+            io::writeFluidCache(dir / io::cacheFileName(fluids[i], step, format), particles, format);
+            ++files;
+        }
+    }
     for (std::uint32_t i = 0; i < stems.size(); ++i) {
         const ParticleSnapshot particles = readParticles(world, EmitterId{i + 1});
         for (io::CacheFormat format : formats) {
@@ -192,6 +217,7 @@ io::RunSummary startSummary(const RunOptions& o, const SceneDef& scene, WorldId 
     }
     for (std::uint32_t i = 0; i < emitterCount(world); ++i) s.emitterNames.push_back(emitterDef(world, EmitterId{i + 1}).name);
     for (const ColliderDef& c : scene.colliders) s.colliderNames.push_back(c.name);
+    for (const FluidDef& f : scene.fluids) s.fluidNames.push_back(f.name);
     return s;
 }
 
@@ -208,6 +234,7 @@ void simulate(WorldId world, const SceneDef& scene, const RunOptions& o, io::Run
     const bool dump = !o.out.empty();
     if (dump) summary.steps.reserve(std::min<std::uint64_t>(total, 1u << 20));
     const auto stems = cacheStems(world);
+    const auto fluids = fluidStems(world, stems);
     const auto formats = cacheFormats(o.formats);
     io::ProgressReporter::Options progressOptions;
     progressOptions.terminal = isatty(STDERR_FILENO) != 0;
@@ -218,7 +245,7 @@ void simulate(WorldId world, const SceneDef& scene, const RunOptions& o, io::Run
         if (!dump) summary.steps.clear();
         summary.steps.push_back(std::move(stats));
         if (dump && (done % o.every == 0 || done == total)) {
-            summary.cacheFiles += dumpCaches(world, o.out, done, stems, formats);
+            summary.cacheFiles += dumpCaches(world, o.out, done, stems, fluids, formats);
         }
         if (!o.quiet) progress.update(done, summary.steps.back().alive, secondsSince(start));
     }

@@ -57,9 +57,9 @@ struct FluidDef {
     /// Particle spacing (m) of blocks and jets; the particle's radius for
     /// collisions is half of it.
     float spacing = 0.02f;
-    /// Smoothing length h (m); 0: 3 x spacing (about 25 neighbours in 2D; at
-    /// 2 x spacing, 12 neighbours, the density error of a resting tank is
-    /// several times larger, see docs/performance.md).
+    /// Smoothing length h (m); 0: 3 x spacing in 2D (about 25 neighbours; at
+    /// 2 x spacing, 12 neighbours, a resting tank's density error is several
+    /// times larger, see docs/performance.md), 2.5 x spacing in 3D.
     float smoothing = 0.0f;
     /// Solver iterations per step, 1 to 16.
     std::uint32_t iterations = 4;
@@ -71,9 +71,12 @@ struct FluidDef {
     /// 0.5 measured best: 1 re-applies a step's corrective kicks in the next.
     float warmStart = 0.5f;
     /// Most neighbours kept per particle; more are counted as overflows and
-    /// ignored. 0: 48 in 2D, 160 in 3D.
+    /// ignored. 0: 48 in 2D, 128 in 3D.
     std::uint32_t maxNeighbours = 0;
     FluidSolver solver = FluidSolver::Parallel;
+    /// Substeps per world step, 1 to 16; 0: automatic, as many (up to 8) as
+    /// keep the fastest particle under 0.4 h per substep.
+    std::uint32_t substeps = 0;
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
     /// Coulomb friction coefficient of particles against colliders (0:
     /// frictionless, as the slides' particle body).
@@ -105,6 +108,7 @@ struct FluidStepStats {
     double meanNeighbours = 0.0;
     double maxSpeed = 0.0;              ///< m/s, after the step
     std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours)
+    std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
 };
 
 /// A copy of a fluid's particles, in creation order.
@@ -119,6 +123,9 @@ struct FluidSnapshot {
     std::vector<std::uint32_t> id;    ///< creation serial
     std::size_t count() const { return position.size(); }
 };
+
+/// Throws Error, saying what is wrong, for a definition createFluid rejects.
+void validateFluidDef(const FluidDef& def);
 
 /// Adds a fluid to a CPU world with its blocks, jets and polygons; throws Error
 /// for a bad definition or a Vulkan world.

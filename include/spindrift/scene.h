@@ -54,6 +54,7 @@ struct SceneDef {
     std::vector<ForceDef> forces;
     std::vector<ColliderDef> colliders;
     std::vector<EmitterDef> emitters;
+    std::vector<FluidDef> fluids;
 };
 
 /// Parses and validates a scene file; throws SceneError on the first problem,
@@ -64,8 +65,8 @@ SceneDef loadScene(const std::string& path);
 SceneDef parseScene(std::string_view text, const std::string& sourceName,
                     const std::string& baseDir = ".");
 
-/// Creates a world with flow fields, forces, colliders and emitters in that
-/// order, so their ids match the SceneDef's references.
+/// Creates a world with flow fields, forces, colliders, emitters and fluids in
+/// that order, so their ids match the SceneDef's references.
 WorldId buildWorld(const SceneDef& scene);
 
 }  // namespace spindrift

@@ -122,6 +122,7 @@ struct FluidState {
     /// setup, solve, collisions, integration; and the steps taken.
     std::array<double, 5> passMs{};
     std::uint64_t steps = 0;
+    float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
 
     template <int D> Particles<D>& particles() {
         if constexpr (D == 2) return p2; else return p3;

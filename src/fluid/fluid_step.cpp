@@ -3,7 +3,9 @@
 #include "effects/world_internal.h"
 #include "fluid/fluid_state.h"
 
+#include <algorithm>
 #include <chrono>
+#include <cmath>
 
 namespace spindrift::fluid {
 namespace {
@@ -72,11 +74,27 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     stats.fluid = id;
     // Emission: the jets' particles born during this step join before binning.
     stats.born = emitJets(f, w.time, dt);
-    if (f.def.dimension == 2) {
-        stepPasses<2>(w, f, dt, stats);
-    } else {
-        stepPasses<3>(w, f, dt, stats);
+    // Substeps: a particle may move at most kCourant h per substep, or it
+    // would pass through its neighbours before any constraint sees them
+    // (a dam break at 2 cm spacing and 60 Hz reaches 2 h per step and
+    // explodes). Chosen from the last step's top speed plus what gravity adds,
+    // so the count is deterministic.
+    constexpr float kCourant = 0.4f;
+    constexpr int kMaxSubsteps = 8;
+    const float reach = (f.lastMaxSpeed + glm::length(f.def.gravity) * dt) * dt;
+    const int substeps = f.def.substeps > 0
+                             ? static_cast<int>(f.def.substeps)
+                             : std::clamp(static_cast<int>(std::ceil(reach / (kCourant * f.h))), 1, kMaxSubsteps);
+    const float h = dt / static_cast<float>(substeps);
+    for (int k = 0; k < substeps; ++k) {
+        if (f.def.dimension == 2) {
+            stepPasses<2>(w, f, h, stats);
+        } else {
+            stepPasses<3>(w, f, h, stats);
+        }
     }
+    f.lastMaxSpeed = static_cast<float>(stats.maxSpeed);
+    stats.substeps = static_cast<std::uint32_t>(substeps);
     stats.particles = f.size();
     f.steps += 1;
     return stats;

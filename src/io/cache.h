@@ -47,4 +47,18 @@ void writePly(std::ostream& out, const ParticleSnapshot& particles);
 void writeCache(const std::filesystem::path& path, const ParticleSnapshot& particles,
                 CacheFormat format);
 
+/// Fluid cache CSV columns, in order: density is rho / rho0, pressure the
+/// accumulated constraint impulse (m/s), id the creation serial.
+inline constexpr std::string_view kFluidCsvHeader = "x,y,z,vx,vy,vz,density,pressure,id";
+
+/// Header row, then one row per fluid particle in creation order.
+void writeFluidCsv(std::ostream& out, const FluidSnapshot& particles);
+
+/// PLY 1.0, binary_little_endian; vertex properties: float x y z vx vy vz
+/// density pressure.
+void writeFluidPly(std::ostream& out, const FluidSnapshot& particles);
+
+/// Writes a fluid's particles to `path` atomically; throws spindrift::Error.
+void writeFluidCache(const std::filesystem::path& path, const FluidSnapshot& particles, CacheFormat format);
+
 }  // namespace spindrift::io

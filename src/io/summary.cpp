@@ -3,6 +3,8 @@
 #include "io/atomic_file.h"
 #include "io/json_writer.h"
 
+#include <algorithm>
+
 namespace spindrift::io {
 
 namespace {
@@ -52,6 +54,64 @@ void writeHeader(JsonWriter& json, const RunSummary& s) {
     writeNames(json, "formats", s.formats);
     writeNames(json, "emitters", s.emitterNames);
     writeNames(json, "colliders", s.colliderNames);
+    if (!s.fluidNames.empty()) writeNames(json, "fluids", s.fluidNames);
+}
+
+void writeFluidStep(JsonWriter& json, const FluidStepStats& f) {
+    json.beginObject(true);
+    json.key("particles");
+    json.value(f.particles);
+    json.key("born");
+    json.value(f.born);
+    json.key("mean_density_error");
+    json.value(f.meanDensityError);
+    json.key("max_density_error");
+    json.value(f.maxDensityError);
+    json.key("mean_neighbours");
+    json.value(f.meanNeighbours);
+    json.key("max_speed");
+    json.value(f.maxSpeed);
+    json.key("neighbour_overflows");
+    json.value(f.neighbourOverflows);
+    json.key("substeps");
+    json.value(f.substeps);
+    json.endObject();
+}
+
+/// Per fluid over the run: final count, mean of the steps' mean density
+/// error, max of their max, overflows summed.
+void writeFluidTotals(JsonWriter& json, const RunSummary& s) {
+    json.beginArray();
+    for (std::size_t k = 0; k < s.fluidNames.size(); ++k) {
+        double meanError = 0.0, maxError = 0.0, maxSpeed = 0.0;
+        std::uint64_t overflows = 0, particles = 0, born = 0, steps = 0;
+        for (const StepStats& step : s.steps) {
+            if (k >= step.fluids.size()) continue;
+            const FluidStepStats& f = step.fluids[k];
+            meanError += f.meanDensityError;
+            maxError = steps == 0 ? f.maxDensityError : std::max(maxError, f.maxDensityError);
+            maxSpeed = std::max(maxSpeed, f.maxSpeed);
+            overflows += f.neighbourOverflows;
+            born += f.born;
+            particles = f.particles;
+            ++steps;
+        }
+        json.beginObject(true);
+        json.key("final_particles");
+        json.value(particles);
+        json.key("born");
+        json.value(born);
+        json.key("mean_density_error");
+        json.value(steps > 0 ? meanError / static_cast<double>(steps) : 0.0);
+        json.key("max_density_error");
+        json.value(maxError);
+        json.key("max_speed");
+        json.value(maxSpeed);
+        json.key("neighbour_overflows");
+        json.value(overflows);
+        json.endObject();
+    }
+    json.endArray();
 }
 
 void writeStep(JsonWriter& json, const StepStats& step, std::size_t colliderCount) {
@@ -75,6 +135,12 @@ void writeStep(JsonWriter& json, const StepStats& step, std::size_t colliderCoun
     json.value(step.milliseconds);
     json.key("collider_hits");
     writeCounts(json, denseHits(step, colliderCount));
+    if (!step.fluids.empty()) {
+        json.key("fluids");
+        json.beginArray();
+        for (const FluidStepStats& f : step.fluids) writeFluidStep(json, f);
+        json.endArray();
+    }
     json.endObject();
 }
 
@@ -122,6 +188,10 @@ void writeTotals(JsonWriter& json, const RunSummary& s) {
     json.value(s.wallSeconds);
     json.key("cache_files");
     json.value(s.cacheFiles);
+    if (!s.fluidNames.empty()) {
+        json.key("fluids");
+        writeFluidTotals(json, s);
+    }
     json.endObject();
 }
 

@@ -23,6 +23,8 @@ struct RunSummary {
     std::vector<std::string> formats;        ///< cache formats written ("csv", "ply")
     std::vector<std::string> emitterNames;   ///< index i = emitter id i + 1
     std::vector<std::string> colliderNames;  ///< index i = collider id i + 1
+    /// index i = fluid id i + 1; the "fluids" members appear only when non-empty.
+    std::vector<std::string> fluidNames;
     std::vector<StepStats> steps;            ///< in order, one per step taken
     double wallSeconds = 0.0;   ///< whole run, including cache writes
     std::uint64_t cacheFiles = 0;  ///< cache files written (summary.json not counted)

@@ -62,6 +62,7 @@ WorldId buildWorld(const SceneDef& scene) {
               [&](const ColliderDef& d) { return createCollider(world, d); });
     createAll(scene.emitters, "emitter",
               [&](const EmitterDef& d) { return createEmitter(world, d); });
+    createAll(scene.fluids, "fluid", [&](const FluidDef& d) { return createFluid(world, d); });
     return guard.release();
 }
 

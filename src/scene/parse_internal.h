@@ -40,6 +40,7 @@ std::string readDataFile(const Value& value, DataFileRef& ref);
 FlowFieldDef parseFlowField(const Table& table, NameTable& names);
 ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
 ColliderDef parseCollider(const Table& table, NameTable& names);
+FluidDef parseFluid(const Table& table, NameTable& names);
 EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,
                         const NameTable& colliders);
 

@@ -142,7 +142,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
                          "TOML syntax error: " + std::string(e.description()));
     }
     const Table root(ctx, document, "");
-    root.allowOnly({"world", "camera", "run", "flow_field", "force", "collider", "emitter"},
+    root.allowOnly({"world", "camera", "run", "flow_field", "force", "collider", "emitter", "fluid"},
                    "the scene");
 
     SceneDef scene;
@@ -171,6 +171,20 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     }
     for (const Table& t : scene::tableArray(root, "emitter")) {
         scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames));
+    }
+    scene::NameTable fluidNames("fluid");
+    for (const Table& t : scene::tableArray(root, "fluid")) {
+        scene.fluids.push_back(scene::parseFluid(t, fluidNames));
+    }
+    if (!scene.fluids.empty()) {
+        // Fluids collide with planes, spheres and boxes only (src/fluid/collide.cpp).
+        for (std::size_t i = 0; i < colliders.size(); ++i) {
+            const ColliderKind kind = scene.colliders[i].kind;
+            if (kind == ColliderKind::Terrain || kind == ColliderKind::CubeMap) {
+                colliders[i].fail("a scene with a [[fluid]] may use plane, sphere and box colliders only (fluids do "
+                                  "not collide with terrain or cube maps yet)");
+            }
+        }
     }
     return scene;
 }

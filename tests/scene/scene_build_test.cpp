@@ -70,6 +70,9 @@ TEST(SceneBuild, EverySceneBuildsAndRuns) {
         for (const EmitterDef& e : w.scene().emitters) {
             visible += e.stateless ? w.particles(e.name).count() : 0;
         }
+        for (std::uint32_t f = 1; f <= fluidCount(w.world()); ++f) {
+            visible += readFluid(w.world(), FluidId{f}).count();
+        }
         EXPECT_GT(visible, 0u) << "nothing to see after 2 s";
     }
 }

@@ -86,10 +86,23 @@ void solveContacts(WorkerPool& pool, FluidState& f, float dt) {
     const float invDt = 1.0f / dt;
     const float radius = f.radius;
     const float mu = f.def.friction;
+    const bool split = !p.pseudo.empty();
     pool.forChunks(f.contacts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
         for (const Contact& c : f.contacts[chunk]) {
             const glm::vec3 v = to3<D>(p.velocity[c.particle]);
-            p.velocity[c.particle] = from3<D>(kernels::fluidContactVelocity(v, c.surface, radius, invDt, kOverlapPush, mu));
+            if (!split) {
+                p.velocity[c.particle] = from3<D>(kernels::fluidContactVelocity(v, c.surface, radius, invDt, kOverlapPush, mu));
+                continue;
+            }
+            // Split impulses: the real velocity only stops at the surface (no
+            // push out of an overlap, which would be kinetic energy); the
+            // particle's motion this step, real plus pseudo, also may not
+            // enter the wall, and the pseudo part pushes an overlap out.
+            const glm::vec3 real = kernels::fluidContactVelocity(v, c.surface, radius, invDt, 0.0f, mu);
+            p.velocity[c.particle] = from3<D>(real);
+            const glm::vec3 total = real + to3<D>(p.pseudo[c.particle]);
+            const glm::vec3 moved = kernels::fluidContactVelocity(total, c.surface, radius, invDt, kOverlapPush, 0.0f);
+            p.pseudo[c.particle] += from3<D>(moved - total);
         }
     });
 }
@@ -103,7 +116,8 @@ void integratePositions(WorkerPool& pool, FluidState& f, const World& world, flo
         for (std::size_t i = begin; i < end; ++i) {
             const glm::vec3 x0 = to3<D>(p.position[i]);
             glm::vec3 v = to3<D>(p.velocity[i]);
-            glm::vec3 x1 = x0 + v * dt;
+            const glm::vec3 motion = p.pseudo.empty() ? v : v + to3<D>(p.pseudo[i]);
+            glm::vec3 x1 = x0 + motion * dt;
             // Path tests (as the effects' collisions): a path that crosses a
             // plane, sphere or box ends at the contact, moving no further in.
             for (const kernels::ColliderParams& c : world.colliders) {

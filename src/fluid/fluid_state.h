@@ -36,6 +36,9 @@ struct Particles {
     std::vector<float> pressure;   // accumulated impulse (m/s), warm start of the next step
     std::vector<float> density;    // rho / rho0 at the last setup
     std::vector<std::uint32_t> id; // creation serial
+    /// Split impulses: this step's position-correction velocity (m/s),
+    /// zeroed every step, so not kept in grid order.
+    std::vector<Vec<D>> pseudo;
 
     std::size_t size() const { return position.size(); }
     void push(Vec<D> x, Vec<D> v, std::uint32_t serial) {
@@ -116,6 +119,7 @@ struct FluidState {
     std::vector<Neighbour<2>> n2;
     std::vector<Neighbour<3>> n3;
     Constraints constraints;
+    std::vector<float> pseudoImpulse;  // accumulated bias impulse (m/s), per step
     /// Contacts of each chunk of kParticleChunk particles, in particle order.
     std::vector<std::vector<Contact>> contacts;
     /// Wall time (ms) spent in each pass since creation: grid, neighbours and
@@ -123,6 +127,7 @@ struct FluidState {
     std::array<double, 5> passMs{};
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
+    float lastSubstep = 0.0f;   // s, the substep the pressure was solved for
 
     template <int D> Particles<D>& particles() {
         if constexpr (D == 2) return p2; else return p3;

@@ -82,9 +82,11 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     constexpr float kCourant = 0.4f;
     constexpr int kMaxSubsteps = 8;
     const float reach = (f.lastMaxSpeed + glm::length(f.def.gravity) * dt) * dt;
-    const int substeps = f.def.substeps > 0
-                             ? static_cast<int>(f.def.substeps)
-                             : std::clamp(static_cast<int>(std::ceil(reach / (kCourant * f.h))), 1, kMaxSubsteps);
+    const float wanted = std::ceil(reach / (kCourant * f.h));  // NaN or inf after a blow-up: the most
+    const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps)
+                         : wanted <= 1.0f   ? 1
+                         : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted)
+                                                                    : kMaxSubsteps;
     const float h = dt / static_cast<float>(substeps);
     for (int k = 0; k < substeps; ++k) {
         if (f.def.dimension == 2) {

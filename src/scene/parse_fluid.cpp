@@ -47,7 +47,7 @@ FluidPolygonDef parsePolygon(const Table& t) {
 }  // namespace
 
 FluidDef parseFluid(const Table& t, NameTable& names) {
-    t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "max_neighbours",
+    t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
                  "solver", "substeps", "gravity", "friction", "capacity", "rest_density", "block", "jet", "polygon"},
                 "a [[fluid]]");
     FluidDef def;
@@ -63,6 +63,7 @@ FluidDef parseFluid(const Table& t, NameTable& names) {
     def.iterations = static_cast<std::uint32_t>(t.integer("iterations", def.iterations, Bounds::between(1, 16)));
     def.baumgarte = t.real("baumgarte", def.baumgarte, Bounds::unit());
     def.warmStart = t.real("warm_start", def.warmStart, Bounds::unit());
+    def.splitImpulse = t.boolean("split_impulse", def.splitImpulse);
     def.maxNeighbours =
         static_cast<std::uint32_t>(t.integer("max_neighbours", def.maxNeighbours, Bounds::between(0, 1024)));
     if (auto v = t.find("solver")) {

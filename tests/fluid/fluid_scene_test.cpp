@@ -22,6 +22,7 @@ h = 0.1
 iterations = 8
 baumgarte = 0.2
 warm_start = 0.3
+split_impulse = false
 max_neighbours = 64
 solver = "sequential"
 substeps = 2
@@ -50,6 +51,7 @@ vertices = [[0.0, 0.0], [1.0, 0.0], [0.5, 0.5]]
     EXPECT_EQ(f.iterations, 8u);
     EXPECT_EQ(f.solver, FluidSolver::Sequential);
     EXPECT_EQ(f.substeps, 2u);
+    EXPECT_FALSE(f.splitImpulse);
     EXPECT_EQ(f.capacity, 5000u);
     ASSERT_EQ(f.blocks.size(), 1u);
     EXPECT_EQ(f.blocks[0].velocity.x, 1.0f);

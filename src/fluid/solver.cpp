@@ -79,17 +79,46 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
     }
     // The bias splits by sign: an under-dense particle's positive bias lets
     // its neighbours approach (it relaxes the constraint, no energy added) and
-    // stays with the real velocity; an over-dense particle's negative bias
-    // pushes apart, which is the pseudo velocity's job.
+    // stays with the real velocity, past a slop; an over-dense particle's
+    // negative bias pushes apart, which is the pseudo velocity's job. Only an
+    // over-dense particle has a pseudo constraint, so both are solved in one
+    // pass over its neighbours (half the memory traffic of two visits).
     const float bias = s.bias[i];
-    const kernels::FluidImpulse r =
-        kernels::fluidSolveImpulse(rateOf<D>(s, s.velocity, i), std::max(bias - s.allowanceSlop, 0.0f), s.invMass[i], s.pressure[i]);
+    if (bias >= 0.0f) {
+        const kernels::FluidImpulse r = kernels::fluidSolveImpulse(
+            rateOf<D>(s, s.velocity, i), std::max(bias - s.allowanceSlop, 0.0f), s.invMass[i], s.pressure[i]);
+        s.pressure[i] = r.accumulated;
+        if (r.delta != 0.0f) applyImpulse<D>(s, s.velocity, i, r.delta);
+        return;
+    }
+    const Neighbour<D>* list = s.lists + i * s.maxN;
+    const std::uint32_t count = s.count[i];
+    const Vec<D> vi = s.velocity[i];
+    const Vec<D> pi = s.pseudo[i];
+    float rate = 0.0f;
+    float pseudoRate = 0.0f;
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const std::uint32_t j = list[k].index;
+        rate += glm::dot(list[k].g, s.velocity[j] - vi);
+        pseudoRate += glm::dot(list[k].g, s.pseudo[j] - pi);
+    }
+    const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, 0.0f, s.invMass[i], s.pressure[i]);
+    const kernels::FluidImpulse q = kernels::fluidSolveImpulse(pseudoRate, bias, s.invMass[i], s.pseudoImpulse[i]);
     s.pressure[i] = r.accumulated;
-    if (r.delta != 0.0f) applyImpulse<D>(s, s.velocity, i, r.delta);
-    const kernels::FluidImpulse q =
-        kernels::fluidSolveImpulse(rateOf<D>(s, s.pseudo, i), std::min(bias, 0.0f), s.invMass[i], s.pseudoImpulse[i]);
     s.pseudoImpulse[i] = q.accumulated;
-    if (q.delta != 0.0f) applyImpulse<D>(s, s.pseudo, i, q.delta);
+    Vec<D> self(0.0f);
+    Vec<D> pseudoSelf(0.0f);
+    for (std::uint32_t k = 0; k < count; ++k) {
+        const std::uint32_t j = list[k].index;
+        const Vec<D> impulse = list[k].g * r.delta;
+        const Vec<D> push = list[k].g * q.delta;
+        s.velocity[j] += impulse;
+        s.pseudo[j] += push;
+        self += impulse;
+        pseudoSelf += push;
+    }
+    s.velocity[i] -= self;
+    s.pseudo[i] -= pseudoSelf;
 }
 
 /// Warm start: the previous step's pressure, scaled, applied along this step's

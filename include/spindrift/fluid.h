@@ -65,7 +65,7 @@ struct FluidDef {
     std::uint32_t iterations = 4;
     /// Velocity steering toward the rest density (slide 34): the bias is
     /// (rho0 - rho) x baumgarte x h / dt, in [0, 1].
-    float baumgarte = 0.1f;
+    float baumgarte = 0.05f;
     /// Fraction of the previous step's pressure applied before iterating
     /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
     float warmStart = 1.0f;
@@ -73,9 +73,9 @@ struct FluidDef {
     /// ignored. 0: 48 in 2D, 128 in 3D.
     std::uint32_t maxNeighbours = 0;
     FluidSolver solver = FluidSolver::Parallel;
-    /// Solve the bias on a pseudo velocity that moves particles this step and
-    /// is then dropped (split impulses), so correcting density errors adds no
-    /// kinetic energy; false: the slides' bias in the real velocity.
+    /// Solve most of the bias on a pseudo velocity that moves particles this
+    /// step and is then dropped (split impulses), so correcting density errors
+    /// adds little kinetic energy; false: the slides' bias in the velocity.
     bool splitImpulse = true;
     /// Substeps per world step, 1 to 16; 0: automatic, as many (up to 8) as
     /// keep the fastest particle under 0.4 h per substep.
@@ -110,7 +110,7 @@ struct FluidStepStats {
     double maxDensityError = 0.0;       ///< max of rho / rho0 - 1
     double meanNeighbours = 0.0;
     double maxSpeed = 0.0;              ///< m/s, after the step
-    std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours)
+    std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours), all substeps
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
 };
 

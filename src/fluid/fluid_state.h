@@ -78,6 +78,10 @@ struct Grid {
     std::array<std::vector<std::uint32_t>, 8> colourCells;
     std::vector<std::uint32_t> order;     // scratch: grid order -> previous index
     std::vector<std::uint32_t> counts;    // scratch
+    // Scratch arrays of the gather into grid order (swapped with the live ones).
+    std::vector<Vec<D>> scratchVec;
+    std::vector<float> scratchFloat;
+    std::vector<std::uint32_t> scratchUint;
 };
 
 /// Per-particle constraint data of one step (slide 35).

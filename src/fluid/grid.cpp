@@ -119,8 +119,8 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
 
     // Gather every particle array into grid order.
     {
-        auto gather = [&](auto& array) {
-            auto sorted = array;
+        auto gather = [&](auto& array, auto& sorted) {
+            sorted.resize(n);
             pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
                 for (std::size_t i = begin; i < end; ++i) {
                     sorted[i] = array[g.order[i]];
@@ -128,12 +128,12 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
             });
             array.swap(sorted);
         };
-        gather(p.position);
-        gather(p.velocity);
-        gather(p.pressure);
-        gather(p.density);
-        gather(p.id);
-        gather(g.key);
+        gather(p.position, g.scratchVec);
+        gather(p.velocity, g.scratchVec);
+        gather(p.pressure, g.scratchFloat);
+        gather(p.density, g.scratchFloat);
+        gather(p.id, g.scratchUint);
+        gather(g.key, g.scratchUint);
     }
 
     // Colour groups: non-empty cells by the parities of their coordinates.

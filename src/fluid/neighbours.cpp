@@ -129,7 +129,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     stats.meanDensityError = all.errorSum / count;
     stats.maxDensityError = n > 0 ? all.maxError : 0.0;
     stats.meanNeighbours = static_cast<double>(all.neighbourSum) / count;
-    stats.neighbourOverflows = all.overflows;
+    stats.neighbourOverflows += all.overflows;  // summed over the substeps
 }
 
 template void setupConstraints<2>(WorkerPool&, FluidState&, float, FluidStepStats&);

@@ -130,6 +130,19 @@ std::vector<ParticleSnapshot> runScene(const std::string& path, std::uint32_t th
     for (std::uint32_t e = 1; e <= emitterCount(world); ++e) {
         out.push_back(readParticles(world, EmitterId{e}));
     }
+    // Fluids compared through the same fields: density as age, pressure in
+    // the colour, creation id as birth and slot.
+    for (std::uint32_t f = 1; f <= fluidCount(world); ++f) {
+        const FluidSnapshot fluid = readFluid(world, FluidId{f});
+        ParticleSnapshot p;
+        p.position = fluid.position;
+        p.velocity = fluid.velocity;
+        p.age = fluid.density;
+        for (float pressure : fluid.pressure) p.color.emplace_back(pressure);
+        p.birth = fluid.id;
+        p.slot = fluid.id;
+        out.push_back(std::move(p));
+    }
     destroyWorld(world);
     return out;
 }

@@ -11,7 +11,9 @@
 // falls and the front runs along the floor. Counters: ms_per_step (wall time
 // per stepWorld at dt = 1/60 s), ms_per_substep, mean_density_error and
 // median_density_error (over the steps, of the step's mean of
-// max(rho / rho0 - 1, 0)), substeps (mean per step), particles.
+// max(rho / rho0 - 1, 0)), substeps (mean per step), particles, and the
+// passes' wall time per step (grid_ms, setup_ms, contacts_ms, solve_ms,
+// integrate_ms).
 #include <spindrift/world.h>
 
 #include <benchmark/benchmark.h>
@@ -74,12 +76,16 @@ void damBreak(benchmark::State& state, std::uint32_t dimension) {
     std::vector<double> errors;
     double substeps = 0.0;
     double ms = 0.0;
+    double passes[5] = {};
     for (auto _ : state) {
         const auto t0 = std::chrono::steady_clock::now();
         const StepStats s = stepWorld(world, 1.0f / 60.0f);
         ms += std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - t0).count();
         errors.push_back(s.fluids.at(0).meanDensityError);
-        substeps += s.fluids.at(0).substeps;
+        const FluidStepStats& f = s.fluids.at(0);
+        substeps += f.substeps;
+        const double pass[5] = {f.gridMs, f.setupMs, f.contactsMs, f.solveMs, f.integrateMs};
+        for (int k = 0; k < 5; ++k) passes[k] += pass[k];
     }
     const double steps = static_cast<double>(errors.size());
     state.counters["particles"] = static_cast<double>(readFluid(world, FluidId{1}).count());
@@ -91,6 +97,8 @@ void damBreak(benchmark::State& state, std::uint32_t dimension) {
     state.counters["median_density_error"] = errors[errors.size() / 2];
     state.counters["substeps"] = substeps / steps;
     state.counters["ms_per_substep"] = ms / substeps;
+    const char* names[5] = {"grid_ms", "setup_ms", "contacts_ms", "solve_ms", "integrate_ms"};
+    for (int k = 0; k < 5; ++k) state.counters[names[k]] = passes[k] / steps;
     destroyWorld(world);
 }
 

@@ -112,6 +112,9 @@ struct FluidStepStats {
     double maxSpeed = 0.0;              ///< m/s, after the step
     std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours), all substeps
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
+    /// Wall time (ms) of each pass, summed over the substeps: binning,
+    /// neighbours and constraint setup, contact search, solver, integration.
+    double gridMs = 0.0, setupMs = 0.0, contactsMs = 0.0, solveMs = 0.0, integrateMs = 0.0;
 };
 
 /// A copy of a fluid's particles, in creation order.

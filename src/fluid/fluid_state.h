@@ -126,9 +126,6 @@ struct FluidState {
     std::vector<float> pseudoImpulse;  // accumulated bias impulse (m/s), per step
     /// Contacts of each chunk of kParticleChunk particles, in particle order.
     std::vector<std::vector<Contact>> contacts;
-    /// Wall time (ms) spent in each pass since creation: grid, neighbours and
-    /// setup, solve, collisions, integration; and the steps taken.
-    std::array<double, 5> passMs{};
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
     float lastSubstep = 0.0f;   // s, the substep the pressure was solved for

@@ -34,21 +34,21 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
     // Grid: counting sort by cell and quadrant; arrays gathered into grid order.
     {
         buildGrid<D>(pool, f);
-        f.passMs[0] += msSince(t);
+        stats.gridMs += msSince(t);
         t = Clock::now();
     }
 
     // Neighbours and constraint setup: density, bias, effective mass.
     {
         setupConstraints<D>(pool, f, dt, stats);
-        f.passMs[1] += msSince(t);
+        stats.setupMs += msSince(t);
         t = Clock::now();
     }
 
     // Contacts: particles within reach of a collider surface.
     {
         findContacts<D>(pool, f, w, dt);
-        f.passMs[3] += msSince(t);
+        stats.contactsMs += msSince(t);
         t = Clock::now();
     }
 
@@ -56,14 +56,14 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
     // constraints followed by one over the contacts (slide 51).
     {
         solveConstraints<D>(pool, f, dt);
-        f.passMs[2] += msSince(t);
+        stats.solveMs += msSince(t);
         t = Clock::now();
     }
 
     // Positions, never through a collider.
     {
         integratePositions<D>(pool, f, w, dt, stats);
-        f.passMs[4] += msSince(t);
+        stats.integrateMs += msSince(t);
     }
 }
 

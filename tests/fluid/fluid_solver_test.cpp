@@ -124,6 +124,24 @@ TEST(FluidTank, AtRest2D) {
     EXPECT_LT(m.meanError, 0.012);
     EXPECT_LT(meanSpeed(s), 0.25);
     EXPECT_LT(m.maxSpeed, 1.8);
+    // Pressure (the accumulated impulse) carries the weight: it grows with
+    // depth. Hydrostatics says linearly; the bottom quarter must at least be
+    // well above the top (y > 0.7 m; measured 0.33 vs 0.04 m/s).
+    double top = 0.0, bottom = 0.0;
+    int nTop = 0, nBottom = 0;
+    for (std::size_t i = 0; i < s.count(); ++i) {
+        if (s.position[i].y < 0.25f) {
+            bottom += s.pressure[i];
+            ++nBottom;
+        } else if (s.position[i].y > 0.7f) {
+            top += s.pressure[i];
+            ++nTop;
+        }
+    }
+    ASSERT_GT(nTop, 0);
+    ASSERT_GT(nBottom, 0);
+    std::printf("tank 2D: mean pressure bottom %.3f, top %.3f m/s\n", bottom / nBottom, top / nTop);
+    EXPECT_GT(bottom / nBottom, 3.0 * (top / nTop));
 }
 
 TEST(FluidTank, AtRest3D) {

@@ -258,8 +258,14 @@ void printResult(const io::RunSummary& s, std::uint64_t steps, WorldId world, co
                  std::uint64_t files) {
     const std::uint64_t alive = s.steps.empty() ? 0 : s.steps.back().alive;
     const std::string where = o.out.empty() ? std::string() : fmt::format(" to {}", o.out);
-    fmt::print("{} steps, {:.3f} s simulated, {:.3f} s wall, {} alive, {} files written{}\n", steps,
-               worldTime(world), s.wallSeconds, alive, files, where);
+    std::uint64_t fluidParticles = 0;
+    if (!s.steps.empty()) {
+        for (const FluidStepStats& f : s.steps.back().fluids) fluidParticles += f.particles;
+    }
+    const std::string fluids = fluidCount(world) == 0 ? std::string()
+                                                      : fmt::format(", {} fluid particles", fluidParticles);
+    fmt::print("{} steps, {:.3f} s simulated, {:.3f} s wall, {} alive{}, {} files written{}\n", steps,
+               worldTime(world), s.wallSeconds, alive, fluids, files, where);
 }
 
 int runCommand(const RunOptions& o) {

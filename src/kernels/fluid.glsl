@@ -11,7 +11,11 @@
 //           i.e. the density at p is falling;
 //   lambda  the impulse magnitude: v_n += g lambda, v_p -= g lambda, so a
 //           positive lambda pushes the neighbours apart and raises C' by
-//           A lambda with A = sum 2 w^2 (slide 35's effective mass).
+//           A lambda with A = sum |g|^2 + |sum g|^2, the effective mass of
+//           this Jacobian. (Slide 35's A = sum 2 w^2 is exact for one
+//           neighbour only; at walls and free surfaces, where the g do not
+//           cancel, it is several times too small and the solver diverges;
+//           src/fluid/neighbours.cpp.)
 //   The constraint asks C' + bias' = 0 with bias' = -bias, bias = (rho0 - rho)
 //   * baumgarte (velocity steering, slide 34): an over-dense particle
 //   (bias < 0) wants its neighbours to separate at -bias. Hence

@@ -20,6 +20,7 @@ inline uint forceCount(const KernelContext& ctx) { return ctx.forceTotal; }
 inline const ForceParams& forceAt(const KernelContext& ctx, uint i) { return ctx.forces[i]; }
 inline uint colliderCount(const KernelContext& ctx) { return ctx.colliderTotal; }
 inline const ColliderParams& colliderAt(const KernelContext& ctx, uint i) { return ctx.colliders[i]; }
+inline uint integratorOf(const EmitterParams& e) { return e.integrator; }
 inline vec3 sampleFlowField(const KernelContext& ctx, uint field, vec3 uvw) {
     return sampleFlow(ctx.fields->flows[field], uvw);
 }

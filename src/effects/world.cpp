@@ -118,12 +118,12 @@ void destroyWorld(WorldId id) {
 FlowFieldId createFlowField(WorldId id, const FlowFieldDef& def) {
     World& w = worldFromId(id);
     validateFlowFieldDef(def);
+    FlowGrid grid{def.nx, def.ny, def.nz, def.velocities};
     if (w.gpu) {
-        throw Error(fmt::format("flow field '{}': flow fields are not supported on the vulkan backend yet; use backend 'cpu'",
-                                def.name));
+        gpu::addFlowField(*w.gpu, grid, def.name);
     }
     w.flowDefs.push_back(def);
-    w.fields.flows.push_back(FlowGrid{def.nx, def.ny, def.nz, def.velocities});
+    w.fields.flows.push_back(std::move(grid));
     return {static_cast<std::uint32_t>(w.flowDefs.size())};
 }
 
@@ -156,17 +156,20 @@ ColliderId createCollider(WorldId id, const ColliderDef& def) {
     }
     std::uint32_t dataIndex = 0;
     kernels::ColliderParams params;
-    if (w.gpu && (def.kind == ColliderKind::Terrain || def.kind == ColliderKind::CubeMap)) {
-        throw Error(fmt::format("collider '{}': terrain and cube-map colliders are not supported on the vulkan "
-                                "backend yet; use backend 'cpu'",
-                                def.name));
-    }
     if (def.kind == ColliderKind::Terrain) {
         params = makeColliderParams(def, static_cast<std::uint32_t>(w.fields.heights.size()));
-        w.fields.heights.push_back(HeightMap{def.terrainNx, def.terrainNz, def.heights});
+        HeightMap map{def.terrainNx, def.terrainNz, def.heights};
+        if (w.gpu) {
+            gpu::addHeightMap(*w.gpu, map, def.name);
+        }
+        w.fields.heights.push_back(std::move(map));
     } else if (def.kind == ColliderKind::CubeMap) {
         params = makeColliderParams(def, static_cast<std::uint32_t>(w.fields.cubes.size()));
-        w.fields.cubes.push_back(makeDepthCubeMap(def.cubeResolution, def.cubeDepths));
+        DepthCubeMap cube = makeDepthCubeMap(def.cubeResolution, def.cubeDepths);
+        if (w.gpu) {
+            gpu::addCubeMap(*w.gpu, cube, def.name);
+        }
+        w.fields.cubes.push_back(std::move(cube));
     } else {
         params = makeColliderParams(def, dataIndex);
     }

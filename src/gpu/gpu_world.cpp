@@ -110,8 +110,21 @@ VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout
     return layout;
 }
 
+// INTEGRATOR of effects_update.comp: the emitter's, read from its parameters.
+constexpr std::uint32_t kAnyIntegrator = 0xFFFFFFFFu;
+
+// The specialization constants of effects_update.comp, in constant_id order.
+struct Specialization {
+    Pass pass;
+    std::uint32_t flowFields, heightMaps, cubeMaps;  // counts in the world
+    std::uint32_t integrator;                        // SD_INTEGRATE_*
+    std::array<std::uint32_t, 5> key() const {
+        return {static_cast<std::uint32_t>(pass), flowFields, heightMaps, cubeMaps, integrator};
+    }
+};
+
 VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::uint32_t* code, std::size_t words,
-                                 Pass pass) {
+                                 const Specialization& spec) {
     auto moduleInfo = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
     moduleInfo.codeSize = words * sizeof(std::uint32_t);
     moduleInfo.pCode = code;
@@ -122,8 +135,13 @@ VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::
     info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
     info.stage.module = module;
     info.stage.pName = "main";
-    VkSpecializationMapEntry entry{0, 0, sizeof(Pass)};
-    VkSpecializationInfo specialization{1, &entry, sizeof(pass), &pass};
+    const std::array<std::uint32_t, 5> values = spec.key();
+    std::array<VkSpecializationMapEntry, 5> entries{};
+    for (std::uint32_t i = 0; i < entries.size(); ++i) {
+        entries[i] = {i, i * 4, 4};
+    }
+    VkSpecializationInfo specialization{static_cast<std::uint32_t>(entries.size()), entries.data(),
+                                        sizeof(values), values.data()};
     info.stage.pSpecializationInfo = &specialization;
     info.layout = layout;
     VkPipeline pipeline = VK_NULL_HANDLE;
@@ -132,6 +150,33 @@ VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::
     vkDestroyShaderModule(d.device, module, nullptr);
     check(r, "vkCreateComputePipelines(effects_update)");
     return pipeline;
+}
+
+// The pipeline of `pass` for emitter `e` in this world, created on first use.
+// The finish pass touches no particle: it shares one variant.
+VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
+    Specialization spec{pass, 0, 0, 0, 0};
+    if (pass != Pass::SpawnFinish) {
+        spec.flowFields = static_cast<std::uint32_t>(w.fields.flows.size());
+        spec.heightMaps = static_cast<std::uint32_t>(w.fields.heights.size());
+        spec.cubeMaps = static_cast<std::uint32_t>(w.fields.cubes.size());
+        // One integrator per pipeline only where it pays: with flow fields each
+        // of RK4's stages samples them, and compiling every integrator's sample
+        // sites costs lavapipe far more than a second pipeline. Without flow
+        // fields all four fit in one pipeline that compiles in about a second.
+        spec.integrator = spec.flowFields > 0 ? e.params.integrator : kAnyIntegrator;
+    }
+    auto [it, inserted] = w.pipelines.try_emplace(spec.key(), VK_NULL_HANDLE);
+    if (inserted) {
+        try {
+            it->second = createComputePipeline(*w.device, w.pipelineLayout, shaders::kEffectsUpdate,
+                                               shaders::kEffectsUpdateWords, spec);
+        } catch (...) {
+            w.pipelines.erase(it);
+            throw;
+        }
+    }
+    return it->second;
 }
 
 // A count header and the parameter array, uploaded in one submission.
@@ -557,13 +602,6 @@ std::unique_ptr<GpuWorld> createGpuWorld() {
         w->listLayout = createSetLayout(d, kListBindingCount);
         createFields(*w);
         w->pipelineLayout = createPipelineLayout(d, w->setLayout, w->listLayout, w->fields.layout);
-        for (auto [pipeline, pass] : {std::pair{&w->updatePipeline, Pass::RecycleUpdate},
-                                      std::pair{&w->spawnUpdatePipeline, Pass::SpawnUpdate},
-                                      std::pair{&w->spawnEmitPipeline, Pass::SpawnEmit},
-                                      std::pair{&w->spawnFinishPipeline, Pass::SpawnFinish}}) {
-            *pipeline = createComputePipeline(d, w->pipelineLayout, shaders::kEffectsUpdate,
-                                              shaders::kEffectsUpdateWords, pass);
-        }
         w->placeholder = createStorageBuffer(d, 64);
         w->placeholderPool = createDescriptorPool(d, 1, kListBindingCount);
         std::array<Buffer*, kListBindingCount> placeholders{&w->placeholder, &w->placeholder, &w->placeholder,
@@ -602,11 +640,10 @@ void destroyGpuWorld(GpuWorld& w) {
         destroyFields(d, w.fields);
         destroyBuffer(d, w.colliders);
         destroyBuffer(d, w.forces);
-        for (VkPipeline p : {w.spawnFinishPipeline, w.spawnEmitPipeline, w.spawnUpdatePipeline, w.updatePipeline}) {
-            if (p != VK_NULL_HANDLE) {
-                vkDestroyPipeline(d.device, p, nullptr);
-            }
+        for (auto& [key, p] : w.pipelines) {
+            vkDestroyPipeline(d.device, p, nullptr);
         }
+        w.pipelines.clear();
         if (w.pipelineLayout != VK_NULL_HANDLE) {
             vkDestroyPipelineLayout(d.device, w.pipelineLayout, nullptr);
         }
@@ -695,12 +732,23 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     Device& d = *w.device;
     // Births owed this step, per emitter (spawn mode), from the shared schedule.
     std::vector<std::uint32_t> births(w.emitters.size(), 0);
+    // The pipelines of each emitter's passes (compiled here on first use, not
+    // while recording).
+    std::vector<std::array<VkPipeline, 3>> pipelines(w.emitters.size());
     bool anySpawn = false;
     for (std::size_t i = 0; i < w.emitters.size(); ++i) {
         GpuEmitter* e = w.emitters[i].get();
-        if (e && e->spawn) {
+        if (!e || e->capacity == 0) {
+            continue;
+        }
+        if (e->spawn) {
             births[i] = writeSchedule(*e, *emitters[i], time, dt);
-            anySpawn = anySpawn || e->capacity > 0;
+            anySpawn = true;
+            pipelines[i] = {pipelineFor(w, Pass::SpawnUpdate, *emitters[i]),
+                            pipelineFor(w, Pass::SpawnEmit, *emitters[i]),
+                            pipelineFor(w, Pass::SpawnFinish, *emitters[i])};
+        } else {
+            pipelines[i][0] = pipelineFor(w, Pass::RecycleUpdate, *emitters[i]);
         }
     }
     // Emitters touch disjoint buffers and only add to their own counters, so
@@ -715,10 +763,10 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
 
         // Update: recycle emitters over every slot, spawn emitters over their
         // current alive list (its size written by the GPU last step).
-        for (auto& e : w.emitters) {
+        for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+            GpuEmitter* e = w.emitters[i].get();
             if (e && e->capacity > 0) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE,
-                                  e->spawn ? w.spawnUpdatePipeline : w.updatePipeline);
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][0]);
                 bindEmitter(w, cmd, *e, dt, e->capacity);
                 if (e->spawn) {
                     vkCmdDispatchIndirect(cmd, e->dead.buffer, 0);
@@ -730,10 +778,10 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
         if (anySpawn) {
             // Emit: the dead stack is complete once every update is done.
             computeToCompute(cmd);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.spawnEmitPipeline);
             for (std::size_t i = 0; i < w.emitters.size(); ++i) {
                 GpuEmitter* e = w.emitters[i].get();
                 if (e && e->spawn && e->capacity > 0 && births[i] > 0) {
+                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][1]);
                     bindEmitter(w, cmd, *e, dt, births[i]);
                     // Births beyond the capacity cannot find a slot: thread 0
                     // counts them, so the dispatch stays within the device limit.
@@ -742,9 +790,10 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
             }
             // Finish: pop the taken slots, write the next update's dispatch.
             computeToCompute(cmd);
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.spawnFinishPipeline);
-            for (auto& e : w.emitters) {
+            for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+                GpuEmitter* e = w.emitters[i].get();
                 if (e && e->spawn && e->capacity > 0) {
+                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][2]);
                     bindEmitter(w, cmd, *e, dt, 1);
                     vkCmdDispatch(cmd, 1, 1, 1);
                 }

@@ -14,6 +14,8 @@
 
 #include <spindrift/world.h>
 
+#include <array>
+#include <map>
 #include <memory>
 #include <span>
 #include <string>
@@ -70,10 +72,10 @@ struct GpuWorld {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkDescriptorSetLayout listLayout = VK_NULL_HANDLE;  // set 1: spawn-mode lists
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkPipeline updatePipeline = VK_NULL_HANDLE;         // recycle: every slot
-    VkPipeline spawnUpdatePipeline = VK_NULL_HANDLE;    // spawn: the alive list
-    VkPipeline spawnEmitPipeline = VK_NULL_HANDLE;      // spawn: births
-    VkPipeline spawnFinishPipeline = VK_NULL_HANDLE;    // spawn: next step's dispatch
+    /// Pipelines of effects_update.comp by specialization (pass, field counts,
+    /// integrator), created the first time a step needs one: llvmpipe compiles
+    /// at creation, and only the variants a world runs are worth compiling.
+    std::map<std::array<std::uint32_t, 5>, VkPipeline> pipelines;
     /// Set 1 of recycle emitters: the recycle pass never reads it, but the
     /// shader module declares it, so something valid must be bound.
     Buffer placeholder;

@@ -8,11 +8,13 @@
 //   ForceParams forceAt(KernelContext ctx, uint i);
 //   uint colliderCount(KernelContext ctx);
 //   ColliderParams colliderAt(KernelContext ctx, uint i);
+//   uint integratorOf(EmitterParams e);                              // SD_INTEGRATE_*
 //   vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw);   // m/s
 //   float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv); // m
 //   vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction); // normal, depth (m)
 //
-// before including integrate.glsl, collide.glsl or update.glsl. Normalised
+// (integratorOf lets a compute pipeline fix the integrator as a specialization
+// constant, so the driver compiles only the one it runs) before including integrate.glsl, collide.glsl or update.glsl. Normalised
 // coordinates follow Vulkan's sampler convention: texel i of n covers
 // [i / n, (i + 1) / n] and its centre is at (i + 0.5) / n; outside [0, 1] the
 // edge texel is used (clamp to edge).

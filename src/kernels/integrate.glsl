@@ -58,17 +58,18 @@ struct Motion {
 SD_FN Motion integrateMotion(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p, vec3 v, float mass, float radius,
                              float dt) {
     Motion m;
+    uint integrator = integratorOf(e);
     vec3 a0 = accelerationAt(ctx, e, p, v, mass, radius);
-    if (e.integrator == SD_INTEGRATE_EXPLICIT_EULER) {
+    if (integrator == SD_INTEGRATE_EXPLICIT_EULER) {
         m.position = p + v * dt;
         m.velocity = v + a0 * dt;
-    } else if (e.integrator == SD_INTEGRATE_VERLET) {
+    } else if (integrator == SD_INTEGRATE_VERLET) {
         // Velocity Verlet; the new acceleration sees the Euler-predicted velocity
         // (exact for position-only forces, second order with drag).
         m.position = p + v * dt + a0 * (0.5f * dt * dt);
         vec3 a1 = accelerationAt(ctx, e, m.position, v + a0 * dt, mass, radius);
         m.velocity = v + (a0 + a1) * (0.5f * dt);
-    } else if (e.integrator == SD_INTEGRATE_RK4) {
+    } else if (integrator == SD_INTEGRATE_RK4) {
         // Classic RK4 on (p, v) with the forces re-evaluated at every stage
         // (Fiedler, "Integration Basics", cited by the GPU particle talk).
         float h = 0.5f * dt;

@@ -1,8 +1,8 @@
 // Sampled fields on the Vulkan backend, host side: images created, uploaded
 // once through staging buffers with layout transitions, bound in set 2 with
 // placeholders in the unused elements, counts limited with a clear error; all
-// without a validation message. (The shader does not sample them yet: worlds
-// still refuse flow fields, terrain and cube maps; see effects_update.comp.)
+// without a validation message. The sampling itself is checked against the CPU
+// backend in gpu_world_test.cpp and gpu_scenes_test.cpp.
 #include "gpu_test_util.h"
 
 #include <cmath>

@@ -73,23 +73,54 @@ layout(set = 2, binding = 0) uniform sampler3D flowFields[8];   // xyz velocity 
 layout(set = 2, binding = 1) uniform sampler2D heightMaps[8];   // height (m)
 layout(set = 2, binding = 2) uniform samplerCube cubeMaps[8];   // outward normal xyz, depth w (m)
 
-// NOT SAMPLED YET: flow fields, height maps and cube maps are still refused
-// when created in a Vulkan world (src/effects/world.cpp). The hooks would be
-// textureLod(flowFields[field], uvw, 0.0f).xyz and so on, but on lavapipe
-// (Mesa 22.3) the ~26 inlined sample sites of the kernels (RK4's four
-// accelerationAt, the sampled-collider march, bisection and normals) make
-// llvmpipe's per-dispatch compile take 15 s per pipeline with one texture per
-// kind and minutes with dynamically indexed arrays, which stalls every test.
-// lavapipe 22.3 also lacks shaderSampledImageArrayDynamicIndexing: index the
-// arrays through a switch of constant indices there.
+// Field counts and the integrator are specialization constants of the
+// pipeline (gpu_world.cpp keeps one pipeline per combination a world uses), for
+// two reasons. lavapipe (Mesa 22.3) lacks shaderSampledImageArrayDynamicIndexing,
+// so a sampler array may only be indexed by constants: the hooks below switch
+// over literal indices. And llvmpipe compiles every inlined sample site of the
+// kernels at pipeline creation (RK4's four accelerationAt, the sampled-collider
+// march, bisection and normals): with all 8 elements of all 3 arrays live that
+// took minutes per pipeline. The constants let the driver drop the elements a
+// world does not use and the integrators an emitter does not run.
+layout(constant_id = 1) const uint FLOW_FIELDS = 0u;   // flow fields of the world, 0..8
+layout(constant_id = 2) const uint HEIGHT_MAPS = 0u;   // terrain height maps, 0..8
+layout(constant_id = 3) const uint CUBE_MAPS = 0u;     // depth cube maps, 0..8
+layout(constant_id = 4) const uint INTEGRATOR = 0xFFFFFFFFu;  // SD_INTEGRATE_*; all ones: the emitter's
+
 struct KernelContext { uint unused; };
 uint forceCount(KernelContext ctx) { return forceTotal; }
 ForceParams forceAt(KernelContext ctx, uint i) { return forces[i]; }
 uint colliderCount(KernelContext ctx) { return colliderTotal; }
 ColliderParams colliderAt(KernelContext ctx, uint i) { return colliders[i]; }
-vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw) { return vec3(0.0f); }
-float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) { return 0.0f; }
-vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) { return vec4(0.0f, 1.0f, 0.0f, 0.0f); }
+uint integratorOf(EmitterParams e) { return INTEGRATOR == 0xFFFFFFFFu ? e.integrator : INTEGRATOR; }
+
+// One case per element, each live only below the world's count.
+#define SD_SAMPLE_CASE(array, count, i, coord) \
+    case i: if (i < count) { return textureLod(array[i], coord, 0.0f); } break;
+#define SD_SAMPLE_SWITCH(array, count, index, coord) \
+    switch (index) { \
+        SD_SAMPLE_CASE(array, count, 0u, coord) SD_SAMPLE_CASE(array, count, 1u, coord) \
+        SD_SAMPLE_CASE(array, count, 2u, coord) SD_SAMPLE_CASE(array, count, 3u, coord) \
+        SD_SAMPLE_CASE(array, count, 4u, coord) SD_SAMPLE_CASE(array, count, 5u, coord) \
+        SD_SAMPLE_CASE(array, count, 6u, coord) SD_SAMPLE_CASE(array, count, 7u, coord) \
+        default: break; \
+    }
+
+vec4 sampleFlowImage(uint field, vec3 uvw) {
+    SD_SAMPLE_SWITCH(flowFields, FLOW_FIELDS, field, uvw)
+    return vec4(0.0f);
+}
+vec4 sampleHeightImage(uint map, vec2 uv) {
+    SD_SAMPLE_SWITCH(heightMaps, HEIGHT_MAPS, map, uv)
+    return vec4(0.0f);
+}
+vec4 sampleCubeImage(uint map, vec3 direction) {
+    SD_SAMPLE_SWITCH(cubeMaps, CUBE_MAPS, map, direction)
+    return vec4(0.0f, 1.0f, 0.0f, 0.0f);
+}
+vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw) { return sampleFlowImage(field, uvw).xyz; }
+float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) { return sampleHeightImage(map, uv).x; }
+vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) { return sampleCubeImage(map, direction); }
 
 #include "update.glsl"
 

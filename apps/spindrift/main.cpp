@@ -116,6 +116,9 @@ int validateCommand(const std::string& path) {
 /// Options override the scene; --seconds becomes a step count at the final dt.
 void applyOverrides(SceneDef& scene, const RunOptions& o) {
     if (o.hasBackend) scene.world.backend = parseBackend(o.backend);
+    // The summary lists every step's own counts: the GPU may not run ahead of
+    // the host here (an offline run; caches read the particles back anyway).
+    scene.world.framesInFlight = 1;
     if (o.hasThreads) scene.world.threads = o.threads;
     if (o.hasSeed) scene.world.seed = o.seed;
     if (o.hasDt) scene.run.dt = static_cast<float>(o.dt);

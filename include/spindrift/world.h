@@ -20,6 +20,16 @@ struct WorldDef {
     std::uint32_t threads = 0;
     /// Seed of the counter-based random streams.
     std::uint32_t seed = 1;
+    /// Most collision and death events recorded per step (takeEvents); those
+    /// beyond are dropped and counted, never written. 0: no events recorded.
+    std::uint32_t eventCapacity = 4096;
+    /// Vulkan backend: steps the GPU may run behind the CPU, 1 to 3. With 1,
+    /// stepWorld waits for its step and reports its counts. With 2 (the
+    /// default) or 3, stepWorld returns once the step is submitted, and the
+    /// counts and events of a step arrive that many steps minus one later,
+    /// without the CPU ever waiting on the GPU in the loop (see
+    /// StepStats::countedSteps and flushWorld). The CPU backend ignores it.
+    std::uint32_t framesInFlight = 2;
 };
 
 /// Collision events of one step, per collider.
@@ -28,9 +38,16 @@ struct ColliderStepStats {
     std::uint64_t hits = 0;
 };
 
+/// What a step reports. The counts (alive, born, died, collisions, clamped,
+/// colliderHits) cover the `countedSteps` steps ending with `lastCountedStep`:
+/// on the CPU backend and on Vulkan with one frame in flight that is exactly
+/// the step just taken; with more frames in flight it is the step the GPU
+/// finished meanwhile (none for the first steps; flushWorld returns the rest).
 struct StepStats {
     std::uint64_t step = 0;       ///< index of the step just taken (0-based)
     double time = 0.0;            ///< s, simulated time at the end of the step
+    std::uint32_t countedSteps = 0;
+    std::uint64_t lastCountedStep = 0;
     std::uint64_t alive = 0;      ///< live state-preserving particles after the step
     std::uint64_t born = 0;
     std::uint64_t died = 0;
@@ -41,6 +58,35 @@ struct StepStats {
     /// One entry per fluid, in id order.
     std::vector<FluidStepStats> fluids;
     double milliseconds = 0.0;    ///< wall time of the step
+};
+
+enum class ParticleEventKind : std::uint32_t {
+    Collision = 0,  ///< the particle hit `collider` (an impact, not a resting contact)
+    Death = 1,      ///< the particle died: of age, or killed by a collision
+};
+
+/// One collision or death of a state-preserving particle.
+struct ParticleEvent {
+    ParticleEventKind kind = ParticleEventKind::Collision;
+    std::uint64_t step = 0;  ///< step in which it happened
+    EmitterId emitter;
+    /// Collision: the collider hit. Death: the first collider hit in the same
+    /// step (the killer, when collisions kill), or index 0 when none was.
+    ColliderId collider;
+    std::uint32_t birth = 0;  ///< birth serial of the particle in its emitter
+    glm::vec3 position{0.0f}; ///< m, where the particle was at the end of the step
+    /// m/s, the particle's speed at the start of the step (for a particle born
+    /// in the step: at its end), e.g. to scale an impact sound.
+    float speed = 0.0f;
+};
+
+/// Events handed to the application by takeEvents.
+struct EventBatch {
+    /// In step order. Within a step the CPU backend lists them in emitter and
+    /// slot order; the GPU's order within a step is unspecified.
+    std::vector<ParticleEvent> events;
+    /// Events lost because a step had more than WorldDef::eventCapacity.
+    std::uint64_t dropped = 0;
 };
 
 /// A read-back copy of one emitter's live particles, in slot order.
@@ -68,6 +114,15 @@ FlowFieldId createFlowField(WorldId world, const FlowFieldDef& def);
 
 /// Advances every emitter by dt seconds (dt > 0).
 StepStats stepWorld(WorldId world, float dt);
+
+/// Events of the steps whose counts have been reported so far (see
+/// StepStats), and those dropped; each is handed out once.
+EventBatch takeEvents(WorldId world);
+
+/// Waits until the GPU has finished every submitted step and returns the
+/// counts not yet reported (countedSteps may be 0); their events become
+/// available to takeEvents. The CPU backend has nothing pending.
+StepStats flushWorld(WorldId world);
 
 /// Simulated time (s) of the world.
 double worldTime(WorldId world);

@@ -17,6 +17,7 @@ struct ChunkResult {
     std::uint64_t died = 0;
     std::uint64_t hits[32] = {};
     std::vector<std::uint32_t> dead;  // spawn mode: slots that died, ascending
+    std::vector<kernels::EventRecord> events;
 };
 
 kernels::Particle loadParticle(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i) {
@@ -47,19 +48,30 @@ void storeParticle(ParticleArrays& a, std::size_t i, const kernels::Particle& p)
     a.birth[i] = p.birth;
 }
 
-void countUpdate(const kernels::ParticleUpdate& r, ChunkResult& out) {
+// Counts the update of `before` into r and, when events are recorded, keeps
+// its events (speed: m/s at the start of the step).
+void countUpdate(const kernels::Particle& before, const kernels::ParticleUpdate& r, std::uint32_t emitter,
+                 float speed, bool recordEvents, ChunkResult& out) {
     out.born += (r.events & kernels::SD_EVENT_BORN) != 0u ? 1 : 0;
     out.died += (r.events & kernels::SD_EVENT_DIED) != 0u ? 1 : 0;
     for (std::uint32_t mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
         out.hits[std::countr_zero(mask)] += 1;
     }
+    const std::uint32_t n = recordEvents ? kernels::eventCountOf(r) : 0u;
+    for (std::uint32_t k = 0; k < n; ++k) {
+        out.events.push_back(kernels::updateEvent(k, before, r, emitter, speed));
+    }
 }
 
-// Adds chunk results to the step's counts in chunk order (deterministic) and
-// returns their dead slots to the free list.
-void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& stats, std::uint64_t& born,
-                 std::uint64_t& died) {
+// Adds chunk results to the step's counts and events in chunk order
+// (deterministic) and returns their dead slots to the free list.
+void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& stats, StepEvents& events,
+                 std::uint64_t& born, std::uint64_t& died) {
     for (ChunkResult& c : chunks) {
+        std::size_t room = events.capacity - std::min<std::size_t>(events.capacity, events.records.size());
+        std::size_t kept = std::min(room, c.events.size());
+        events.records.insert(events.records.end(), c.events.begin(), c.events.begin() + static_cast<std::ptrdiff_t>(kept));
+        events.dropped += c.events.size() - kept;
         born += c.born;
         died += c.died;
         for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
@@ -122,7 +134,9 @@ std::vector<float> BirthSchedule::ages() const {
     return out;
 }
 
-void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
+void stepEmitter(World& w, std::uint32_t index, float dt, StepStats& stats, StepEvents& events) {
+    EmitterState& e = *w.emitters[index];
+    const bool recordEvents = events.capacity > 0;
     const kernels::KernelContext ctx{w.forces.data(), static_cast<std::uint32_t>(w.forces.size()),
                                      w.colliders.data(), static_cast<std::uint32_t>(w.colliders.size()),
                                      &w.fields};
@@ -140,9 +154,10 @@ void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
                 if (spawnMode && a.age[i] < 0.0f) {
                     continue;  // free slot
                 }
-                kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, loadParticle(a, params, i), dt);
+                kernels::Particle p = loadParticle(a, params, i);
+                kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
                 storeParticle(a, i, r.particle);
-                countUpdate(r, out);
+                countUpdate(p, r, index, glm::length(p.velocity), recordEvents, out);
                 if (spawnMode && (r.events & kernels::SD_EVENT_DIED) != 0u) {
                     out.dead.push_back(static_cast<std::uint32_t>(i));
                 }
@@ -152,7 +167,7 @@ void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
 
     // Free the dead: their slots go on the free list in slot order.
     std::uint64_t born = 0, died = 0;
-    mergeChunks(chunks, e, stats, born, died);
+    mergeChunks(chunks, e, stats, events, born, died);
 
     // Emission (spawn mode): births owed this step take free slots; beyond
     // capacity they are dropped and counted, never overwriting live particles.
@@ -175,14 +190,14 @@ void stepEmitter(World& w, EmitterState& e, float dt, StepStats& stats) {
                     r.events |= kernels::SD_EVENT_DIED;
                 }
                 storeParticle(a, slot, r.particle);
-                countUpdate(r, birthChunks[c]);
+                countUpdate(r.particle, r, index, glm::length(r.particle.velocity), recordEvents, birthChunks[c]);
                 if ((r.events & kernels::SD_EVENT_DIED) != 0u) {
                     birthChunks[c].dead.push_back(slot);
                 }
             }
         });
         e.nextSerial += static_cast<std::uint32_t>(count);
-        mergeChunks(birthChunks, e, stats, born, died);
+        mergeChunks(birthChunks, e, stats, events, born, died);
     }
 
     // Tally.

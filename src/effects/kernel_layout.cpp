@@ -6,6 +6,8 @@
 
 namespace spindrift::kernels {
 
+static_assert(sizeof(EventRecord) == 32);
+static_assert(offsetof(EventRecord, header) == 16);
 static_assert(sizeof(CurveParams) == 176);
 static_assert(offsetof(CurveParams, times) == 128);
 static_assert(offsetof(CurveParams, count) == 160);

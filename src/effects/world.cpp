@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
+#include <utility>
 
 namespace spindrift {
 namespace {
@@ -90,13 +91,18 @@ EmitterState& emitterFromId(World& world, EmitterId id) {
 }
 
 WorldId createWorld(const WorldDef& def) {
+    if (def.framesInFlight < 1 || def.framesInFlight > gpu::kMaxFramesInFlight) {
+        throw Error(fmt::format("WorldDef::framesInFlight must be 1 to {}, got {}", gpu::kMaxFramesInFlight,
+                                def.framesInFlight));
+    }
     auto world = std::make_unique<World>(def);
+    world->events.capacity = def.eventCapacity;
     // Auto stays on the CPU backend for now: the Vulkan backend does not yet run
     // flow fields, terrain or cube maps, so a scene that runs on the CPU could
     // fail on a GPU. Once it does, auto takes a real GPU (gpu::hardwareGpuAvailable();
     // never lavapipe, which is slower than the CPU backend).
     if (def.backend == Backend::Vulkan) {
-        world->gpu.reset(gpu::createGpuWorld().release());
+        world->gpu.reset(gpu::createGpuWorld(def.framesInFlight, def.eventCapacity).release());
     }
     std::lock_guard lock(gWorldsMutex);
     for (std::size_t i = 0; i < gWorlds.size(); ++i) {
@@ -202,38 +208,74 @@ EmitterId createEmitter(WorldId id, const EmitterDef& def) {
     return {index + 1};
 }
 
+namespace {
+
+// Stats with one zero hit count per collider, for the steps' counts to add to.
+StepStats emptyStats(const World& w) {
+    StepStats stats;
+    stats.colliderHits.resize(w.colliders.size());
+    for (std::size_t i = 0; i < w.colliders.size(); ++i) {
+        stats.colliderHits[i].collider = {static_cast<std::uint32_t>(i + 1)};
+    }
+    return stats;
+}
+
+// Alive (after the counted steps) and the collision total.
+void addTotals(const World& w, StepStats& stats) {
+    for (const auto& emitter : w.emitters) {
+        stats.alive += emitter->alive;
+    }
+    for (const ColliderStepStats& c : stats.colliderHits) {
+        stats.collisions += c.hits;
+    }
+}
+
+}  // namespace
+
 StepStats stepWorld(WorldId id, float dt) {
     World& w = worldFromId(id);
     if (!(dt > 0.0f) || !std::isfinite(dt)) {
         throw Error(fmt::format("stepWorld: dt must be a finite time > 0 s, got {}", dt));
     }
     auto start = std::chrono::steady_clock::now();
-    StepStats stats;
+    StepStats stats = emptyStats(w);
     stats.step = w.stepIndex;
-    stats.colliderHits.resize(w.colliders.size());
-    for (std::size_t i = 0; i < w.colliders.size(); ++i) {
-        stats.colliderHits[i].collider = {static_cast<std::uint32_t>(i + 1)};
-    }
     if (w.gpu) {
-        gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, stats);
+        gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, w.stepIndex, stats, w.events);
     } else {
-        for (auto& emitter : w.emitters) {
-            if (!emitter->def.stateless) {
-                stepEmitter(w, *emitter, dt, stats);
+        StepEvents events{w.events.capacity, {}, 0};
+        for (std::uint32_t i = 0; i < w.emitters.size(); ++i) {
+            if (!w.emitters[i]->def.stateless) {
+                stepEmitter(w, i, dt, stats, events);
             }
         }
+        w.events.addStep(w.stepIndex, events.records, events.dropped);
+        stats.countedSteps = 1;
+        stats.lastCountedStep = w.stepIndex;
     }
     stepFluids(w, dt, stats);
-    for (auto& emitter : w.emitters) {
-        stats.alive += emitter->alive;
-    }
-    for (const ColliderStepStats& c : stats.colliderHits) {
-        stats.collisions += c.hits;
-    }
+    addTotals(w, stats);
     w.time += dt;
     w.stepIndex += 1;
     stats.time = w.time;
     stats.milliseconds = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    return stats;
+}
+
+EventBatch takeEvents(WorldId id) {
+    World& w = worldFromId(id);
+    return std::exchange(w.events.batch, EventBatch{});
+}
+
+StepStats flushWorld(WorldId id) {
+    World& w = worldFromId(id);
+    StepStats stats = emptyStats(w);
+    stats.step = w.stepIndex == 0 ? 0 : w.stepIndex - 1;
+    stats.time = w.time;
+    if (w.gpu) {
+        gpu::collectAll(*w.gpu, w.emitters, stats, w.events);
+    }
+    addTotals(w, stats);
     return stats;
 }
 

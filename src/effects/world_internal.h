@@ -4,6 +4,7 @@
 
 #include "core/parallel.h"
 #include "effects/emitter_state.h"
+#include "effects/event_queue.h"
 #include "effects/fields.h"
 
 #include <spindrift/world.h>
@@ -41,6 +42,7 @@ struct World {
     std::vector<kernels::ColliderParams> colliders;
     FieldSet fields;
     std::vector<std::unique_ptr<EmitterState>> emitters;
+    EventQueue events;
     double time = 0.0;
     std::uint64_t stepIndex = 0;
     /// Set when the world runs on Vulkan: then the particle data lives on the
@@ -79,7 +81,16 @@ BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt);
 /// Advances every fluid by dt; appends one FluidStepStats per fluid to `stats`.
 void stepFluids(World& world, float dt, StepStats& stats);
 
-/// Advances one emitter by dt; adds its births, deaths and hits to `stats`.
-void stepEmitter(World& world, EmitterState& emitter, float dt, StepStats& stats);
+/// A step's events on the CPU backend, in emitter and slot order: at most
+/// `capacity` records, the rest counted.
+struct StepEvents {
+    std::uint32_t capacity = 0;
+    std::vector<kernels::EventRecord> records;
+    std::uint64_t dropped = 0;
+};
+
+/// Advances emitter `index` by dt; adds its births, deaths and hits to
+/// `stats` and its events to `events`.
+void stepEmitter(World& world, std::uint32_t index, float dt, StepStats& stats, StepEvents& events);
 
 }  // namespace spindrift

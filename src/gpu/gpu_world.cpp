@@ -20,8 +20,9 @@ namespace spindrift::gpu {
 namespace {
 
 // Bindings of effects_update.comp, set 0 in order: emitter parameters,
-// forces, colliders, the nine slot arrays (see GpuEmitter), the event counters.
-constexpr std::uint32_t kBindingCount = 12;
+// forces, colliders, the eight slot arrays (see GpuEmitter), the step's
+// counters and the world's events buffer of the frame.
+constexpr std::uint32_t kBindingCount = 13;
 // Set 1 (spawn mode): dead stack, current alive list, next alive list, schedule.
 constexpr std::uint32_t kListBindingCount = 4;
 constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of effects_update.comp
@@ -34,16 +35,16 @@ struct DeadHeader {
     std::uint32_t dispatch[3];  // VkDispatchIndirectCommand of the next update pass
     std::uint32_t deadCount;
     std::uint32_t popped;
-    std::uint32_t pad[3];
+    std::uint32_t nextSerial;
+    std::uint32_t pad[2];
 };
 static_assert(sizeof(DeadHeader) == 32);
 constexpr VkDeviceSize kAliveHeaderBytes = 16;
 
 struct ScheduleHeader {
-    std::uint32_t firstSerial;
     std::uint32_t burstRuns;
     std::uint32_t rateFirst;
-    std::uint32_t pad;
+    std::uint32_t pad[2];
     float rateSpan;
     float rateCarry;
     float rate;
@@ -54,7 +55,17 @@ static_assert(sizeof(ScheduleHeader) == 32);
 struct PushConstants {
     float dt;
     std::uint32_t count;
+    std::uint32_t emitterIndex;
+    std::uint32_t pad;
 };
+
+// Header of a frame's events buffer (effects_update.comp, binding 12).
+struct EventsHeader {
+    std::uint32_t count;     // events the step produced, beyond the capacity too
+    std::uint32_t capacity;  // records the buffer holds
+    std::uint32_t pad[2];
+};
+static_assert(sizeof(EventsHeader) == 16);
 
 // Event counters written by the shader: born, died, two pads, hits[32].
 struct Counters {
@@ -192,9 +203,10 @@ void uploadTable(Device& d, Buffer& buffer, std::span<const T> items) {
     upload(d, std::span(&t, 1));
 }
 
-std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e) {
-    return {&e.params,    &w.forces,    &w.colliders, &e.positions, &e.velocities, &e.ages,
-            &e.lifetimes, &e.births,    &e.sizes,     &e.rotations, &e.colors,     &e.counters};
+std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e, std::uint32_t frame) {
+    return {&e.params, &w.forces,    &w.colliders, &e.positions,       &e.velocities,
+            &e.ages,   &e.lifetimes, &e.births,    &e.sizes,           &e.rotations,
+            &e.colors, &e.counters[frame], &w.frames[frame].events};
 }
 
 VkDescriptorPool createDescriptorPool(Device& d, std::uint32_t sets, std::uint32_t buffers) {
@@ -233,18 +245,21 @@ VkDescriptorSet writeSet(Device& d, VkDescriptorPool pool, VkDescriptorSetLayout
     return set;
 }
 
-// Set 0 of every emitter; a spawn emitter also gets its two set-1 variants,
-// one per role of its alive lists.
+// Set 0 of every emitter per frame in flight; a spawn emitter also gets its
+// set-1 variants, one per role of its alive lists and frame.
 void createDescriptorSets(GpuWorld& w, GpuEmitter& e) {
     Device& d = *w.device;
-    e.descriptorPool = e.spawn ? createDescriptorPool(d, 3, kBindingCount + 2 * kListBindingCount)
-                               : createDescriptorPool(d, 1, kBindingCount);
-    std::array<Buffer*, kBindingCount> buffers = bindingBuffers(w, e);
-    e.descriptorSet = writeSet(d, e.descriptorPool, w.setLayout, buffers);
-    if (e.spawn) {
-        for (std::uint32_t p = 0; p < 2; ++p) {
-            std::array<Buffer*, kListBindingCount> lists{&e.dead, &e.alive[p], &e.alive[1 - p], &e.schedule};
-            e.listSets[p] = writeSet(d, e.descriptorPool, w.listLayout, lists);
+    const std::uint32_t frames = w.framesInFlight;
+    e.descriptorPool = e.spawn ? createDescriptorPool(d, 3 * frames, frames * (kBindingCount + 2 * kListBindingCount))
+                               : createDescriptorPool(d, frames, frames * kBindingCount);
+    for (std::uint32_t f = 0; f < frames; ++f) {
+        std::array<Buffer*, kBindingCount> buffers = bindingBuffers(w, e, f);
+        e.descriptorSets[f] = writeSet(d, e.descriptorPool, w.setLayout, buffers);
+        if (e.spawn) {
+            for (std::uint32_t p = 0; p < 2; ++p) {
+                std::array<Buffer*, kListBindingCount> lists{&e.dead, &e.alive[p], &e.alive[1 - p], &e.schedules[f]};
+                e.listSets[p][f] = writeSet(d, e.descriptorPool, w.listLayout, lists);
+            }
         }
     }
 }
@@ -254,12 +269,16 @@ void destroyEmitter(Device& d, GpuEmitter& e) {
         vkDestroyDescriptorPool(d.device, e.descriptorPool, nullptr);  // frees its set
     }
     for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.lifetimes, &e.births, &e.sizes,
-                      &e.rotations, &e.colors, &e.counters, &e.dead, &e.alive[0], &e.alive[1], &e.schedule}) {
+                      &e.rotations, &e.colors, &e.dead, &e.alive[0], &e.alive[1]}) {
         destroyBuffer(d, *b);
+    }
+    for (std::uint32_t f = 0; f < kMaxFramesInFlight; ++f) {
+        destroyBuffer(d, e.counters[f]);
+        destroyBuffer(d, e.schedules[f]);
     }
 }
 
-void allocateSlots(Device& d, GpuEmitter& e) {
+void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
     // Vulkan buffers cannot be empty (VkBufferCreateInfo: size > 0).
     const VkDeviceSize n = std::max<VkDeviceSize>(e.capacity, 1);
     e.params = createStorageBuffer(d, sizeof(kernels::EmitterParams));
@@ -271,8 +290,10 @@ void allocateSlots(Device& d, GpuEmitter& e) {
     e.sizes = createStorageBuffer(d, n * 4);
     e.rotations = createStorageBuffer(d, n * 8);
     e.colors = createStorageBuffer(d, n * 16);
-    e.counters = createHostStorageBuffer(d, sizeof(Counters));
-    std::memset(e.counters.mapped, 0, sizeof(Counters));
+    for (std::uint32_t f = 0; f < frames; ++f) {
+        e.counters[f] = createHostStorageBuffer(d, sizeof(Counters));
+        std::memset(e.counters[f].mapped, 0, sizeof(Counters));
+    }
     if (e.spawn) {
         // The dead buffer's header is also the update pass's indirect dispatch.
         e.dead = createBuffer(d, sizeof(DeadHeader) + n * 4,
@@ -281,7 +302,10 @@ void allocateSlots(Device& d, GpuEmitter& e) {
                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
         e.alive[0] = createStorageBuffer(d, kAliveHeaderBytes + n * 4);
         e.alive[1] = createStorageBuffer(d, kAliveHeaderBytes + n * 4);
-        e.schedule = createHostStorageBuffer(d, sizeof(ScheduleHeader) + std::max<VkDeviceSize>(e.scheduleRuns, 1) * 8);
+        for (std::uint32_t f = 0; f < frames; ++f) {
+            e.schedules[f] =
+                createHostStorageBuffer(d, sizeof(ScheduleHeader) + std::max<VkDeviceSize>(e.scheduleRuns, 1) * 8);
+        }
     }
 }
 
@@ -319,7 +343,7 @@ void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
     if (e.spawn) {
         // Every slot dead, stacked as the CPU's free list: slot 0 on top.
         std::vector<std::uint32_t> dead(sizeof(DeadHeader) / 4 + s.freeSlots.size(), 0);
-        DeadHeader header{{0, 1, 1}, static_cast<std::uint32_t>(s.freeSlots.size()), 0, {0, 0, 0}};
+        DeadHeader header{{0, 1, 1}, static_cast<std::uint32_t>(s.freeSlots.size()), 0, s.nextSerial, {0, 0}};
         std::memcpy(dead.data(), &header, sizeof(header));
         std::copy(s.freeSlots.begin(), s.freeSlots.end(), dead.begin() + sizeof(DeadHeader) / 4);
         std::array<std::uint32_t, 4> empty{};
@@ -347,20 +371,19 @@ void computeToCompute(VkCommandBuffer cmd) {
 // Writes the spawn emitter's schedule for this step into its mapped buffer
 // (read by the emit pass after the submission; host writes before
 // vkQueueSubmit need no barrier) and returns how many births it owes.
-std::uint32_t writeSchedule(GpuEmitter& e, EmitterState& s, double time, float dt) {
+std::uint32_t writeSchedule(GpuEmitter& e, std::uint32_t frame, EmitterState& s, double time, float dt) {
     BirthSchedule b = scheduleBirths(s, time, dt);
     std::uint64_t total = b.total();
     if (total > std::numeric_limits<std::uint32_t>::max()) {
         throw Error(fmt::format("emitter '{}': {} births in one step", s.def.name, total));
     }
     ScheduleHeader h{};
-    h.firstSerial = s.nextSerial;
     h.burstRuns = static_cast<std::uint32_t>(b.bursts.size());
     h.rateSpan = static_cast<float>(b.t1 - b.t0);
     h.rateCarry = static_cast<float>(b.carry);
     h.rate = static_cast<float>(b.rate);
     h.maxAge = static_cast<float>(b.dt);
-    auto* runs = reinterpret_cast<std::uint32_t*>(static_cast<char*>(e.schedule.mapped) + sizeof(h));
+    auto* runs = reinterpret_cast<std::uint32_t*>(static_cast<char*>(e.schedules[frame].mapped) + sizeof(h));
     std::uint32_t end = 0;
     for (std::size_t r = 0; r < b.bursts.size(); ++r) {
         end += b.bursts[r].count;
@@ -368,26 +391,28 @@ std::uint32_t writeSchedule(GpuEmitter& e, EmitterState& s, double time, float d
         std::memcpy(&runs[2 * r + 1], &b.bursts[r].age, 4);
     }
     h.rateFirst = end;
-    std::memcpy(e.schedule.mapped, &h, sizeof(h));
+    std::memcpy(e.schedules[frame].mapped, &h, sizeof(h));
     return static_cast<std::uint32_t>(total);
 }
 
-void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, GpuEmitter& e, float dt, std::uint32_t count) {
-    std::array<VkDescriptorSet, 3> sets{e.descriptorSet, e.spawn ? e.listSets[e.parity] : w.placeholderSet,
-                                        w.fields.set};
+void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, std::uint32_t frame, std::size_t index, float dt,
+                 std::uint32_t count) {
+    GpuEmitter& e = *w.emitters[index];
+    std::array<VkDescriptorSet, 3> sets{e.descriptorSets[frame],
+                                        e.spawn ? e.listSets[e.parity][frame] : w.placeholderSet, w.fields.set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 3, sets.data(), 0, nullptr);
-    PushConstants push{dt, count};
+    PushConstants push{dt, count, static_cast<std::uint32_t>(index), 0};
     vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
 std::uint32_t groupsFor(std::uint32_t threads) { return (threads + kWorkgroupSize - 1) / kWorkgroupSize; }
 
-// Takes the step's counts out of the mapped counters and zeroes them for the
-// next step (after the fence, so the device is done with them).
-void collectCounters(GpuEmitter& e, EmitterState& s, StepStats& stats) {
+// Takes a finished step's counts out of the mapped counters and zeroes them
+// for the step that reuses the frame.
+void collectCounters(GpuEmitter& e, std::uint32_t frame, EmitterState& s, StepStats& stats) {
     Counters c;
-    std::memcpy(&c, e.counters.mapped, sizeof(c));
-    std::memset(e.counters.mapped, 0, sizeof(c));
+    std::memcpy(&c, e.counters[frame].mapped, sizeof(c));
+    std::memset(e.counters[frame].mapped, 0, sizeof(c));
     for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
         stats.colliderHits[k].hits += c.hits[k];
     }
@@ -396,11 +421,54 @@ void collectCounters(GpuEmitter& e, EmitterState& s, StepStats& stats) {
     stats.died += c.died;
     stats.clamped += c.clamped;
     if (e.spawn) {
-        // Every birth of a spawn emitter comes from the emit pass, which numbers
-        // them firstSerial + k in schedule order, as the CPU does.
+        // Every birth of a spawn emitter came from the emit pass, numbered
+        // from the device's nextSerial in schedule order, as the CPU does.
         s.nextSerial += c.born;
-        e.parity = 1 - e.parity;  // the next list becomes the current one
     }
+}
+
+// Takes a finished step's events out of the frame's mapped buffer.
+void collectEvents(GpuFrame& f, EventQueue& events) {
+    EventsHeader h;
+    std::memcpy(&h, f.events.mapped, sizeof(h));
+    const std::uint32_t kept = std::min(h.count, h.capacity);
+    const auto* records =
+        reinterpret_cast<const kernels::EventRecord*>(static_cast<const char*>(f.events.mapped) + sizeof(h));
+    events.addStep(f.step, std::span(records, kept), h.count - kept);
+    h.count = 0;
+    std::memcpy(f.events.mapped, &h, sizeof(h));
+}
+
+// Waits for frame f's step (if one is pending) and frees its command buffer.
+bool waitForFrame(Device& d, GpuFrame& f) {
+    if (f.cmd == VK_NULL_HANDLE) {
+        return false;
+    }
+    check(vkWaitForFences(d.device, 1, &f.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    check(vkResetFences(d.device, 1, &f.fence), "vkResetFences");
+    vkFreeCommandBuffers(d.device, d.commandPool, 1, &f.cmd);
+    f.cmd = VK_NULL_HANDLE;
+    return true;
+}
+
+// Waits for frame f's step, if any, and collects its counts and events. The
+// fence wait makes the device's writes to host-coherent memory visible (the
+// step ends with a barrier to the host stage; Vulkan spec 7.9).
+void collectFrame(GpuWorld& w, std::uint32_t frame, std::span<const std::unique_ptr<EmitterState>> emitters,
+                  StepStats& stats, EventQueue& events) {
+    GpuFrame& f = w.frames[frame];
+    const std::uint64_t step = f.step;
+    if (!waitForFrame(*w.device, f)) {
+        return;
+    }
+    for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+        if (w.emitters[i]) {
+            collectCounters(*w.emitters[i], frame, *emitters[i], stats);
+        }
+    }
+    collectEvents(f, events);
+    stats.countedSteps += 1;
+    stats.lastCountedStep = step;
 }
 
 // --- Sampled fields (set 2) ---------------------------------------------------
@@ -572,6 +640,7 @@ void requireExtent(const Device& d, std::uint32_t size, std::uint32_t limit, con
 
 // Creates and uploads one field image; on failure nothing is left behind.
 void appendField(GpuWorld& w, std::vector<Image>& images, const ImageShape& shape, const std::vector<char>& bytes) {
+    waitForSteps(w);  // no step in flight may use the descriptor set rewritten below
     Device& d = *w.device;
     Image img = createSampledImage(d, shape);
     try {
@@ -593,8 +662,13 @@ DebugLog& worldDebugLog() {
     return log;
 }
 
-std::unique_ptr<GpuWorld> createGpuWorld() {
+std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight, std::uint32_t eventCapacity) {
+    if (framesInFlight < 1 || framesInFlight > kMaxFramesInFlight) {
+        throw Error(fmt::format("framesInFlight must be 1 to {}, got {}", kMaxFramesInFlight, framesInFlight));
+    }
     auto w = std::make_unique<GpuWorld>();
+    w->framesInFlight = framesInFlight;
+    w->eventCapacity = eventCapacity;
     try {
         w->device = createDevice({validationSetting().load(), &worldDebugLog()});
         Device& d = *w->device;
@@ -611,6 +685,16 @@ std::unique_ptr<GpuWorld> createGpuWorld() {
         w->colliders = createStorageBuffer(d, kHeaderBytes + kMaxColliders * sizeof(kernels::ColliderParams));
         uploadForces(*w, {});
         uploadColliders(*w, {});
+        for (std::uint32_t f = 0; f < framesInFlight; ++f) {
+            GpuFrame& frame = w->frames[f];
+            auto fenceInfo = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+            check(vkCreateFence(d.device, &fenceInfo, nullptr, &frame.fence), "vkCreateFence");
+            frame.events = createHostStorageBuffer(d, sizeof(EventsHeader) +
+                                                          std::max<VkDeviceSize>(eventCapacity, 1) *
+                                                              sizeof(kernels::EventRecord));
+            EventsHeader header{0, eventCapacity, {0, 0}};
+            std::memcpy(frame.events.mapped, &header, sizeof(header));
+        }
     } catch (...) {
         destroyGpuWorld(*w);
         throw;
@@ -625,8 +709,18 @@ void destroyGpuWorld(GpuWorld& w) {
     }
     Device& d = *w.device;
     if (d.device != VK_NULL_HANDLE) {
-        vkDeviceWaitIdle(d.device);
+        vkDeviceWaitIdle(d.device);  // teardown, not the step loop
         w.sort.reset();
+        for (GpuFrame& f : w.frames) {
+            if (f.cmd != VK_NULL_HANDLE) {
+                vkFreeCommandBuffers(d.device, d.commandPool, 1, &f.cmd);
+            }
+            if (f.fence != VK_NULL_HANDLE) {
+                vkDestroyFence(d.device, f.fence, nullptr);
+            }
+            destroyBuffer(d, f.events);
+            f = GpuFrame{};
+        }
         for (auto& e : w.emitters) {
             if (e) {
                 destroyEmitter(d, *e);
@@ -658,10 +752,12 @@ void destroyGpuWorld(GpuWorld& w) {
 }
 
 void uploadForces(GpuWorld& w, std::span<const kernels::ForceParams> forces) {
+    waitForSteps(w);
     uploadTable(*w.device, w.forces, forces);
 }
 
 void uploadColliders(GpuWorld& w, std::span<const kernels::ColliderParams> colliders) {
+    waitForSteps(w);
     uploadTable(*w.device, w.colliders, colliders);
 }
 
@@ -717,7 +813,7 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
     e->spawn = initial.def.lifecycle == Lifecycle::Spawn;
     e->scheduleRuns = static_cast<std::uint32_t>(initial.def.bursts.size());
     try {
-        allocateSlots(d, *e);
+        allocateSlots(d, *e, w.framesInFlight);
         uploadSlots(d, *e, initial);
         createDescriptorSets(w, *e);
     } catch (...) {
@@ -727,9 +823,31 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
     w.emitters.push_back(std::move(e));
 }
 
+void waitForSteps(GpuWorld& w) {
+    for (std::uint32_t f = 0; f < w.framesInFlight; ++f) {
+        GpuFrame& frame = w.frames[f];
+        if (frame.cmd != VK_NULL_HANDLE) {
+            check(vkWaitForFences(w.device->device, 1, &frame.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+        }
+    }
+}
+
+void collectAll(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, StepStats& stats,
+                EventQueue& events) {
+    // Frames are reused round robin: the next to submit holds the oldest
+    // pending step (or none).
+    for (std::uint32_t k = 0; k < w.framesInFlight; ++k) {
+        collectFrame(w, static_cast<std::uint32_t>((w.submitted + k) % w.framesInFlight), emitters, stats, events);
+    }
+}
+
 void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, double time, float dt,
-                  StepStats& stats) {
+                  std::uint64_t step, StepStats& stats, EventQueue& events) {
     Device& d = *w.device;
+    // This frame's counters, schedules and events buffer were last used by
+    // step `step - framesInFlight`, collected at the end of the previous call.
+    const auto frame = static_cast<std::uint32_t>(w.submitted % w.framesInFlight);
+
     // Births owed this step, per emitter (spawn mode), from the shared schedule.
     std::vector<std::uint32_t> births(w.emitters.size(), 0);
     // The pipelines of each emitter's passes (compiled here on first use, not
@@ -742,7 +860,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
             continue;
         }
         if (e->spawn) {
-            births[i] = writeSchedule(*e, *emitters[i], time, dt);
+            births[i] = writeSchedule(*e, frame, *emitters[i], time, dt);
             anySpawn = true;
             pipelines[i] = {pipelineFor(w, Pass::SpawnUpdate, *emitters[i]),
                             pipelineFor(w, Pass::SpawnEmit, *emitters[i]),
@@ -751,71 +869,93 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
             pipelines[i][0] = pipelineFor(w, Pass::RecycleUpdate, *emitters[i]);
         }
     }
-    // Emitters touch disjoint buffers and only add to their own counters, so
-    // the dispatches of one pass need no barrier between them.
-    submitOnce(d, [&](VkCommandBuffer cmd) {
-        // Earlier steps' and uploads' writes (lists, the indirect dispatch)
-        // before this step reads them, also as an indirect command.
-        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
-                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    auto spawning = [&](std::size_t i) {
+        GpuEmitter* e = w.emitters[i].get();
+        return e && e->spawn && e->capacity > 0;
+    };
 
-        // Update: recycle emitters over every slot, spawn emitters over their
-        // current alive list (its size written by the GPU last step).
-        for (std::size_t i = 0; i < w.emitters.size(); ++i) {
-            GpuEmitter* e = w.emitters[i].get();
-            if (e && e->capacity > 0) {
-                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][0]);
-                bindEmitter(w, cmd, *e, dt, e->capacity);
-                if (e->spawn) {
-                    vkCmdDispatchIndirect(cmd, e->dead.buffer, 0);
-                } else {
-                    vkCmdDispatch(cmd, groupsFor(e->capacity), 1, 1);
-                }
-            }
-        }
-        if (anySpawn) {
-            // Emit: the dead stack is complete once every update is done.
-            computeToCompute(cmd);
-            for (std::size_t i = 0; i < w.emitters.size(); ++i) {
-                GpuEmitter* e = w.emitters[i].get();
-                if (e && e->spawn && e->capacity > 0 && births[i] > 0) {
-                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][1]);
-                    bindEmitter(w, cmd, *e, dt, births[i]);
-                    // Births beyond the capacity cannot find a slot: thread 0
-                    // counts them, so the dispatch stays within the device limit.
-                    vkCmdDispatch(cmd, groupsFor(std::min(births[i], e->capacity)), 1, 1);
-                }
-            }
-            // Finish: pop the taken slots, write the next update's dispatch.
-            computeToCompute(cmd);
-            for (std::size_t i = 0; i < w.emitters.size(); ++i) {
-                GpuEmitter* e = w.emitters[i].get();
-                if (e && e->spawn && e->capacity > 0) {
-                    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][2]);
-                    bindEmitter(w, cmd, *e, dt, 1);
-                    vkCmdDispatch(cmd, 1, 1, 1);
-                }
-            }
-            // The next step's update reads the dispatch and the lists.
-            barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
-                    VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-                    VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-        }
-        // Counters are read through the mapping after the fence: make the
-        // shader's writes available to the host (Vulkan spec 7.9, host access).
-        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
-                VK_ACCESS_HOST_READ_BIT);
-    });
+    VkCommandBuffer cmd = beginOneTime(d);
+    // Earlier steps' and uploads' writes (lists, the indirect dispatch)
+    // before this step reads them, also as an indirect command.
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+            VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
+            VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+            VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+
+    // Update: recycle emitters over every slot, spawn emitters over their
+    // current alive list (its size written by the GPU last step). Emitters
+    // touch disjoint buffers and only add to shared counters atomically, so
+    // the dispatches of one pass need no barrier between them.
     for (std::size_t i = 0; i < w.emitters.size(); ++i) {
-        if (w.emitters[i]) {
-            collectCounters(*w.emitters[i], *emitters[i], stats);
+        GpuEmitter* e = w.emitters[i].get();
+        if (e && e->capacity > 0) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][0]);
+            bindEmitter(w, cmd, frame, i, dt, e->capacity);
+            if (e->spawn) {
+                vkCmdDispatchIndirect(cmd, e->dead.buffer, 0);
+            } else {
+                vkCmdDispatch(cmd, groupsFor(e->capacity), 1, 1);
+            }
         }
     }
+    if (anySpawn) {
+        // Emit: the dead stack is complete once every update is done.
+        computeToCompute(cmd);
+        for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+            if (spawning(i) && births[i] > 0) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][1]);
+                bindEmitter(w, cmd, frame, i, dt, births[i]);
+                // Births beyond the capacity cannot find a slot: thread 0
+                // counts them, so the dispatch stays within the device limit.
+                vkCmdDispatch(cmd, groupsFor(std::min(births[i], w.emitters[i]->capacity)), 1, 1);
+            }
+        }
+        // Finish: pop the taken slots, number the births, write the next
+        // update's dispatch.
+        computeToCompute(cmd);
+        for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+            if (spawning(i)) {
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][2]);
+                bindEmitter(w, cmd, frame, i, dt, births[i]);
+                vkCmdDispatch(cmd, 1, 1, 1);
+            }
+        }
+        // The next step's update reads the dispatch and the lists.
+        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    }
+    // Counters and events are read through the mapping after the fence: make
+    // the shader's writes available to the host (Vulkan spec 7.9, host access).
+    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+            VK_ACCESS_HOST_READ_BIT);
+    VkResult r = vkEndCommandBuffer(cmd);
+    if (r == VK_SUCCESS) {
+        auto submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+        submit.commandBufferCount = 1;
+        submit.pCommandBuffers = &cmd;
+        r = vkQueueSubmit(d.queue, 1, &submit, w.frames[frame].fence);
+    }
+    if (r != VK_SUCCESS) {
+        vkFreeCommandBuffers(d.device, d.commandPool, 1, &cmd);
+        check(r, "vkQueueSubmit(step)");
+    }
+    w.frames[frame].cmd = cmd;
+    w.frames[frame].step = step;
+    w.submitted += 1;
+    for (auto& e : w.emitters) {
+        if (e && e->spawn) {
+            e->parity = 1 - e->parity;  // the next list becomes the current one
+        }
+    }
+    // Collect step `step - (framesInFlight - 1)`, whose frame the next call
+    // reuses: with one frame that is this step (a wait), with more an earlier
+    // one that is usually done, so the host and the device overlap.
+    collectFrame(w, static_cast<std::uint32_t>(w.submitted % w.framesInFlight), emitters, stats, events);
 }
 
 ParticleArrays readSlots(GpuWorld& w, std::size_t index) {
+    waitForSteps(w);
     GpuEmitter& e = *w.emitters.at(index);
     const VkDeviceSize n = e.capacity;
     ParticleArrays p;

@@ -10,6 +10,7 @@
 #include "effects/emitter_state.h"
 #include "effects/fields.h"
 #include "gpu/gpu_sort.h"
+#include "effects/event_queue.h"
 #include "gpu/vulkan_buffer.h"
 
 #include <spindrift/world.h>
@@ -47,24 +48,38 @@ struct GpuFields {
     VkFormat cubeFormat = VK_FORMAT_UNDEFINED;    // normal xyz, depth w
 };
 
+/// Most steps a GPU world runs ahead of the host (WorldDef::framesInFlight).
+inline constexpr std::uint32_t kMaxFramesInFlight = 3;
+
 /// One state-preserving emitter on the device (structure of arrays, as the
 /// CPU's ParticleArrays; rotation and angular velocity interleaved as vec2).
+/// What the host writes or reads per step has one copy per frame in flight.
 struct GpuEmitter {
     std::uint32_t capacity = 0;
     Buffer params, positions, velocities, ages, lifetimes, births, sizes, rotations, colors;
-    Buffer counters;  // host-visible: born, died, clamped, pad, hits[32]
+    Buffer counters[kMaxFramesInFlight];  // host-visible: born, died, clamped, pad, hits[32]
     VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
-    VkDescriptorSet descriptorSet = VK_NULL_HANDLE;  // set 0
+    VkDescriptorSet descriptorSets[kMaxFramesInFlight] = {};  // set 0, per frame
 
     // Spawn mode only (set 1 of effects_update.comp).
     bool spawn = false;
-    Buffer dead;      // indirect dispatch args, dead count, popped, dead slot stack
+    Buffer dead;      // indirect dispatch args, dead count, popped, next serial, dead slot stack
     Buffer alive[2];  // count, 3 pads, slot indices
-    Buffer schedule;  // host-visible: the step's births (see effects_update.comp)
-    std::uint32_t scheduleRuns = 0;  // burst runs the schedule buffer holds
-    /// listSets[p]: alive[p] is the current list, alive[1 - p] the next.
-    VkDescriptorSet listSets[2] = {VK_NULL_HANDLE, VK_NULL_HANDLE};
-    std::uint32_t parity = 0;
+    Buffer schedules[kMaxFramesInFlight];  // host-visible: the step's births (see effects_update.comp)
+    std::uint32_t scheduleRuns = 0;  // burst runs a schedule buffer holds
+    /// listSets[p][f]: alive[p] is the current list, alive[1 - p] the next,
+    /// with frame f's schedule.
+    VkDescriptorSet listSets[2][kMaxFramesInFlight] = {};
+    std::uint32_t parity = 0;  // flips with every submitted step
+};
+
+/// One step in flight: its command buffer, the fence that says it is done,
+/// and the events buffer the host reads then.
+struct GpuFrame {
+    VkFence fence = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;  // null when no step is pending
+    std::uint64_t step = 0;
+    Buffer events;  // host-visible: count, capacity, 2 pads, EventRecord[capacity]
 };
 
 struct GpuWorld {
@@ -88,6 +103,10 @@ struct GpuWorld {
     std::vector<std::unique_ptr<GpuEmitter>> emitters;
     /// Back-to-front sort (gpu_sort.h), created at the first sort.
     std::unique_ptr<GpuSort> sort;
+    std::uint32_t framesInFlight = 1;
+    std::uint32_t eventCapacity = 0;
+    GpuFrame frames[kMaxFramesInFlight];
+    std::uint64_t submitted = 0;  // steps submitted so far; frame submitted % framesInFlight is next
 };
 
 /// Validation for GPU worlds created from now on. Default: on when the
@@ -96,7 +115,9 @@ void setWorldValidation(bool on);
 /// Where the debug messengers of all validated GPU worlds write.
 DebugLog& worldDebugLog();
 
-std::unique_ptr<GpuWorld> createGpuWorld();
+/// framesInFlight in [1, kMaxFramesInFlight]; eventCapacity: most events
+/// recorded per step (0: none).
+std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight = 1, std::uint32_t eventCapacity = 0);
 void destroyGpuWorld(GpuWorld& w);
 
 void uploadForces(GpuWorld& w, std::span<const kernels::ForceParams> forces);
@@ -115,13 +136,23 @@ void addCubeMap(GpuWorld& w, const DepthCubeMap& cube, const std::string& name);
 /// the order of the CPU's free list; a stateless one gets no device state.
 void addEmitter(GpuWorld& w, const EmitterState& initial);
 
-/// One step [time, time + dt) of every state-preserving emitter: one
-/// submission. Spawn emitters' births follow the CPU's schedule
-/// (scheduleBirths); their emission carry and serials advance as on the CPU.
-/// Adds births, deaths, clamped births and hits to `stats` and updates
-/// EmitterState::alive.
+/// Submits step `step`, [time, time + dt), of every state-preserving emitter:
+/// one submission. Spawn emitters' births follow the CPU's schedule
+/// (scheduleBirths), numbered on the device. Then waits for and collects
+/// step `step - (framesInFlight - 1)` (this one with one frame in flight), so
+/// at most framesInFlight - 1 steps stay pending: collecting adds the step's births, deaths, clamped
+/// births and hits to `stats` (countedSteps, lastCountedStep), updates
+/// EmitterState::alive and nextSerial, and hands its events to `events`.
 void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, double time, float dt,
-                  StepStats& stats);
+                  std::uint64_t step, StepStats& stats, EventQueue& events);
+
+/// Waits for every step in flight and collects them, oldest first.
+void collectAll(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emitters, StepStats& stats,
+                EventQueue& events);
+
+/// Waits until the device has finished every submitted step (collects
+/// nothing): before the host reads or rewrites what a step uses.
+void waitForSteps(GpuWorld& w);
 
 /// Copies all slots of emitter `index` back to the host.
 ParticleArrays readSlots(GpuWorld& w, std::size_t index);

@@ -105,5 +105,15 @@ struct ColliderParams {
     uint pad0, pad1;
 };
 
+// One collision or death event, as both backends hand them to the application
+// (ParticleEvent in include/spindrift/world.h); made by updateEvent in
+// update.glsl. 32 bytes in std430 and in C++ (kernel_layout.cpp).
+SD_CONST uint SD_EVENT_KIND_COLLISION = 0u;
+SD_CONST uint SD_EVENT_KIND_DEATH = 1u;
+struct EventRecord {
+    vec4 positionSpeed;  // xyz: position (m); w: speed (m/s)
+    uvec4 header;        // kind, collider index + 1 (0: none), emitter index, birth serial
+};
+
 SD_END
 #endif

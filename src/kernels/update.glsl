@@ -135,5 +135,36 @@ SD_FN ParticleUpdate updateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParam
     return r;
 }
 
+// Events of an update (GPU -> CPU feedback, for impact sounds, hit counters,
+// fires put out by water): one collision per collider hit, then one death.
+SD_FN uint eventCountOf(ParticleUpdate r) {
+    return uint(bitCount(r.hitMask)) + ((r.events & SD_EVENT_DIED) != 0u ? 1u : 0u);
+}
+
+SD_FN EventRecord eventRecord(uint kind, uint colliderPlusOne, uint emitter, Particle p, float speed) {
+    EventRecord e;
+    e.positionSpeed = vec4(p.position, speed);
+    e.header = uvec4(kind, colliderPlusOne, emitter, p.birth);
+    return e;
+}
+
+// Event n (< eventCountOf(r)) of the update of `before` into r; speed: m/s at
+// the start of the step. Hits come in collider order, at the particle's end
+// position. The death names the particle that died (in recycle mode r holds
+// its successor: then `before`, where it was at the start of the step) and the
+// first collider hit in the step, the killer when collisions kill, or none.
+SD_FN EventRecord updateEvent(uint n, Particle before, ParticleUpdate r, uint emitter, float speed) {
+    uint mask = r.hitMask;
+    for (uint k = 0u; k < n && mask != 0u; ++k) {
+        mask &= mask - 1u;
+    }
+    if (mask != 0u) {
+        return eventRecord(SD_EVENT_KIND_COLLISION, uint(findLSB(mask)) + 1u, emitter, r.particle, speed);
+    }
+    uint killer = r.hitMask != 0u ? uint(findLSB(r.hitMask)) + 1u : 0u;
+    Particle dying = r.particle.birth != before.birth ? before : r.particle;
+    return eventRecord(SD_EVENT_KIND_DEATH, killer, emitter, dying, speed);
+}
+
 SD_END
 #endif

@@ -39,11 +39,13 @@ inline EmitterDef oneShotEmitter(const OneShot& o) {
 
 /// A world owned by the test, destroyed at scope end.
 struct ScopedWorld {
-    explicit ScopedWorld(std::uint32_t threads = 1, std::uint32_t seed = 7, Backend backend = Backend::Cpu) {
+    explicit ScopedWorld(std::uint32_t threads = 1, std::uint32_t seed = 7, Backend backend = Backend::Cpu,
+                         std::uint32_t framesInFlight = 1) {
         WorldDef def;
         def.backend = backend;
         def.threads = threads;
         def.seed = seed;
+        def.framesInFlight = framesInFlight;
         id = createWorld(def);
     }
     ~ScopedWorld() { destroyWorld(id); }

@@ -26,6 +26,7 @@ struct SceneRun {
 SceneRun runScene(SceneDef scene, Backend backend, int steps) {
     scene.world.backend = backend;
     scene.world.threads = 1;
+    scene.world.framesInFlight = 1;  // each StepStats counts its own step
     auto start = std::chrono::steady_clock::now();
     WorldId w = buildWorld(scene);
     SceneRun r;

@@ -30,9 +30,12 @@ protected:
     }
 };
 
-/// A world owned by the test on the given backend (one CPU thread).
+/// A world owned by the test on the given backend (one CPU thread). One frame
+/// in flight unless asked: every StepStats then counts its own step, so the
+/// backends can be compared step by step.
 struct BackendWorld : ScopedWorld {
-    explicit BackendWorld(Backend backend, std::uint32_t seed = 7) : ScopedWorld(1, seed, backend) {}
+    explicit BackendWorld(Backend backend, std::uint32_t seed = 7, std::uint32_t framesInFlight = 1)
+        : ScopedWorld(1, seed, backend, framesInFlight) {}
 };
 
 }  // namespace spindrift::test

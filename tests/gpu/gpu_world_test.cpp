@@ -10,6 +10,7 @@
 #include <cstdio>
 #include <map>
 #include <string>
+#include <tuple>
 
 namespace spindrift {
 namespace {
@@ -313,10 +314,13 @@ EmitterDef spawnEmitter(const char* name, std::uint32_t capacity, float rate, st
 struct SpawnRun {
     std::vector<StepStats> steps;
     std::vector<ParticleSnapshot> snapshots;
+    StepStats flushed;  // what flushWorld returned after the last step
+    EventBatch events;  // every step's, taken after the flush
 };
 
-SpawnRun runSpawnScene(Backend backend, const std::vector<EmitterDef>& emitters, int steps, float dt) {
-    BackendWorld w(backend);
+SpawnRun runSpawnScene(Backend backend, const std::vector<EmitterDef>& emitters, int steps, float dt,
+                       std::uint32_t framesInFlight = 1) {
+    BackendWorld w(backend, 7, framesInFlight);
     ForceDef gravity = force(ForceKind::Gravity);
     gravity.vector = {0.0f, -9.81f, 0.0f};
     createForce(w.id, gravity);
@@ -336,6 +340,8 @@ SpawnRun runSpawnScene(Backend backend, const std::vector<EmitterDef>& emitters,
     for (int s = 0; s < steps; ++s) {
         r.steps.push_back(stepWorld(w.id, dt));
     }
+    r.flushed = flushWorld(w.id);
+    r.events = takeEvents(w.id);
     for (EmitterId id : ids) {
         r.snapshots.push_back(readParticles(w.id, id));
     }
@@ -434,6 +440,126 @@ TEST_F(GpuTest, SpawnBurstsBeyondCapacityClampLikeTheCpuBackend) {
     std::sort(serialsA.begin(), serialsA.end());
     std::sort(serialsB.begin(), serialsB.end());
     EXPECT_EQ(serialsA, serialsB);
+}
+
+// The sparks and embers of SpawnEmittersMatchTheCpuBackendBySerial, whose
+// collisions and deaths are the events.
+std::vector<EmitterDef> eventfulEmitters() {
+    std::vector<EmitterDef> emitters = {
+        spawnEmitter("sparks", 300, 400.0f, {{0.25f, 150}, {1.0f, 400}}),
+        spawnEmitter("embers", 400, 250.0f, {{0.5f, 100}, {0.5f, 50}, {1.7f, 80}}),
+    };
+    emitters[0].collision.killOnCollision = true;
+    emitters[1].collision.lifeLossOnCollision = 0.5f;
+    return emitters;
+}
+
+// An event's identity: what happened, when, to which particle.
+using EventKey = std::tuple<std::uint64_t, ParticleEventKind, std::uint32_t, std::uint32_t, std::uint32_t>;
+
+std::map<EventKey, const ParticleEvent*> eventsByKey(const EventBatch& batch) {
+    std::map<EventKey, const ParticleEvent*> out;
+    for (const ParticleEvent& e : batch.events) {
+        EventKey key{e.step, e.kind, e.emitter.index, e.collider.index, e.birth};
+        EXPECT_TRUE(out.emplace(key, &e).second) << "event listed twice, step " << e.step;
+    }
+    return out;
+}
+
+// With 2 or 3 frames in flight the GPU runs ahead: stepWorld does not wait,
+// and each step's counts and events arrive framesInFlight - 1 steps later;
+// flushWorld hands over the rest. They must be the CPU backend's counts and
+// events, step for step: the same particles (matched by step, kind, emitter,
+// collider and birth serial) at the same places, within the position and
+// speed tolerance of SpawnEmittersMatchTheCpuBackendBySerial (1e-4) for the
+// same reasons.
+TEST_F(GpuTest, CountsAndEventsArriveFramesInFlightLaterAndMatchTheCpu) {
+    const int steps = 90;
+    const float dt = 1.0f / 60.0f;
+    SpawnRun cpu = runSpawnScene(Backend::Cpu, eventfulEmitters(), steps, dt);
+    std::map<EventKey, const ParticleEvent*> cpuEvents = eventsByKey(cpu.events);
+    std::size_t collisions = 0, deaths = 0;
+    for (const auto& [key, e] : cpuEvents) {
+        (e->kind == ParticleEventKind::Collision ? collisions : deaths) += 1;
+    }
+    // The scene has both kinds of event, many of each.
+    EXPECT_GT(collisions, 100u);
+    EXPECT_GT(deaths, 100u);
+    EXPECT_EQ(cpu.events.dropped, 0u);
+    for (std::uint32_t frames : {2u, 3u}) {
+        SCOPED_TRACE(testing::Message() << frames << " frames in flight");
+        SpawnRun gpu = runSpawnScene(Backend::Vulkan, eventfulEmitters(), steps, dt, frames);
+        for (int s = 0; s < steps; ++s) {
+            const StepStats& st = gpu.steps[static_cast<std::size_t>(s)];
+            const int lag = static_cast<int>(frames) - 1;
+            if (s < lag) {
+                EXPECT_EQ(st.countedSteps, 0u) << "step " << s;
+                continue;
+            }
+            ASSERT_EQ(st.countedSteps, 1u) << "step " << s;
+            ASSERT_EQ(st.lastCountedStep, static_cast<std::uint64_t>(s - lag));
+            const StepStats& c = cpu.steps[st.lastCountedStep];
+            EXPECT_EQ(st.born, c.born) << "step " << s;
+            EXPECT_EQ(st.died, c.died) << "step " << s;
+            EXPECT_EQ(st.collisions, c.collisions) << "step " << s;
+            EXPECT_EQ(st.alive, c.alive) << "step " << s;
+        }
+        EXPECT_EQ(gpu.flushed.countedSteps, frames - 1);
+        EXPECT_EQ(gpu.flushed.lastCountedStep, static_cast<std::uint64_t>(steps - 1));
+        EXPECT_EQ(gpu.flushed.alive, cpu.steps.back().alive);
+        EXPECT_EQ(gpu.events.dropped, 0u);
+        std::map<EventKey, const ParticleEvent*> gpuEvents = eventsByKey(gpu.events);
+        ASSERT_EQ(gpuEvents.size(), cpuEvents.size());
+        for (const auto& [key, e] : cpuEvents) {
+            auto it = gpuEvents.find(key);
+            ASSERT_NE(it, gpuEvents.end()) << "step " << e->step << " birth " << e->birth;
+            glm::vec3 dp = glm::abs(e->position - it->second->position);
+            EXPECT_LE(std::max({dp.x, dp.y, dp.z}), 1e-4f) << "step " << e->step << " birth " << e->birth;
+            EXPECT_NEAR(e->speed, it->second->speed, 1e-4f) << "step " << e->step << " birth " << e->birth;
+        }
+    }
+}
+
+// Past WorldDef::eventCapacity a step's events are dropped and counted, on
+// both backends alike; nothing beyond the capacity is written (the GPU's
+// buffer holds exactly that many records, and validation is on).
+TEST_F(GpuTest, EventsBeyondTheCapacityAreCountedNotWritten) {
+    const float dt = 1.0f / 60.0f;
+    std::map<Backend, EventBatch> batches;
+    for (Backend backend : {Backend::Cpu, Backend::Vulkan}) {
+        WorldDef def;
+        def.backend = backend;
+        def.threads = 1;
+        def.seed = 7;
+        def.eventCapacity = 3;
+        WorldId w = createWorld(def);
+        createForce(w, test::gravity({0.0f, -9.81f, 0.0f}));
+        ColliderDef ground;
+        ground.kind = ColliderKind::Plane;
+        createCollider(w, ground);
+        for (const EmitterDef& e : eventfulEmitters()) {
+            createEmitter(w, e);
+        }
+        for (int s = 0; s < 60; ++s) {
+            stepWorld(w, dt);
+        }
+        flushWorld(w);
+        batches[backend] = takeEvents(w);
+        EXPECT_TRUE(takeEvents(w).events.empty());  // handed out once
+        destroyWorld(w);
+    }
+    const EventBatch& cpu = batches[Backend::Cpu];
+    const EventBatch& gpu = batches[Backend::Vulkan];
+    EXPECT_GT(cpu.dropped, 0u);
+    EXPECT_EQ(gpu.dropped, cpu.dropped);
+    EXPECT_EQ(gpu.events.size(), cpu.events.size());
+    std::map<std::uint64_t, std::size_t> perStep;
+    for (const ParticleEvent& e : gpu.events) {
+        perStep[e.step] += 1;
+    }
+    for (const auto& [step, n] : perStep) {
+        EXPECT_LE(n, 3u) << "step " << step;
+    }
 }
 
 // A spawn emitter's step moves no particle data either: the schedule is

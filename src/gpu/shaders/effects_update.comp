@@ -32,16 +32,28 @@ layout(std430, set = 0, binding = 7) buffer Births { uint births[]; };
 layout(std430, set = 0, binding = 8) buffer Sizes { float sizes[]; };
 layout(std430, set = 0, binding = 9) buffer Rotations { vec2 rotations[]; };  // rotation, angular velocity
 layout(std430, set = 0, binding = 10) buffer Colors { vec4 colors[]; };
-// Events of the step, read by the CPU through a host-visible mapping.
+// Counts of the step, read by the CPU through a host-visible mapping once the
+// step's fence has signalled (one copy per frame in flight).
 layout(std430, set = 0, binding = 11) buffer Counters { uint born; uint died; uint clamped, pad7; uint hits[32]; };
+// Collision and death events of the step, shared by every emitter of the world
+// (one copy per frame in flight): at most eventCapacity are written; eventCount
+// keeps counting beyond it, so the CPU knows how many were dropped.
+layout(std430, set = 0, binding = 12) buffer Events {
+    uint eventCount;
+    uint eventCapacity;
+    uint pad18, pad19;
+    EventRecord events[];
+};
 
 // Spawn mode (set 1; recycle emitters bind a placeholder that is never read).
 // The dead stack, its top at deadSlots[deadCount - 1], starts as the CPU's free
 // list (slot 0 on top); the header's first three words are the indirect
 // dispatch of the next update pass. popped: slots taken by the emit pass.
+// nextSerial: serial of the emitter's next birth, kept here so that the CPU
+// need not wait for a step's birth count before scheduling the next.
 layout(std430, set = 1, binding = 0) buffer Dead {
     uint dispatchX, dispatchY, dispatchZ, deadCount;
-    uint popped, pad8, pad9, pad10;
+    uint popped, nextSerial, pad9, pad10;
     uint deadSlots[];
 };
 // Slots alive at the start of the step, and those alive at its end; the CPU
@@ -51,10 +63,9 @@ layout(std430, set = 1, binding = 2) buffer AliveOut { uint aliveOutCount; uint 
 // The step's births (BirthSchedule of src/effects/world_internal.h, written by
 // the CPU): burst runs (end index, age) first, then the rate's births.
 layout(std430, set = 1, binding = 3) readonly buffer Schedule {
-    uint firstSerial;  // serial of birth 0 of the step
     uint burstRuns;
     uint rateFirst;    // index of the rate's first birth
-    uint pad17;
+    uint pad17, pad20;
     float rateSpan;    // t1 - t0 (s)
     float rateCarry;
     float rate;        // 1/s
@@ -62,7 +73,8 @@ layout(std430, set = 1, binding = 3) readonly buffer Schedule {
     uvec2 runs[];      // x: end index (exclusive), y: floatBitsToUint(age)
 };
 
-layout(push_constant) uniform Step { float dt; uint count; } step;
+// count: slots (recycle update), births owed (spawn emit and finish).
+layout(push_constant) uniform Step { float dt; uint count; uint emitterIndex; uint pad; } step;
 
 // Sampled fields of the world (set 2), bound by gpu_world.cpp: one linear,
 // clamp-to-edge sampler, normalised coordinates, level 0, so texel i of n has
@@ -155,8 +167,9 @@ void storeParticle(uint i, Particle q) {
     colors[i] = q.color;
 }
 
-// Atomics only where something happened: most slots in most steps have no event.
-void countEvents(ParticleUpdate r) {
+// Atomics only where something happened: most slots in most steps have no
+// event. speed: m/s at the start of the step (EventRecord).
+void countEvents(Particle before, ParticleUpdate r, float speed) {
     if ((r.events & SD_EVENT_BORN) != 0u) {
         atomicAdd(born, 1u);
     }
@@ -166,15 +179,23 @@ void countEvents(ParticleUpdate r) {
     for (uint mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
         atomicAdd(hits[findLSB(mask)], 1u);
     }
+    uint n = eventCapacity > 0u ? eventCountOf(r) : 0u;
+    if (n > 0u) {
+        uint first = atomicAdd(eventCount, n);
+        for (uint k = 0u; k < n && first + k < eventCapacity; ++k) {
+            events[first + k] = updateEvent(k, before, r, step.emitterIndex, speed);
+        }
+    }
 }
 
 void recycleUpdate(KernelContext ctx, uint i) {
     if (i >= step.count) {
         return;
     }
-    ParticleUpdate r = updateParticle(ctx, emitter, loadParticle(i), step.dt);
+    Particle p = loadParticle(i);
+    ParticleUpdate r = updateParticle(ctx, emitter, p, step.dt);
     storeParticle(i, r.particle);
-    countEvents(r);
+    countEvents(p, r, length(p.velocity));
 }
 
 void spawnUpdate(KernelContext ctx, uint i) {
@@ -182,9 +203,10 @@ void spawnUpdate(KernelContext ctx, uint i) {
         return;
     }
     uint slot = aliveIn[i];
-    ParticleUpdate r = updateParticle(ctx, emitter, loadParticle(slot), step.dt);
+    Particle p = loadParticle(slot);
+    ParticleUpdate r = updateParticle(ctx, emitter, p, step.dt);
     storeParticle(slot, r.particle);
-    countEvents(r);
+    countEvents(p, r, length(p.velocity));
     if ((r.events & SD_EVENT_DIED) != 0u) {
         deadSlots[atomicAdd(deadCount, 1u)] = slot;
     } else {
@@ -218,20 +240,24 @@ void spawnEmit(KernelContext ctx, uint k) {
         atomicAdd(clamped, 1u);  // no free slot: dropped, never over a live one
         return;
     }
-    ParticleUpdate r = bornParticle(ctx, emitter, firstSerial + k, birthAge(k));
+    ParticleUpdate r = bornParticle(ctx, emitter, nextSerial + k, birthAge(k));
+    float speed = length(r.particle.velocity);
     if (r.particle.age >= r.particle.lifetime) {
         // Killed at once by a collision: born and dead, its slot stays free.
         r.events = r.events | SD_EVENT_DIED;
-        countEvents(r);
+        countEvents(r.particle, r, speed);
         return;
     }
     uint slot = deadSlots[deadCount - 1u - atomicAdd(popped, 1u)];
     storeParticle(slot, r.particle);
     aliveOut[atomicAdd(aliveOutCount, 1u)] = slot;
-    countEvents(r);
+    countEvents(r.particle, r, speed);
 }
 
+// Births numbered this step: every one that found a free slot (as on the CPU,
+// one killed at once by a collision still took a serial).
 void spawnFinish() {
+    nextSerial += min(min(step.count, emitter.capacity), deadCount);
     deadCount -= popped;
     popped = 0u;
     dispatchX = (aliveOutCount + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;

@@ -1,0 +1,21 @@
+// Turning kernel event records into the public ParticleEvent.
+#include "effects/event_queue.h"
+
+namespace spindrift {
+
+void EventQueue::addStep(std::uint64_t step, std::span<const kernels::EventRecord> records, std::uint64_t dropped) {
+    batch.dropped += dropped;
+    for (const kernels::EventRecord& r : records) {
+        ParticleEvent e;
+        e.kind = r.header.x == kernels::SD_EVENT_KIND_DEATH ? ParticleEventKind::Death : ParticleEventKind::Collision;
+        e.step = step;
+        e.collider = {r.header.y};
+        e.emitter = {r.header.z + 1};
+        e.birth = r.header.w;
+        e.position = glm::vec3(r.positionSpeed);
+        e.speed = r.positionSpeed.w;
+        batch.events.push_back(e);
+    }
+}
+
+}  // namespace spindrift

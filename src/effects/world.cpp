@@ -304,7 +304,7 @@ ParticleSnapshot readParticles(WorldId id, EmitterId emitterId) {
     ParticleSnapshot s;
     ParticleArrays fromDevice;
     if (w.gpu) {
-        fromDevice = gpu::readSlots(*w.gpu, emitterId.index - 1);
+        fromDevice = gpu::readSlots(*w.gpu, emitterId.index - 1, e.params);
     }
     const ParticleArrays& p = w.gpu ? fromDevice : e.particles;
     for (std::uint32_t i = 0; i < e.def.capacity; ++i) {

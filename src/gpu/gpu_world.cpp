@@ -1,6 +1,7 @@
 // The Vulkan backend's world: pipeline, parameter buffers and emitter slots.
 #include "gpu/gpu_world.h"
 
+#include "effects/cpu_kernels.h"
 #include "effects/params.h"
 #include "effects/world_internal.h"
 #include "gpu/shaders.h"
@@ -20,9 +21,9 @@ namespace spindrift::gpu {
 namespace {
 
 // Bindings of effects_update.comp, set 0 in order: emitter parameters,
-// forces, colliders, the eight slot arrays (see GpuEmitter), the step's
+// forces, colliders, the five slot arrays (see GpuEmitter), the step's
 // counters and the world's events buffer of the frame.
-constexpr std::uint32_t kBindingCount = 13;
+constexpr std::uint32_t kBindingCount = 10;
 // Set 1 (spawn mode): dead stack, current alive list, next alive list, schedule.
 constexpr std::uint32_t kListBindingCount = 4;
 constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of effects_update.comp
@@ -204,9 +205,8 @@ void uploadTable(Device& d, Buffer& buffer, std::span<const T> items) {
 }
 
 std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e, std::uint32_t frame) {
-    return {&e.params, &w.forces,    &w.colliders, &e.positions,       &e.velocities,
-            &e.ages,   &e.lifetimes, &e.births,    &e.sizes,           &e.rotations,
-            &e.colors, &e.counters[frame], &w.frames[frame].events};
+    return {&e.params, &w.forces,  &w.colliders, &e.positions,       &e.velocities,
+            &e.ages,   &e.births,  &e.rotations, &e.counters[frame], &w.frames[frame].events};
 }
 
 VkDescriptorPool createDescriptorPool(Device& d, std::uint32_t sets, std::uint32_t buffers) {
@@ -268,8 +268,8 @@ void destroyEmitter(Device& d, GpuEmitter& e) {
     if (e.descriptorPool != VK_NULL_HANDLE) {
         vkDestroyDescriptorPool(d.device, e.descriptorPool, nullptr);  // frees its set
     }
-    for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.lifetimes, &e.births, &e.sizes,
-                      &e.rotations, &e.colors, &e.dead, &e.alive[0], &e.alive[1]}) {
+    for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.births, &e.rotations, &e.dead,
+                      &e.alive[0], &e.alive[1]}) {
         destroyBuffer(d, *b);
     }
     for (std::uint32_t f = 0; f < kMaxFramesInFlight; ++f) {
@@ -285,11 +285,8 @@ void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
     e.positions = createStorageBuffer(d, n * 12);
     e.velocities = createStorageBuffer(d, n * 12);
     e.ages = createStorageBuffer(d, n * 4);
-    e.lifetimes = createStorageBuffer(d, n * 4);
     e.births = createStorageBuffer(d, n * 4);
-    e.sizes = createStorageBuffer(d, n * 4);
-    e.rotations = createStorageBuffer(d, n * 8);
-    e.colors = createStorageBuffer(d, n * 16);
+    e.rotations = createStorageBuffer(d, n * 4);
     for (std::uint32_t f = 0; f < frames; ++f) {
         e.counters[f] = createHostStorageBuffer(d, sizeof(Counters));
         std::memset(e.counters[f].mapped, 0, sizeof(Counters));
@@ -309,26 +306,17 @@ void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
     }
 }
 
-std::vector<glm::vec2> interleave(const std::vector<float>& a, const std::vector<float>& b) {
-    std::vector<glm::vec2> out(a.size());
-    for (std::size_t i = 0; i < a.size(); ++i) {
-        out[i] = {a[i], b[i]};
-    }
-    return out;
-}
-
-// The slot arrays of an emitter paired with host arrays of the same layout;
-// serves both directions (upload at creation, download on readParticles).
-std::array<Transfer, 8> slotTransfers(GpuEmitter& e, ParticleArrays& p, std::vector<glm::vec2>& rotations) {
+// The stored slot arrays of an emitter paired with host arrays of the same
+// layout; serves both directions (upload at creation, download on
+// readParticles).
+std::array<Transfer, 5> slotTransfers(GpuEmitter& e, ParticleArrays& p) {
+    static_assert(kStoredBytesPerSlot == 12 + 12 + 4 + 4 + 4, "the arrays below");
     const VkDeviceSize n = e.capacity;
     return {{{&e.positions, p.position.data(), n * 12},
              {&e.velocities, p.velocity.data(), n * 12},
              {&e.ages, p.age.data(), n * 4},
-             {&e.lifetimes, p.lifetime.data(), n * 4},
              {&e.births, p.birth.data(), n * 4},
-             {&e.sizes, p.size.data(), n * 4},
-             {&e.rotations, rotations.data(), n * 8},
-             {&e.colors, p.color.data(), n * 16}}};
+             {&e.rotations, p.rotation.data(), n * 4}}};
 }
 
 void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
@@ -336,10 +324,9 @@ void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
     // on a copy (once per emitter, at creation only).
     kernels::EmitterParams params = s.params;
     ParticleArrays p = s.particles;
-    std::vector<glm::vec2> rotations = interleave(p.rotation, p.angularVelocity);
     const std::array<Transfer, 1> parameters{{{&e.params, &params, sizeof(params)}}};
     upload(d, parameters);
-    upload(d, slotTransfers(e, p, rotations));
+    upload(d, slotTransfers(e, p));
     if (e.spawn) {
         // Every slot dead, stacked as the CPU's free list: slot 0 on top.
         std::vector<std::uint32_t> dead(sizeof(DeadHeader) / 4 + s.freeSlots.size(), 0);
@@ -954,17 +941,24 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     collectFrame(w, static_cast<std::uint32_t>(w.submitted % w.framesInFlight), emitters, stats, events);
 }
 
-ParticleArrays readSlots(GpuWorld& w, std::size_t index) {
+ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params) {
     waitForSteps(w);
     GpuEmitter& e = *w.emitters.at(index);
-    const VkDeviceSize n = e.capacity;
+    const std::size_t n = e.capacity;
     ParticleArrays p;
     p.resize(n);
-    std::vector<glm::vec2> rotations(n);
-    download(*w.device, slotTransfers(e, p, rotations));
+    download(*w.device, slotTransfers(e, p));
+    // What the device does not store, recomputed by the kernel that the
+    // shader uses for the same purpose.
     for (std::size_t i = 0; i < n; ++i) {
-        p.rotation[i] = rotations[i].x;
-        p.angularVelocity[i] = rotations[i].y;
+        kernels::Particle q{};
+        q.age = p.age[i];
+        q.birth = p.birth[i];
+        q = kernels::restoreDerived(params, q);
+        p.lifetime[i] = q.lifetime;
+        p.angularVelocity[i] = q.angularVelocity;
+        p.color[i] = q.color;
+        p.size[i] = q.size;
     }
     return p;
 }

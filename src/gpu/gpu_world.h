@@ -48,15 +48,22 @@ struct GpuFields {
     VkFormat cubeFormat = VK_FORMAT_UNDEFINED;    // normal xyz, depth w
 };
 
+/// Bytes a GPU emitter stores per slot: position 12, velocity 12, age 4,
+/// birth serial 4, rotation 4 (GpuEmitter). Creation uploads and readParticles
+/// downloads exactly this much per slot.
+inline constexpr std::size_t kStoredBytesPerSlot = 12 + 12 + 4 + 4 + 4;
+
 /// Most steps a GPU world runs ahead of the host (WorldDef::framesInFlight).
 inline constexpr std::uint32_t kMaxFramesInFlight = 3;
 
-/// One state-preserving emitter on the device (structure of arrays, as the
-/// CPU's ParticleArrays; rotation and angular velocity interleaved as vec2).
-/// What the host writes or reads per step has one copy per frame in flight.
+/// One state-preserving emitter on the device: structure of arrays, as the
+/// CPU's ParticleArrays, of what changes after birth only (the shader
+/// recomputes lifetime, angular velocity, colour and size with
+/// kernels::restoreDerived). What the host writes or reads per step has one
+/// copy per frame in flight.
 struct GpuEmitter {
     std::uint32_t capacity = 0;
-    Buffer params, positions, velocities, ages, lifetimes, births, sizes, rotations, colors;
+    Buffer params, positions, velocities, ages, births, rotations;
     Buffer counters[kMaxFramesInFlight];  // host-visible: born, died, clamped, pad, hits[32]
     VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
     VkDescriptorSet descriptorSets[kMaxFramesInFlight] = {};  // set 0, per frame
@@ -154,8 +161,9 @@ void collectAll(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emit
 /// nothing): before the host reads or rewrites what a step uses.
 void waitForSteps(GpuWorld& w);
 
-/// Copies all slots of emitter `index` back to the host.
-ParticleArrays readSlots(GpuWorld& w, std::size_t index);
+/// Copies all slots of emitter `index` back to the host, with the attributes
+/// the device does not store restored from `params` (its EmitterParams).
+ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params);
 
 TransferStats transferStats(const GpuWorld& w);
 

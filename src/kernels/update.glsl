@@ -44,6 +44,21 @@ SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
     return p;
 }
 
+// What a slot need not store: lifetime, angular velocity, colour and size are
+// pure functions of the emitter, the birth serial's key and the age (nothing
+// changes them after birth but the curves, which read the age), so a backend
+// that keeps only position, velocity, age, rotation and birth restores them
+// here. The values equal those the update computed when it stored the age,
+// bit for bit: the same expressions of the same inputs.
+SD_FN Particle restoreDerived(SD_IN(EmitterParams) e, Particle p) {
+    uint key = particleKey(e.keyBase, p.birth);
+    p.lifetime = randomRange(key, SD_RAND_LIFETIME, e.lifetimeMin, e.lifetimeMax);
+    p.angularVelocity = randomRange(key, SD_RAND_SPIN, e.angularVelocityMin, e.angularVelocityMax);
+    p.color = startColor(e, key);
+    p.size = startSize(e, key);
+    return applyOverLife(e, p);
+}
+
 // Motion, damping, collisions and spin over dt for a live particle.
 SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float dt) {
     ParticleUpdate r = quietUpdate(p);

@@ -175,7 +175,8 @@ TEST_F(GpuTest, RecycleEmittersMatchTheCpuBackendSlotBySlot) {
 }
 
 // "Data stays on the GPU": stepping moves no bytes either way; only creation
-// uploads and only readParticles downloads, exactly the emitter's slots.
+// uploads and only readParticles downloads, exactly the emitter's stored slots
+// (36 B each: position, velocity, age, birth serial, rotation).
 TEST_F(GpuTest, StepsMoveNoParticleData) {
     BackendWorld w(Backend::Vulkan);
     addForces(w.id);
@@ -183,7 +184,7 @@ TEST_F(GpuTest, StepsMoveNoParticleData) {
     EmitterDef def = recycleEmitter(Integrator::SemiImplicitEuler);
     EmitterId em = createEmitter(w.id, def);
     TransferStats before = transferStats(w.id);
-    EXPECT_GE(before.bytesUploaded, def.capacity * kBytesPerSlot);
+    EXPECT_GE(before.bytesUploaded, def.capacity * gpu::kStoredBytesPerSlot);
     EXPECT_EQ(before.bytesDownloaded, 0u);
     for (int i = 0; i < 20; ++i) {
         stepWorld(w.id, 1.0f / 60.0f);
@@ -195,7 +196,7 @@ TEST_F(GpuTest, StepsMoveNoParticleData) {
     EXPECT_GT(s.count(), 0u);
     TransferStats read = transferStats(w.id);
     EXPECT_EQ(read.bytesUploaded, before.bytesUploaded);
-    EXPECT_EQ(read.bytesDownloaded, def.capacity * kBytesPerSlot);
+    EXPECT_EQ(read.bytesDownloaded, def.capacity * gpu::kStoredBytesPerSlot);
 }
 
 TEST_F(GpuTest, CpuWorldsReportNoTransfers) {
@@ -571,7 +572,7 @@ TEST_F(GpuTest, SpawnStepsMoveNoParticleData) {
     EmitterDef def = spawnEmitter("sparks", 256, 300.0f, {{0.1f, 100}});
     EmitterId em = createEmitter(w.id, def);
     TransferStats before = transferStats(w.id);
-    EXPECT_GE(before.bytesUploaded, def.capacity * kBytesPerSlot);
+    EXPECT_GE(before.bytesUploaded, def.capacity * gpu::kStoredBytesPerSlot);
     EXPECT_EQ(before.bytesDownloaded, 0u);
     std::uint64_t born = 0;
     for (int i = 0; i < 60; ++i) {
@@ -583,7 +584,7 @@ TEST_F(GpuTest, SpawnStepsMoveNoParticleData) {
     EXPECT_EQ(stepped.bytesDownloaded, 0u);
     ParticleSnapshot s = readParticles(w.id, em);
     EXPECT_GT(s.count(), 0u);
-    EXPECT_EQ(transferStats(w.id).bytesDownloaded, def.capacity * kBytesPerSlot);
+    EXPECT_EQ(transferStats(w.id).bytesDownloaded, def.capacity * gpu::kStoredBytesPerSlot);
 }
 
 // Stateless emitters need no simulation: a Vulkan world evaluates them on the

@@ -23,22 +23,23 @@ layout(std430, set = 0, binding = 0) readonly buffer Emitter { EmitterParams emi
 layout(std430, set = 0, binding = 1) readonly buffer Forces { uint forceTotal; uint pad0, pad1, pad2; ForceParams forces[]; };
 layout(std430, set = 0, binding = 2) readonly buffer Colliders { uint colliderTotal; uint pad3, pad4, pad5; ColliderParams colliders[]; };
 // vec3 arrays have a 16-byte stride in std430: positions and velocities are
-// tightly packed floats instead, matching the CPU's glm::vec3 arrays.
+// tightly packed floats instead, matching the CPU's glm::vec3 arrays. Only
+// what changes after birth is stored (restoreDerived of update.glsl recomputes
+// lifetime, angular velocity, colour and size): 20 B read and written per
+// particle-step plus the 4 B birth serial read (written at birth only); see
+// docs/performance.md.
 layout(std430, set = 0, binding = 3) buffer Positions { float positions[]; };
 layout(std430, set = 0, binding = 4) buffer Velocities { float velocities[]; };
 layout(std430, set = 0, binding = 5) buffer Ages { float ages[]; };
-layout(std430, set = 0, binding = 6) buffer Lifetimes { float lifetimes[]; };
-layout(std430, set = 0, binding = 7) buffer Births { uint births[]; };
-layout(std430, set = 0, binding = 8) buffer Sizes { float sizes[]; };
-layout(std430, set = 0, binding = 9) buffer Rotations { vec2 rotations[]; };  // rotation, angular velocity
-layout(std430, set = 0, binding = 10) buffer Colors { vec4 colors[]; };
+layout(std430, set = 0, binding = 6) buffer Births { uint births[]; };
+layout(std430, set = 0, binding = 7) buffer Rotations { float rotations[]; };
 // Counts of the step, read by the CPU through a host-visible mapping once the
 // step's fence has signalled (one copy per frame in flight).
-layout(std430, set = 0, binding = 11) buffer Counters { uint born; uint died; uint clamped, pad7; uint hits[32]; };
+layout(std430, set = 0, binding = 8) buffer Counters { uint born; uint died; uint clamped, pad7; uint hits[32]; };
 // Collision and death events of the step, shared by every emitter of the world
 // (one copy per frame in flight): at most eventCapacity are written; eventCount
 // keeps counting beyond it, so the CPU knows how many were dropped.
-layout(std430, set = 0, binding = 12) buffer Events {
+layout(std430, set = 0, binding = 9) buffer Events {
     uint eventCount;
     uint eventCapacity;
     uint pad18, pad19;
@@ -140,19 +141,16 @@ Particle loadParticle(uint i) {
     Particle p;
     p.position = vec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]);
     p.velocity = vec3(velocities[3u * i], velocities[3u * i + 1u], velocities[3u * i + 2u]);
-    p.color = colors[i];
     p.age = ages[i];
-    p.lifetime = lifetimes[i];
-    p.size = sizes[i];
-    p.rotation = rotations[i].x;
-    p.angularVelocity = rotations[i].y;
+    p.rotation = rotations[i];
     p.mass = emitter.mass;
     p.birth = births[i];
     p.alive = p.age >= 0.0f ? 1u : 0u;
-    return p;
+    return restoreDerived(emitter, p);
 }
 
-void storeParticle(uint i, Particle q) {
+// The birth serial changes only when the slot gets a new particle.
+void storeParticle(uint i, Particle q, uint events) {
     positions[3u * i] = q.position.x;
     positions[3u * i + 1u] = q.position.y;
     positions[3u * i + 2u] = q.position.z;
@@ -160,11 +158,10 @@ void storeParticle(uint i, Particle q) {
     velocities[3u * i + 1u] = q.velocity.y;
     velocities[3u * i + 2u] = q.velocity.z;
     ages[i] = q.age;
-    lifetimes[i] = q.lifetime;
-    births[i] = q.birth;
-    sizes[i] = q.size;
-    rotations[i] = vec2(q.rotation, q.angularVelocity);
-    colors[i] = q.color;
+    rotations[i] = q.rotation;
+    if ((events & SD_EVENT_BORN) != 0u) {
+        births[i] = q.birth;
+    }
 }
 
 // Atomics only where something happened: most slots in most steps have no
@@ -194,7 +191,7 @@ void recycleUpdate(KernelContext ctx, uint i) {
     }
     Particle p = loadParticle(i);
     ParticleUpdate r = updateParticle(ctx, emitter, p, step.dt);
-    storeParticle(i, r.particle);
+    storeParticle(i, r.particle, r.events);
     countEvents(p, r, length(p.velocity));
 }
 
@@ -205,7 +202,7 @@ void spawnUpdate(KernelContext ctx, uint i) {
     uint slot = aliveIn[i];
     Particle p = loadParticle(slot);
     ParticleUpdate r = updateParticle(ctx, emitter, p, step.dt);
-    storeParticle(slot, r.particle);
+    storeParticle(slot, r.particle, r.events);
     countEvents(p, r, length(p.velocity));
     if ((r.events & SD_EVENT_DIED) != 0u) {
         deadSlots[atomicAdd(deadCount, 1u)] = slot;
@@ -249,7 +246,7 @@ void spawnEmit(KernelContext ctx, uint k) {
         return;
     }
     uint slot = deadSlots[deadCount - 1u - atomicAdd(popped, 1u)];
-    storeParticle(slot, r.particle);
+    storeParticle(slot, r.particle, r.events);
     aliveOut[atomicAdd(aliveOutCount, 1u)] = slot;
     countEvents(r.particle, r, speed);
 }

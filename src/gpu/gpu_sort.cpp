@@ -289,6 +289,7 @@ std::vector<std::uint32_t> sortEmitterSlots(GpuWorld& w, std::size_t index, glm:
         w.sort = createGpuSort(*w.device);
     }
     GpuSort& s = *w.sort;
+    waitForSteps(w);  // the positions of the steps in flight
     SortInput in{&e.positions, &e.ages, e.capacity, eye, forward};
     submitOnce(*w.device, [&](VkCommandBuffer cmd) { recordSortBackToFront(s, cmd, in); });
     return readSortedIndices(s, readLiveCount(s));

@@ -1,4 +1,4 @@
-// Every bundled scene on both backends: 100 steps of the same scene file on the
+// Every bundled effects scene on both backends: 100 steps of the same scene file on the
 // CPU backend and on Vulkan (lavapipe here), particles matched by birth serial.
 #include "gpu_test_util.h"
 
@@ -110,6 +110,9 @@ TEST_F(GpuTest, EveryBundledSceneMatchesTheCpuBackend) {
     for (const auto& file : files) {
         SCOPED_TRACE(file.filename().string());
         SceneDef scene = loadScene(file.string());
+        if (!scene.fluids.empty()) {
+            continue;  // the constraint fluid has one solver, on the CPU (src/fluid)
+        }
         SceneRun cpu = runScene(scene, Backend::Cpu, steps);
         SceneRun gpu = runScene(scene, Backend::Vulkan, steps);
         ASSERT_EQ(cpu.steps.size(), gpu.steps.size());

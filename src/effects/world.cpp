@@ -97,11 +97,12 @@ WorldId createWorld(const WorldDef& def) {
     }
     auto world = std::make_unique<World>(def);
     world->events.capacity = def.eventCapacity;
-    // Auto stays on the CPU backend for now: the Vulkan backend does not yet run
-    // flow fields, terrain or cube maps, so a scene that runs on the CPU could
-    // fail on a GPU. Once it does, auto takes a real GPU (gpu::hardwareGpuAvailable();
-    // never lavapipe, which is slower than the CPU backend).
-    if (def.backend == Backend::Vulkan) {
+    // Auto takes a real GPU: discrete or integrated, never lavapipe, which
+    // runs the shaders on the CPU cores slower than the CPU backend
+    // (docs/performance.md).
+    const bool vulkan = def.backend == Backend::Vulkan ||
+                        (def.backend == Backend::Auto && gpu::hardwareGpuAvailable());
+    if (vulkan) {
         world->gpu.reset(gpu::createGpuWorld(def.framesInFlight, def.eventCapacity).release());
     }
     std::lock_guard lock(gWorldsMutex);

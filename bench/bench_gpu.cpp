@@ -88,8 +88,12 @@ void BM_RecycleStack(benchmark::State& state) {
         state.SkipWithError(e.what());
         return;
     }
+    double deviceMs = 0.0;
+    std::uint64_t counted = 0;
     for (auto _ : state) {
         spindrift::StepStats s = spindrift::stepWorld(w, kDt);
+        deviceMs += s.deviceMilliseconds;
+        counted += s.countedSteps;
         if (s.countedSteps > 0 && s.alive != particles) {
             state.SkipWithError("not every slot is alive");
             break;
@@ -97,6 +101,8 @@ void BM_RecycleStack(benchmark::State& state) {
     }
     spindrift::flushWorld(w);  // drains the step still in flight (untimed: one of many)
     state.SetItemsProcessed(state.iterations() * particles);
+    // Device time per step from the Vulkan world's timestamps (0 on the CPU).
+    state.counters["device_ms_per_step"] = counted > 0 ? deviceMs / static_cast<double>(counted) : 0.0;
     state.counters["particle_steps_per_second"] =
         benchmark::Counter(static_cast<double>(particles), benchmark::Counter::kIsIterationInvariantRate);
     spindrift::destroyWorld(w);

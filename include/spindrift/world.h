@@ -58,6 +58,10 @@ struct StepStats {
     /// One entry per fluid, in id order.
     std::vector<FluidStepStats> fluids;
     double milliseconds = 0.0;    ///< wall time of the step
+    /// Vulkan: device time (ms) of the counted steps, from timestamps at the
+    /// start and end of each step's submission; 0 on the CPU backend or where
+    /// the device's queue has no timestamps.
+    double deviceMilliseconds = 0.0;
 };
 
 enum class ParticleEventKind : std::uint32_t {

@@ -438,6 +438,35 @@ bool waitForFrame(Device& d, GpuFrame& f) {
     return true;
 }
 
+// Device time (ms) of frame f's finished step, from its two timestamps.
+double deviceMilliseconds(GpuWorld& w, std::uint32_t frame) {
+    if (w.timestamps == VK_NULL_HANDLE) {
+        return 0.0;
+    }
+    std::uint64_t ticks[2] = {0, 0};
+    VkResult r = vkGetQueryPoolResults(w.device->device, w.timestamps, 2 * frame, 2, sizeof(ticks), ticks,
+                                       sizeof(std::uint64_t), VK_QUERY_RESULT_64_BIT);
+    check(r, "vkGetQueryPoolResults");
+    return static_cast<double>(ticks[1] - ticks[0]) * w.timestampPeriodNs * 1e-6;
+}
+
+// The compute queue's timestamps, if it has any: a pool of two per frame.
+void createTimestamps(GpuWorld& w) {
+    Device& d = *w.device;
+    std::uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physical, &families, nullptr);
+    std::vector<VkQueueFamilyProperties> properties(families);
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physical, &families, properties.data());
+    if (properties.at(d.queueFamily).timestampValidBits == 0) {
+        return;
+    }
+    auto info = vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+    info.queryType = VK_QUERY_TYPE_TIMESTAMP;
+    info.queryCount = 2 * kMaxFramesInFlight;
+    check(vkCreateQueryPool(d.device, &info, nullptr, &w.timestamps), "vkCreateQueryPool");
+    w.timestampPeriodNs = d.properties.limits.timestampPeriod;
+}
+
 // Waits for frame f's step, if any, and collects its counts and events. The
 // fence wait makes the device's writes to host-coherent memory visible (the
 // step ends with a barrier to the host stage; Vulkan spec 7.9).
@@ -454,6 +483,7 @@ void collectFrame(GpuWorld& w, std::uint32_t frame, std::span<const std::unique_
         }
     }
     collectEvents(f, events);
+    stats.deviceMilliseconds += deviceMilliseconds(w, frame);
     stats.countedSteps += 1;
     stats.lastCountedStep = step;
 }
@@ -672,6 +702,7 @@ std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight, std::uint
         w->colliders = createStorageBuffer(d, kHeaderBytes + kMaxColliders * sizeof(kernels::ColliderParams));
         uploadForces(*w, {});
         uploadColliders(*w, {});
+        createTimestamps(*w);
         for (std::uint32_t f = 0; f < framesInFlight; ++f) {
             GpuFrame& frame = w->frames[f];
             auto fenceInfo = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
@@ -697,6 +728,9 @@ void destroyGpuWorld(GpuWorld& w) {
     Device& d = *w.device;
     if (d.device != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(d.device);  // teardown, not the step loop
+        if (w.timestamps != VK_NULL_HANDLE) {
+            vkDestroyQueryPool(d.device, w.timestamps, nullptr);
+        }
         w.sort.reset();
         for (GpuFrame& f : w.frames) {
             if (f.cmd != VK_NULL_HANDLE) {
@@ -862,6 +896,10 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     };
 
     VkCommandBuffer cmd = beginOneTime(d);
+    if (w.timestamps != VK_NULL_HANDLE) {
+        vkCmdResetQueryPool(cmd, w.timestamps, 2 * frame, 2);
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, w.timestamps, 2 * frame);
+    }
     // Earlier steps' and uploads' writes (lists, the indirect dispatch)
     // before this step reads them, also as an indirect command.
     barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -916,6 +954,9 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     // the shader's writes available to the host (Vulkan spec 7.9, host access).
     barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
             VK_ACCESS_HOST_READ_BIT);
+    if (w.timestamps != VK_NULL_HANDLE) {
+        vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, w.timestamps, 2 * frame + 1);
+    }
     VkResult r = vkEndCommandBuffer(cmd);
     if (r == VK_SUCCESS) {
         auto submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);

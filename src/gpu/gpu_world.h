@@ -113,6 +113,10 @@ struct GpuWorld {
     std::uint32_t framesInFlight = 1;
     std::uint32_t eventCapacity = 0;
     GpuFrame frames[kMaxFramesInFlight];
+    /// Two timestamps per frame (start and end of its step); null where the
+    /// compute queue has none (timestampValidBits == 0).
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+    double timestampPeriodNs = 0.0;  // ns per timestamp tick
     std::uint64_t submitted = 0;  // steps submitted so far; frame submitted % framesInFlight is next
 };
 

@@ -2,6 +2,7 @@
 // that a step moves no particle data between host and device.
 #include "effects/cpu_kernels.h"
 #include "effects/emitter_state.h"
+#include "effects/world_internal.h"
 #include "gpu_test_util.h"
 
 #include <algorithm>
@@ -197,6 +198,25 @@ TEST_F(GpuTest, StepsMoveNoParticleData) {
     TransferStats read = transferStats(w.id);
     EXPECT_EQ(read.bytesUploaded, before.bytesUploaded);
     EXPECT_EQ(read.bytesDownloaded, def.capacity * gpu::kStoredBytesPerSlot);
+}
+
+// Timestamps bracket each step's submission on the device. With one frame in
+// flight the host waits for the step inside stepWorld, so the device time of
+// a step is positive and cannot exceed the step's wall time.
+TEST_F(GpuTest, DeviceTimeOfAStepIsPositiveAndWithinItsWallTime) {
+    BackendWorld w(Backend::Vulkan);
+    addForces(w.id);
+    createEmitter(w.id, recycleEmitter(Integrator::SemiImplicitEuler));
+    const gpu::GpuWorld* g = worldFromId(w.id).gpu.get();
+    ASSERT_NE(g, nullptr);
+    if (g->timestamps == VK_NULL_HANDLE) {
+        GTEST_SKIP() << "this device's compute queue has no timestamps";
+    }
+    for (int i = 0; i < 5; ++i) {
+        StepStats s = stepWorld(w.id, 1.0f / 60.0f);
+        EXPECT_GT(s.deviceMilliseconds, 0.0) << "step " << i;
+        EXPECT_LE(s.deviceMilliseconds, s.milliseconds) << "step " << i;
+    }
 }
 
 TEST_F(GpuTest, CpuWorldsReportNoTransfers) {

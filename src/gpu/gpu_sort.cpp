@@ -4,6 +4,7 @@
 
 #include "gpu/gpu_world.h"
 #include "gpu/shaders.h"
+#include "gpu/vulkan_pipeline.h"
 #include "kernels/sort_key.glsl"
 
 #include <spindrift/effects.h>
@@ -42,29 +43,6 @@ static_assert(kernels::SD_SORT_PASSES * kernels::SD_SORT_DIGIT_BITS == 32);
 static_assert(kernels::SD_SORT_WORKGROUP >= kernels::SD_SORT_RADIX);
 // An even number of passes leaves the result in the first buffer pair.
 static_assert(kernels::SD_SORT_PASSES % 2 == 0);
-
-VkPipeline createSortPipeline(Device& d, VkPipelineLayout layout, SortPass pass) {
-    auto moduleInfo = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
-    moduleInfo.codeSize = shaders::kBackToFrontSortWords * sizeof(std::uint32_t);
-    moduleInfo.pCode = shaders::kBackToFrontSort;
-    VkShaderModule module = VK_NULL_HANDLE;
-    check(vkCreateShaderModule(d.device, &moduleInfo, nullptr, &module), "vkCreateShaderModule(back_to_front_sort)");
-    VkSpecializationMapEntry entry{0, 0, sizeof(SortPass)};
-    VkSpecializationInfo specialization{1, &entry, sizeof(pass), &pass};
-    auto info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
-    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    info.stage.pSpecializationInfo = &specialization;
-    info.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VkResult r = vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-    // A module may be destroyed once its pipelines exist (Vulkan spec, vkDestroyShaderModule).
-    vkDestroyShaderModule(d.device, module, nullptr);
-    check(r, "vkCreateComputePipelines(back_to_front_sort)");
-    return pipeline;
-}
 
 void createLayouts(GpuSort& s) {
     Device& d = *s.device;
@@ -146,19 +124,6 @@ void writeSets(GpuSort& s, const SortInput& in) {
     vkUpdateDescriptorSets(s.device->device, 2 * kBindings, writes.data(), 0, nullptr);
 }
 
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
-             VkAccessFlags dstAccess) {
-    auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-    b.srcAccessMask = srcAccess;
-    b.dstAccessMask = dstAccess;
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-void computeToCompute(VkCommandBuffer cmd) {
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-}
-
 void dispatch(const GpuSort& s, VkCommandBuffer cmd, VkPipeline pipeline, int set, const SortPush& push,
               std::uint32_t groups) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
@@ -208,7 +173,10 @@ std::unique_ptr<GpuSort> createGpuSort(Device& d) {
                                   std::pair{&s->countPipeline, SortPass::Count},
                                   std::pair{&s->scanPipeline, SortPass::Scan},
                                   std::pair{&s->scatterPipeline, SortPass::Scatter}}) {
-        *pipeline = createSortPipeline(d, s->pipelineLayout, pass);
+        const std::array<std::uint32_t, 1> constants{static_cast<std::uint32_t>(pass)};
+        *pipeline = createComputePipeline(d, s->pipelineLayout,
+                                          std::span(shaders::kBackToFrontSort, shaders::kBackToFrontSortWords),
+                                          constants, "back_to_front_sort");
     }
     s->header = createStorageBuffer(d, kHeaderBytes);
     return s;
@@ -231,12 +199,12 @@ void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& in)
 
     // The positions' writers (an update pass, an upload) before the keys pass;
     // the header is zeroed by a transfer, then counted into by the keys pass.
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
             VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
     vkCmdFillBuffer(cmd, s.header.buffer, 0, kHeaderBytes, 0u);
-    barrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 
     if (n > 0) {
@@ -256,7 +224,7 @@ void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& in)
     }
     // The order and the live count for whoever reads them next: a compute pass
     // (the renderer's, or an indirect dispatch) or a copy.
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
 }

@@ -5,6 +5,7 @@
 #include "effects/params.h"
 #include "effects/world_internal.h"
 #include "gpu/shaders.h"
+#include "gpu/vulkan_pipeline.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
@@ -125,7 +126,8 @@ VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout
 // INTEGRATOR of effects_update.comp: the emitter's, read from its parameters.
 constexpr std::uint32_t kAnyIntegrator = 0xFFFFFFFFu;
 
-// The specialization constants of effects_update.comp, in constant_id order.
+// The specialization constants of effects_update.comp, in constant_id order
+// (the key of GpuWorld::pipelines).
 struct Specialization {
     Pass pass;
     std::uint32_t flowFields, heightMaps, cubeMaps;  // counts in the world
@@ -134,35 +136,6 @@ struct Specialization {
         return {static_cast<std::uint32_t>(pass), flowFields, heightMaps, cubeMaps, integrator};
     }
 };
-
-VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, const std::uint32_t* code, std::size_t words,
-                                 const Specialization& spec) {
-    auto moduleInfo = vkStruct<VkShaderModuleCreateInfo>(VK_STRUCTURE_TYPE_SHADER_MODULE_CREATE_INFO);
-    moduleInfo.codeSize = words * sizeof(std::uint32_t);
-    moduleInfo.pCode = code;
-    VkShaderModule module = VK_NULL_HANDLE;
-    check(vkCreateShaderModule(d.device, &moduleInfo, nullptr, &module), "vkCreateShaderModule");
-    auto info = vkStruct<VkComputePipelineCreateInfo>(VK_STRUCTURE_TYPE_COMPUTE_PIPELINE_CREATE_INFO);
-    info.stage.sType = VK_STRUCTURE_TYPE_PIPELINE_SHADER_STAGE_CREATE_INFO;
-    info.stage.stage = VK_SHADER_STAGE_COMPUTE_BIT;
-    info.stage.module = module;
-    info.stage.pName = "main";
-    const std::array<std::uint32_t, 5> values = spec.key();
-    std::array<VkSpecializationMapEntry, 5> entries{};
-    for (std::uint32_t i = 0; i < entries.size(); ++i) {
-        entries[i] = {i, i * 4, 4};
-    }
-    VkSpecializationInfo specialization{static_cast<std::uint32_t>(entries.size()), entries.data(),
-                                        sizeof(values), values.data()};
-    info.stage.pSpecializationInfo = &specialization;
-    info.layout = layout;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-    VkResult r = vkCreateComputePipelines(d.device, VK_NULL_HANDLE, 1, &info, nullptr, &pipeline);
-    // A module may be destroyed once its pipelines exist (Vulkan spec, vkDestroyShaderModule).
-    vkDestroyShaderModule(d.device, module, nullptr);
-    check(r, "vkCreateComputePipelines(effects_update)");
-    return pipeline;
-}
 
 // The pipeline of `pass` for emitter `e` in this world, created on first use.
 // The finish pass touches no particle: it shares one variant.
@@ -181,8 +154,10 @@ VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
     auto [it, inserted] = w.pipelines.try_emplace(spec.key(), VK_NULL_HANDLE);
     if (inserted) {
         try {
-            it->second = createComputePipeline(*w.device, w.pipelineLayout, shaders::kEffectsUpdate,
-                                               shaders::kEffectsUpdateWords, spec);
+            const std::array<std::uint32_t, 5> constants = spec.key();
+            it->second = createComputePipeline(*w.device, w.pipelineLayout,
+                                               std::span(shaders::kEffectsUpdate, shaders::kEffectsUpdateWords),
+                                               constants, "effects_update");
         } catch (...) {
             w.pipelines.erase(it);
             throw;
@@ -339,20 +314,6 @@ void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
                                              {&e.alive[1], empty.data(), kAliveHeaderBytes}}};
         upload(d, lists);
     }
-}
-
-// Execution and memory dependency between passes (a global VkMemoryBarrier).
-void barrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
-             VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
-    auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);
-    b.srcAccessMask = srcAccess;
-    b.dstAccessMask = dstAccess;
-    vkCmdPipelineBarrier(cmd, srcStage, dstStage, 0, 1, &b, 0, nullptr, 0, nullptr);
-}
-
-void computeToCompute(VkCommandBuffer cmd) {
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
-            VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
 }
 
 // Writes the spawn emitter's schedule for this step into its mapped buffer
@@ -902,7 +863,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     }
     // Earlier steps' and uploads' writes (lists, the indirect dispatch)
     // before this step reads them, also as an indirect command.
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
             VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT,
             VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
             VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
@@ -946,13 +907,13 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
             }
         }
         // The next step's update reads the dispatch and the lists.
-        barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+        memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                 VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT | VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                 VK_ACCESS_INDIRECT_COMMAND_READ_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     }
     // Counters and events are read through the mapping after the fence: make
     // the shader's writes available to the host (Vulkan spec 7.9, host access).
-    barrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT, VK_PIPELINE_STAGE_HOST_BIT,
             VK_ACCESS_HOST_READ_BIT);
     if (w.timestamps != VK_NULL_HANDLE) {
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, w.timestamps, 2 * frame + 1);

@@ -97,48 +97,56 @@ float quantile(std::vector<float> v, double q) {
 // median within 1e-4 m and the 99th percentile within 1e-3 m, about 100x the
 // observed spread and still far below what a wrong force, field lookup or
 // collider rule does to every particle in 100 steps (centimetres to metres).
-TEST_F(GpuTest, EveryBundledSceneMatchesTheCpuBackend) {
-    const int steps = 100;
-    std::vector<std::filesystem::path> files;
+// The bundled effect scenes (scenes/*.toml without fluids: the constraint
+// fluid has one solver, on the CPU), one test each so that ctest runs them in
+// parallel.
+std::vector<std::string> effectSceneNames() {
+    std::vector<std::string> names;
     for (const auto& entry : std::filesystem::directory_iterator(std::string(SPINDRIFT_SOURCE_DIR) + "/scenes")) {
-        if (entry.path().extension() == ".toml") {
-            files.push_back(entry.path());
+        if (entry.path().extension() == ".toml" && loadScene(entry.path().string()).fluids.empty()) {
+            names.push_back(entry.path().stem().string());
         }
     }
-    std::sort(files.begin(), files.end());
-    ASSERT_GE(files.size(), 7u);
-    for (const auto& file : files) {
-        SCOPED_TRACE(file.filename().string());
-        SceneDef scene = loadScene(file.string());
-        if (!scene.fluids.empty()) {
-            continue;  // the constraint fluid has one solver, on the CPU (src/fluid)
-        }
-        SceneRun cpu = runScene(scene, Backend::Cpu, steps);
-        SceneRun gpu = runScene(scene, Backend::Vulkan, steps);
-        ASSERT_EQ(cpu.steps.size(), gpu.steps.size());
-        for (std::size_t s = 0; s < cpu.steps.size(); ++s) {
-            EXPECT_EQ(gpu.steps[s].alive, cpu.steps[s].alive) << "step " << s;
-            EXPECT_EQ(gpu.steps[s].born, cpu.steps[s].born) << "step " << s;
-            EXPECT_EQ(gpu.steps[s].died, cpu.steps[s].died) << "step " << s;
-        }
-        Divergence d;
-        ASSERT_EQ(cpu.snapshots.size(), gpu.snapshots.size());
-        for (std::size_t e = 0; e < cpu.snapshots.size(); ++e) {
-            compare(cpu.snapshots[e], gpu.snapshots[e], d);
-        }
-        float median = quantile(d.position, 0.5);
-        float p99 = quantile(d.position, 0.99);
-        float worst = quantile(d.position, 1.0);
-        std::printf("%-14s %6zu particles: position difference median %.2e m, 99%% %.2e m, max %.2e m; "
-                    "velocity max %.2e m/s; %.1f s on vulkan, %.1f s on cpu\n",
-                    file.filename().string().c_str(), d.position.size(), median, p99, worst, d.maxVelocity, gpu.seconds,
-                    cpu.seconds);
-        EXPECT_EQ(d.unmatched, 0u);
-        EXPECT_GT(d.position.size(), 0u);
-        EXPECT_LT(median, 1e-4f);
-        EXPECT_LT(p99, 1e-3f);
-    }
+    std::sort(names.begin(), names.end());
+    return names;
 }
+
+class BundledScene : public GpuTest, public ::testing::WithParamInterface<std::string> {};
+
+TEST_P(BundledScene, MatchesTheCpuBackend) {
+    const int steps = 100;
+    const std::string file = std::string(SPINDRIFT_SOURCE_DIR) + "/scenes/" + GetParam() + ".toml";
+    SceneDef scene = loadScene(file);
+    SceneRun cpu = runScene(scene, Backend::Cpu, steps);
+    SceneRun gpu = runScene(scene, Backend::Vulkan, steps);
+    ASSERT_EQ(cpu.steps.size(), gpu.steps.size());
+    for (std::size_t s = 0; s < cpu.steps.size(); ++s) {
+        EXPECT_EQ(gpu.steps[s].alive, cpu.steps[s].alive) << "step " << s;
+        EXPECT_EQ(gpu.steps[s].born, cpu.steps[s].born) << "step " << s;
+        EXPECT_EQ(gpu.steps[s].died, cpu.steps[s].died) << "step " << s;
+    }
+    Divergence d;
+    ASSERT_EQ(cpu.snapshots.size(), gpu.snapshots.size());
+    for (std::size_t e = 0; e < cpu.snapshots.size(); ++e) {
+        compare(cpu.snapshots[e], gpu.snapshots[e], d);
+    }
+    float median = quantile(d.position, 0.5);
+    float p99 = quantile(d.position, 0.99);
+    float worst = quantile(d.position, 1.0);
+    std::printf("%-14s %6zu particles: position difference median %.2e m, 99%% %.2e m, max %.2e m; "
+                "velocity max %.2e m/s; %.1f s on vulkan, %.1f s on cpu\n",
+                GetParam().c_str(), d.position.size(), median, p99, worst, d.maxVelocity, gpu.seconds, cpu.seconds);
+    EXPECT_EQ(d.unmatched, 0u);
+    EXPECT_GT(d.position.size(), 0u);
+    EXPECT_LT(median, 1e-4f);
+    EXPECT_LT(p99, 1e-3f);
+}
+
+INSTANTIATE_TEST_SUITE_P(Scenes, BundledScene, ::testing::ValuesIn(effectSceneNames()),
+                         [](const ::testing::TestParamInfo<std::string>& info) { return info.param; });
+
+// The list above is not empty by accident: the seven effect scenes of scenes/.
+TEST(BundledScenes, SevenEffectScenesAreCompared) { EXPECT_GE(effectSceneNames().size(), 7u); }
 
 }  // namespace
 }  // namespace spindrift

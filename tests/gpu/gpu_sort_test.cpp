@@ -3,6 +3,7 @@
 // exactly, for random positions, ties, signed zeros, NaNs and dead slots.
 // Emitters through the public API: tests/gpu/emitter_sort_test.cpp.
 #include "effects/sort.h"
+#include "effects/sort_test_util.h"
 #include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
 #include "gpu_test_util.h"
@@ -16,6 +17,7 @@ namespace spindrift {
 namespace {
 
 using test::GpuTest;
+using test::hardPositions;
 
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
@@ -78,33 +80,6 @@ protected:
         return r;
     }
 };
-
-// Random positions mixing the hard cases (as tests/effects/sort_test.cpp):
-// wide and tiny magnitudes, negative depths, duplicates, depth +-0, huge values
-// whose depths overflow to +-inf or NaN, a few infinities.
-std::vector<glm::vec3> hardPositions(std::size_t n, std::uint32_t seed) {
-    std::mt19937 rng(seed);
-    std::uniform_real_distribution<float> unit(-1.0f, 1.0f);
-    std::uniform_int_distribution<int> kind(0, 15);
-    std::vector<glm::vec3> p;
-    p.reserve(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        glm::vec3 v(unit(rng), unit(rng), unit(rng));
-        switch (kind(rng)) {
-            case 0: v *= 1e-30f; break;
-            case 1: v *= 3e38f; break;
-            case 2: v = glm::vec3(0.0f, 0.0f, (rng() & 1) ? 0.0f : -0.0f); break;
-            case 3: v.z = (rng() & 1) ? 0.0f : -0.0f; break;
-            case 4: if (!p.empty()) { v = p[rng() % p.size()]; } break;
-            case 5: v = glm::vec3(0.0f, 0.0f, static_cast<float>(rng() % 4)); break;
-            case 6: v *= 1e6f; break;
-            case 7: if (rng() % 64 == 0) { v.z = (rng() & 1) ? kInf : -kInf; } break;
-            default: v *= 100.0f; break;
-        }
-        p.push_back(v);
-    }
-    return p;
-}
 
 // Sizes around the tile (1024 keys) and the workgroup (64), 0 and 1.
 TEST_F(GpuSortTest, RandomPositionsMatchTheCpuSortExactly) {

@@ -9,6 +9,7 @@
 #include <ostream>
 #include <string>
 #include <string_view>
+#include <vector>
 
 namespace spindrift::io {
 
@@ -35,6 +36,10 @@ inline constexpr std::string_view kCsvHeader =
 
 /// Header row, then one row per particle in snapshot order.
 void writeCsv(std::ostream& out, const ParticleSnapshot& particles);
+
+/// Appends `value` to `bytes` least significant byte first: PLY's
+/// binary_little_endian whatever the host is.
+void putLittleEndianFloat(std::vector<char>& bytes, float value);
 
 /// PLY 1.0, binary_little_endian; vertex properties: float x y z vx vy vz age
 /// size, uchar red green blue alpha. Colour is clamped to [0, 1] and encoded

@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include <bit>
 #include <iterator>
 #include <vector>
 
@@ -19,12 +18,6 @@ void checkFluid(const FluidSnapshot& p) {
     if (p.velocity.size() != n || p.density.size() != n || p.pressure.size() != n || p.id.size() != n) {
         throw Error("fluid snapshot: every attribute must have one entry per particle");
     }
-}
-
-void putFloat(std::vector<char>& bytes, float value) {
-    // Least significant byte first: the file is little-endian on any host.
-    const auto bits = std::bit_cast<std::uint32_t>(value);
-    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(static_cast<char>((bits >> shift) & 0xffu));
 }
 
 }  // namespace
@@ -64,7 +57,7 @@ void writeFluidPly(std::ostream& out, const FluidSnapshot& p) {
     for (std::size_t i = 0; i < p.count(); ++i) {
         for (float f : {p.position[i].x, p.position[i].y, p.position[i].z, p.velocity[i].x, p.velocity[i].y,
                         p.velocity[i].z, p.density[i], p.pressure[i]}) {
-            putFloat(bytes, f);
+            putLittleEndianFloat(bytes, f);
         }
     }
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));

@@ -16,13 +16,6 @@ namespace {
 // 8 floats + 4 bytes, packed: PLY has no padding between properties.
 constexpr std::size_t kVertexBytes = 8 * 4 + 4;
 
-void putFloat(std::vector<char>& bytes, float value) {
-    // Byte by byte, least significant first: the file is little-endian whatever
-    // the host is.
-    const auto bits = std::bit_cast<std::uint32_t>(value);
-    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(static_cast<char>((bits >> shift) & 0xffu));
-}
-
 double clamp01(float value) {
     // NaN compares false both ways and would survive std::clamp; make it black.
     if (!(value > 0.0f)) return 0.0;
@@ -41,7 +34,7 @@ char linearByte(float value) { return static_cast<char>(std::lround(255.0 * clam
 void putVertex(std::vector<char>& bytes, const ParticleSnapshot& p, std::size_t i) {
     const float floats[8] = {p.position[i].x, p.position[i].y, p.position[i].z, p.velocity[i].x,
                              p.velocity[i].y, p.velocity[i].z, p.age[i], p.size[i]};
-    for (float f : floats) putFloat(bytes, f);
+    for (float f : floats) putLittleEndianFloat(bytes, f);
     const glm::vec4 c = p.color[i];
     bytes.push_back(srgbByte(c.r));
     bytes.push_back(srgbByte(c.g));
@@ -81,6 +74,11 @@ void writePly(std::ostream& out, const ParticleSnapshot& particles) {
         }
     }
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+}
+
+void putLittleEndianFloat(std::vector<char>& bytes, float value) {
+    const auto bits = std::bit_cast<std::uint32_t>(value);
+    for (int shift = 0; shift < 32; shift += 8) bytes.push_back(static_cast<char>((bits >> shift) & 0xffu));
 }
 
 }  // namespace spindrift::io

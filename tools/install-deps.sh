@@ -7,6 +7,8 @@ packages=(
   libglm-dev libtbb-dev libtomlplusplus-dev libcli11-dev libfmt-dev libstb-dev
   libgtest-dev libgmock-dev libbenchmark-dev
   libvulkan-dev glslc mesa-vulkan-drivers vulkan-validationlayers
+  libbox2d-dev libglfw3-dev libimgui-dev
+  ffmpeg xvfb xauth
 )
 missing=()
 for p in "${packages[@]}"; do

@@ -87,6 +87,23 @@ struct CollisionResponseDef {
     float lifeLossOnCollision = 0.0f;
 };
 
+enum class SpriteBlend : std::uint32_t {
+    Additive = 0,  ///< colours add up (fire, sparks): order-free
+    Alpha = 1,     ///< "over" compositing (smoke), drawn back to front
+};
+
+/// How an emitter's particles are drawn (include/spindrift/render.h): a
+/// camera-facing quad of the particle's size, rotation and colour.
+struct SpriteDef {
+    SpriteBlend blend = SpriteBlend::Additive;
+    /// Velocity stretch (s): the quad is lengthened along the screen-space
+    /// velocity by speed x stretch metres; 0: round sprites that rotate.
+    float stretch = 0.0f;
+    /// PNG sprite image (its alpha is the coverage); empty: a soft round
+    /// procedural spot.
+    std::string texture;
+};
+
 struct EmitterDef {
     std::string name;
     Lifecycle lifecycle = Lifecycle::Spawn;
@@ -120,6 +137,8 @@ struct EmitterDef {
     /// using `statelessGravity`; nothing is stored or simulated.
     bool stateless = false;
     glm::vec3 statelessGravity{0.0f, -9.81f, 0.0f};
+
+    SpriteDef sprite;  ///< how the renderer draws it
 };
 
 enum class ForceKind : std::uint32_t {

@@ -1,6 +1,7 @@
 // spindrift public API: scene files (TOML) and building a world from them.
 #pragma once
 
+#include <spindrift/render.h>
 #include <spindrift/world.h>
 
 #include <string>
@@ -28,15 +29,6 @@ private:
     std::string message_;
 };
 
-struct CameraDef {
-    glm::vec3 eye{0.0f, 2.0f, 10.0f};
-    glm::vec3 target{0.0f};
-    glm::vec3 up{0.0f, 1.0f, 0.0f};
-    float fovDegrees = 45.0f;
-    bool orthographic = false;
-    float orthoHeight = 10.0f;  ///< visible height (m) of an orthographic view
-};
-
 struct RunDef {
     float dt = 1.0f / 60.0f;    ///< s
     std::uint32_t steps = 300;  ///< default length of `spindrift run`
@@ -48,7 +40,8 @@ struct RunDef {
 struct SceneDef {
     std::string source;  ///< file the scene came from
     WorldDef world;
-    CameraDef camera;
+    /// [camera] and [render]: how `spindrift render` and the viewer draw it.
+    RenderDef render;
     RunDef run;
     std::vector<FlowFieldDef> flowFields;
     std::vector<ForceDef> forces;

@@ -148,7 +148,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     SceneDef scene;
     scene.source = sourceName;
     scene.world = scene::parseOptionalTable<WorldDef>(root, "world", scene::parseWorld);
-    scene.camera = scene::parseOptionalTable<CameraDef>(root, "camera", scene::parseCamera);
+    scene.render.camera = scene::parseOptionalTable<CameraDef>(root, "camera", scene::parseCamera);
     scene.run = scene::parseOptionalTable<RunDef>(root, "run", scene::parseRun);
 
     // Referenced kinds first, so every reference finds its target's name.

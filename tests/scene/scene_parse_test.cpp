@@ -54,12 +54,12 @@ steps = 42
     EXPECT_EQ(s.world.backend, Backend::Auto);
     EXPECT_EQ(s.world.threads, 3u);
     EXPECT_EQ(s.world.seed, 4294967295u);
-    EXPECT_EQ(s.camera.eye, glm::vec3(1, 2, 3));
-    EXPECT_EQ(s.camera.target, glm::vec3(0, 1, 0));
-    EXPECT_EQ(s.camera.up, glm::vec3(0, 1, 0));  // normalised
-    EXPECT_FLOAT_EQ(s.camera.fovDegrees, 60.0f);
-    EXPECT_TRUE(s.camera.orthographic);
-    EXPECT_FLOAT_EQ(s.camera.orthoHeight, 4.5f);
+    EXPECT_EQ(s.render.camera.eye, glm::vec3(1, 2, 3));
+    EXPECT_EQ(s.render.camera.target, glm::vec3(0, 1, 0));
+    EXPECT_EQ(s.render.camera.up, glm::vec3(0, 1, 0));  // normalised
+    EXPECT_FLOAT_EQ(s.render.camera.fovDegrees, 60.0f);
+    EXPECT_TRUE(s.render.camera.orthographic);
+    EXPECT_FLOAT_EQ(s.render.camera.orthoHeight, 4.5f);
     EXPECT_FLOAT_EQ(s.run.dt, 0.01f);
     EXPECT_EQ(s.run.steps, 42u);
 }

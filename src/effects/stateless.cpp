@@ -2,6 +2,7 @@
 // nothing stored (GPU particle talk, "Stateless").
 #include "effects/cpu_kernels.h"
 #include "effects/params.h"
+#include "effects/stateless.h"
 
 #include <spindrift/world.h>
 
@@ -11,9 +12,8 @@
 namespace spindrift {
 namespace {
 
-// Serials of burst particles live above the rate's: burst b, particle j.
-constexpr std::uint32_t kBurstSerialBase = 0x80000000u;
-constexpr std::uint32_t kBurstSerialStride = 1u << 20;
+constexpr std::uint32_t kBurstSerialBase = kernels::SD_BURST_SERIAL_BASE;
+constexpr std::uint32_t kBurstSerialStride = kernels::SD_BURST_SERIAL_STRIDE;
 
 void append(ParticleSnapshot& s, const kernels::Particle& p) {
     s.position.push_back(p.position);
@@ -41,26 +41,38 @@ void addIfAlive(ParticleSnapshot& s, const kernels::EmitterParams& e, std::uint3
 
 }  // namespace
 
-ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed, std::uint32_t emitterIndex, float t) {
-    kernels::EmitterParams e = makeEmitterParams(def, seed, emitterIndex, 0u, 0u);
-    ParticleSnapshot s;
+std::vector<StatelessRun> statelessRuns(const EmitterDef& def, double t) {
+    std::vector<StatelessRun> runs;
     // Rate: particle k is born at k / rate (while the emitter runs); only those
     // born within the longest lifetime before t can be alive.
     if (def.rate > 0.0f) {
         double rate = def.rate;
-        double first = std::max(0.0, std::ceil((static_cast<double>(t) - def.lifetime.max) * rate));
-        double last = std::floor(static_cast<double>(t) * rate);
+        double first = std::max(0.0, std::ceil((t - def.lifetime.max) * rate));
+        double last = std::floor(t * rate);
         if (def.duration >= 0.0f) {
             last = std::min(last, std::ceil(def.duration * rate) - 1.0);  // born before the end
         }
-        for (double k = first; k <= last && k < kBurstSerialBase; k += 1.0) {
-            addIfAlive(s, e, static_cast<std::uint32_t>(k), k / rate, t, def.capacity);
+        last = std::min(last, static_cast<double>(kBurstSerialBase) - 1.0);
+        if (last >= first) {
+            runs.push_back({static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last - first + 1.0), rate, 0.0});
         }
     }
     for (std::size_t b = 0; b < def.bursts.size(); ++b) {
-        for (std::uint32_t j = 0; j < def.bursts[b].count; ++j) {
-            auto serial = kBurstSerialBase + static_cast<std::uint32_t>(b) * kBurstSerialStride + j;
-            addIfAlive(s, e, serial, def.bursts[b].time, t, def.capacity);
+        const BurstDef& burst = def.bursts[b];
+        if (t >= burst.time && t - burst.time < def.lifetime.max && burst.count > 0) {
+            runs.push_back({kBurstSerialBase + static_cast<std::uint32_t>(b) * kBurstSerialStride, burst.count, 0.0,
+                            burst.time});
+        }
+    }
+    return runs;
+}
+
+ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed, std::uint32_t emitterIndex, float t) {
+    kernels::EmitterParams e = makeEmitterParams(def, seed, emitterIndex, 0u, 0u);
+    ParticleSnapshot s;
+    for (const StatelessRun& run : statelessRuns(def, static_cast<double>(t))) {
+        for (std::uint32_t j = 0; j < run.count; ++j) {
+            addIfAlive(s, e, run.firstSerial + j, run.bornAt(j), t, def.capacity);
         }
     }
     return s;

@@ -635,6 +635,25 @@ void appendField(GpuWorld& w, std::vector<Image>& images, const ImageShape& shap
 
 void setWorldValidation(bool on) { validationSetting() = on; }
 
+namespace {
+std::vector<std::string>& presentationSetting() {
+    static std::vector<std::string> extensions;
+    return extensions;
+}
+}  // namespace
+
+void setPresentationExtensions(std::vector<std::string> instanceExtensions) {
+    presentationSetting() = std::move(instanceExtensions);
+}
+
+DeviceOptions worldDeviceOptions() {
+    DeviceOptions o;
+    o.validation = validationSetting().load();
+    o.log = &worldDebugLog();
+    o.instanceExtensions = presentationSetting();
+    return o;
+}
+
 DebugLog& worldDebugLog() {
     static DebugLog log;
     return log;
@@ -648,7 +667,7 @@ std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight, std::uint
     w->framesInFlight = framesInFlight;
     w->eventCapacity = eventCapacity;
     try {
-        w->device = createDevice({validationSetting().load(), &worldDebugLog()});
+        w->device = createDevice(worldDeviceOptions());
         Device& d = *w->device;
         w->setLayout = createSetLayout(d, kBindingCount);
         w->listLayout = createSetLayout(d, kListBindingCount);

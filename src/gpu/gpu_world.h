@@ -125,6 +125,13 @@ struct GpuWorld {
 void setWorldValidation(bool on);
 /// Where the debug messengers of all validated GPU worlds write.
 DebugLog& worldDebugLog();
+/// Instance extensions every device created from now on enables, with
+/// VK_KHR_swapchain (the viewer sets them before it builds a world, so the
+/// world's device can present). Empty by default: headless.
+void setPresentationExtensions(std::vector<std::string> instanceExtensions);
+/// Options of the devices of GPU worlds and renderers: validation, log and
+/// presentation as set above.
+DeviceOptions worldDeviceOptions();
 
 /// framesInFlight in [1, kMaxFramesInFlight]; eventCapacity: most events
 /// recorded per step (0: none).

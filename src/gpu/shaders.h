@@ -1,4 +1,4 @@
-// SPIR-V of src/gpu/shaders/*.comp, compiled by glslc at build time and
+// SPIR-V of src/gpu/shaders/*.comp and src/render/shaders/*, compiled by glslc at build time and
 // embedded by src/gpu/embed_spirv.cmake (see CMakeLists.txt).
 #pragma once
 
@@ -10,4 +10,21 @@ extern const std::uint32_t kEffectsUpdate[];
 extern const std::size_t kEffectsUpdateWords;
 extern const std::uint32_t kBackToFrontSort[];
 extern const std::size_t kBackToFrontSortWords;
+// The renderer (src/render/shaders/).
+extern const std::uint32_t kBackgroundVert[];
+extern const std::size_t kBackgroundVertWords;
+extern const std::uint32_t kBackgroundFrag[];
+extern const std::size_t kBackgroundFragWords;
+extern const std::uint32_t kMeshVert[];
+extern const std::size_t kMeshVertWords;
+extern const std::uint32_t kMeshFrag[];
+extern const std::size_t kMeshFragWords;
+extern const std::uint32_t kSpritesVert[];
+extern const std::size_t kSpritesVertWords;
+extern const std::uint32_t kSpritesFrag[];
+extern const std::size_t kSpritesFragWords;
+extern const std::uint32_t kSplatsVert[];
+extern const std::size_t kSplatsVertWords;
+extern const std::uint32_t kSplatsFrag[];
+extern const std::size_t kSplatsFragWords;
 }  // namespace spindrift::gpu::shaders

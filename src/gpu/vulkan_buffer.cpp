@@ -42,7 +42,7 @@ VkDeviceMemory allocateMemory(Device& d, const VkMemoryRequirements& req, VkMemo
 }
 
 VkImageSubresourceRange wholeImage(const ImageShape& shape) {
-    return {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, shape.layers()};
+    return {shape.aspect, 0, 1, 0, shape.layers()};
 }
 
 // Layout transition of the whole image with its execution and memory dependency.
@@ -62,7 +62,8 @@ void transition(VkCommandBuffer cmd, VkImage image, const ImageShape& shape, VkI
 }
 
 // UNDEFINED -> TRANSFER_DST_OPTIMAL, `fill` records the transfer, then
-// TRANSFER_DST_OPTIMAL -> SHADER_READ_ONLY_OPTIMAL for compute shaders.
+// TRANSFER_DST_OPTIMAL -> SHADER_READ_ONLY_OPTIMAL for compute and fragment
+// shaders (the renderer samples sprite and background images).
 template <class F>
 void fillImage(Device& d, Image& image, const ImageShape& shape, F&& fill) {
     submitOnce(d, [&](VkCommandBuffer cmd) {
@@ -71,7 +72,9 @@ void fillImage(Device& d, Image& image, const ImageShape& shape, F&& fill) {
         fill(cmd);
         transition(cmd, image.image, shape, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL, VK_PIPELINE_STAGE_TRANSFER_BIT,
-                   VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT);
+                   VK_ACCESS_TRANSFER_WRITE_BIT,
+                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,
+                   VK_ACCESS_SHADER_READ_BIT);
     });
 }
 
@@ -99,7 +102,7 @@ Image createSampledImage(Device& d, const ImageShape& shape) {
     info.arrayLayers = shape.layers();
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
-    info.usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    info.usage = shape.usage;
     info.sharingMode = VK_SHARING_MODE_EXCLUSIVE;
     info.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
     check(vkCreateImage(d.device, &info, nullptr, &img.image), "vkCreateImage");

@@ -47,6 +47,9 @@ struct ImageShape {
     VkImageViewType viewType = VK_IMAGE_VIEW_TYPE_2D;
     VkFormat format = VK_FORMAT_UNDEFINED;
     std::uint32_t width = 1, height = 1, depth = 1;
+    /// The renderer's targets add attachment and transfer-source uses.
+    VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
+    VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
     std::uint32_t layers() const { return viewType == VK_IMAGE_VIEW_TYPE_CUBE ? 6u : 1u; }
 };
 

@@ -74,7 +74,7 @@ bool hasLayer(const char* name) {
                        [&](const VkLayerProperties& l) { return std::strcmp(l.layerName, name) == 0; });
 }
 
-VkInstance createInstance(bool validation, DebugLog* log) {
+VkInstance createInstance(bool validation, DebugLog* log, const std::vector<std::string>& extra) {
     std::uint32_t version = VK_API_VERSION_1_0;
     check(vkEnumerateInstanceVersion(&version), "vkEnumerateInstanceVersion");
     if (version < VK_API_VERSION_1_2) {
@@ -89,7 +89,10 @@ VkInstance createInstance(bool validation, DebugLog* log) {
     app.pApplicationName = "spindrift";
     app.pEngineName = "spindrift";
     app.apiVersion = VK_API_VERSION_1_2;
-    const char* extension = VK_EXT_DEBUG_UTILS_EXTENSION_NAME;
+    std::vector<const char*> extensions;
+    for (const std::string& e : extra) {
+        extensions.push_back(e.c_str());
+    }
     auto info = vkStruct<VkInstanceCreateInfo>(VK_STRUCTURE_TYPE_INSTANCE_CREATE_INFO);
     info.pApplicationInfo = &app;
     // Chained messenger info: also reports problems inside vkCreateInstance and
@@ -98,10 +101,11 @@ VkInstance createInstance(bool validation, DebugLog* log) {
     if (validation) {
         info.enabledLayerCount = 1;
         info.ppEnabledLayerNames = &kValidationLayer;
-        info.enabledExtensionCount = 1;
-        info.ppEnabledExtensionNames = &extension;
+        extensions.push_back(VK_EXT_DEBUG_UTILS_EXTENSION_NAME);
         info.pNext = &debug;
     }
+    info.enabledExtensionCount = static_cast<std::uint32_t>(extensions.size());
+    info.ppEnabledExtensionNames = extensions.data();
     VkInstance instance = VK_NULL_HANDLE;
     check(vkCreateInstance(&info, nullptr, &instance), "vkCreateInstance");
     return instance;
@@ -129,18 +133,33 @@ DeviceKind kindOf(VkPhysicalDeviceType t) {
     }
 }
 
-// A queue family with compute; UINT32_MAX when there is none.
+// A queue family with compute, one that also has graphics where there is one
+// (the renderer draws with the world's queue); UINT32_MAX when there is none.
 std::uint32_t computeFamily(VkPhysicalDevice physical) {
     std::uint32_t count = 0;
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
     std::vector<VkQueueFamilyProperties> families(count);
     vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
+    const VkQueueFlags both = VK_QUEUE_COMPUTE_BIT | VK_QUEUE_GRAPHICS_BIT;
+    for (std::uint32_t i = 0; i < count; ++i) {
+        if ((families[i].queueFlags & both) == both) {
+            return i;
+        }
+    }
     for (std::uint32_t i = 0; i < count; ++i) {
         if ((families[i].queueFlags & VK_QUEUE_COMPUTE_BIT) != 0) {
             return i;
         }
     }
     return UINT32_MAX;
+}
+
+bool hasGraphics(VkPhysicalDevice physical, std::uint32_t family) {
+    std::uint32_t count = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, nullptr);
+    std::vector<VkQueueFamilyProperties> families(count);
+    vkGetPhysicalDeviceQueueFamilyProperties(physical, &count, families.data());
+    return family < count && (families[family].queueFlags & VK_QUEUE_GRAPHICS_BIT) != 0;
 }
 
 struct Candidate {
@@ -172,7 +191,8 @@ std::vector<Candidate> rankDevices(VkInstance instance) {
 // Enables the few optional features the backend uses, where the device has them
 // (vkGetPhysicalDeviceFeatures): indexing the field sampler arrays of
 // effects_update.comp with a dynamically uniform value.
-VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t family, VkPhysicalDeviceFeatures& enabled) {
+VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t family, VkPhysicalDeviceFeatures& enabled,
+                             bool swapchain) {
     VkPhysicalDeviceFeatures available{};
     vkGetPhysicalDeviceFeatures(physical, &available);
     enabled = VkPhysicalDeviceFeatures{};
@@ -186,6 +206,11 @@ VkDevice createLogicalDevice(VkPhysicalDevice physical, std::uint32_t family, Vk
     info.queueCreateInfoCount = 1;
     info.pQueueCreateInfos = &queue;
     info.pEnabledFeatures = &enabled;
+    const char* swapchainExtension = VK_KHR_SWAPCHAIN_EXTENSION_NAME;
+    if (swapchain) {
+        info.enabledExtensionCount = 1;
+        info.ppEnabledExtensionNames = &swapchainExtension;
+    }
     VkDevice device = VK_NULL_HANDLE;
     check(vkCreateDevice(physical, &info, nullptr, &device), "vkCreateDevice");
     return device;
@@ -203,7 +228,7 @@ VkCommandPool createCommandPool(VkDevice device, std::uint32_t family) {
 // Any Candidate at all (kind filter applied by the caller); never throws.
 bool probe(bool (*accept)(DeviceKind)) {
     try {
-        VkInstance instance = createInstance(false, nullptr);
+        VkInstance instance = createInstance(false, nullptr, {});
         bool found = false;
         try {
             for (const Candidate& c : rankDevices(instance)) {
@@ -284,7 +309,7 @@ std::unique_ptr<Device> createDevice(const DeviceOptions& options) {
     auto d = std::make_unique<Device>();
     d->log = options.log != nullptr ? options.log : d->ownLog.get();
     try {
-        d->instance = createInstance(options.validation, d->log);
+        d->instance = createInstance(options.validation, d->log, options.instanceExtensions);
         if (options.validation) {
             d->messenger = createMessenger(d->instance, d->log);
         }
@@ -297,7 +322,8 @@ std::unique_ptr<Device> createDevice(const DeviceOptions& options) {
         d->queueFamily = candidates.front().family;
         vkGetPhysicalDeviceProperties(d->physical, &d->properties);
         vkGetPhysicalDeviceMemoryProperties(d->physical, &d->memory);
-        d->device = createLogicalDevice(d->physical, d->queueFamily, d->features);
+        d->graphics = hasGraphics(d->physical, d->queueFamily);
+        d->device = createLogicalDevice(d->physical, d->queueFamily, d->features, !options.instanceExtensions.empty());
         vkGetDeviceQueue(d->device, d->queueFamily, 0, &d->queue);
         d->commandPool = createCommandPool(d->device, d->queueFamily);
     } catch (...) {

@@ -33,6 +33,9 @@ struct DeviceOptions {
     bool validation = false;
     /// Where the messenger writes; null: the device's own log.
     DebugLog* log = nullptr;
+    /// Instance extensions a window needs (glfwGetRequiredInstanceExtensions);
+    /// when any are given, the device also enables VK_KHR_swapchain.
+    std::vector<std::string> instanceExtensions;
 };
 
 struct Device {
@@ -48,6 +51,8 @@ struct Device {
     VkDevice device = VK_NULL_HANDLE;
     std::uint32_t queueFamily = 0;
     VkQueue queue = VK_NULL_HANDLE;
+    /// The queue also draws (the renderer needs it; lavapipe's does).
+    bool graphics = false;
     VkCommandPool commandPool = VK_NULL_HANDLE;
     /// Filled by the messenger unless DeviceOptions::log redirected it.
     std::unique_ptr<DebugLog> ownLog = std::make_unique<DebugLog>();

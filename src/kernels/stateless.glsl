@@ -7,6 +7,11 @@
 #include "spawn.glsl"
 SD_BEGIN
 
+// Serials of burst particles live above the rate's: burst b, particle j has
+// serial SD_BURST_SERIAL_BASE + b * SD_BURST_SERIAL_STRIDE + j.
+SD_CONST uint SD_BURST_SERIAL_BASE = 0x80000000u;
+SD_CONST uint SD_BURST_SERIAL_STRIDE = 1048576u;
+
 // The particle with serial `serial`, `age` seconds after its birth.
 SD_FN Particle evaluateStatelessParticle(SD_IN(EmitterParams) e, uint serial, float age) {
     Particle p = spawnParticle(e, serial);

@@ -1,42 +1,425 @@
-// PLACEHOLDER until the Vulkan renderer lands (issue 5, in progress): fills
-// the frame with the background on the CPU so the CLI and scene work can
-// proceed against the real API.
+// The renderer: creation, the frame's uniforms and its passes (see
+// renderer.h for the order).
 #include "render/renderer.h"
 
-#include <algorithm>
-#include <cmath>
+#include "effects/world_internal.h"
+#include "gpu/gpu_world.h"
+#include "gpu/shaders.h"
+#include "gpu/vulkan_pipeline.h"
+#include "render/collider_mesh.h"
+#include "render/render_images.h"
+#include "render/render_pipelines.h"
+#include "render/splat_pass.h"
+#include "render/sprite_pass.h"
+
+#include <fmt/format.h>
+#include <glm/gtc/matrix_transform.hpp>
+
+#include <chrono>
+#include <cstring>
 
 namespace spindrift::render {
+namespace {
+
+// Timestamps written in a frame: start, after the background, after the
+// colliders (end of pass A), after the copy, after the splats, after the
+// sprites (end of pass B).
+constexpr std::uint32_t kTimestamps = 6;
+// How far refraction moves what is seen through a splat's rim, in fractions
+// of the frame (a lens, not physics: Sprinkle distorts the background).
+constexpr float kRefractionStrength = 0.012f;
+
+template <class T>
+std::span<const std::uint32_t> code(const T* words, std::size_t count) {
+    return {words, count};
+}
+
+void createDescriptors(Renderer& r) {
+    gpu::Device& d = *r.device;
+    const VkDescriptorType frameTypes[3] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
+                                            VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
+                                            VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    r.frameLayout = createSetLayout(d, frameTypes);
+    VkDescriptorType spriteTypes[9];
+    std::fill(spriteTypes, spriteTypes + 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    spriteTypes[8] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    r.spriteLayout = createSetLayout(d, spriteTypes);
+    const VkDescriptorType splatTypes[1] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
+    r.splatLayout = createSetLayout(d, splatTypes);
+
+    const std::uint32_t sets = static_cast<std::uint32_t>(worldFromId(r.world).emitters.size()) + 2;
+    VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + sets},
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * sets + 1}};
+    auto info = gpu::vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    info.maxSets = sets;
+    info.poolSizeCount = 3;
+    info.pPoolSizes = sizes;
+    gpu::check(vkCreateDescriptorPool(d.device, &info, nullptr, &r.pool), "vkCreateDescriptorPool");
+    VkDescriptorSetLayout layouts[2] = {r.frameLayout, r.splatLayout};
+    VkDescriptorSet out[2];
+    auto alloc = gpu::vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    alloc.descriptorPool = r.pool;
+    alloc.descriptorSetCount = 2;
+    alloc.pSetLayouts = layouts;
+    gpu::check(vkAllocateDescriptorSets(d.device, &alloc, out), "vkAllocateDescriptorSets");
+    r.frameSet = out[0];
+    r.splatSet = out[1];
+
+    r.frameUniforms = gpu::createBuffer(d, sizeof(FrameUniforms), VK_BUFFER_USAGE_UNIFORM_BUFFER_BIT,
+                                        VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    VkDescriptorBufferInfo uniforms{r.frameUniforms.buffer, 0, VK_WHOLE_SIZE};
+    VkDescriptorImageInfo background{r.linearSampler,
+                                     r.def.background.kind == BackgroundKind::Image ? r.backgroundImage.view
+                                                                                    : r.placeholderImage.view,
+                                     VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo behind{r.linearSampler, r.target.behind.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkWriteDescriptorSet writes[3];
+    for (std::uint32_t i = 0; i < 3; ++i) {
+        writes[i] = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        writes[i].dstSet = r.frameSet;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = frameTypes[i];
+    }
+    writes[0].pBufferInfo = &uniforms;
+    writes[1].pImageInfo = &background;
+    writes[2].pImageInfo = &behind;
+    vkUpdateDescriptorSets(d.device, 3, writes, 0, nullptr);
+}
+
+Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
+    Pipeline p;
+    p.layout = createPipelineLayout(d, desc);
+    p.pipeline = createGraphicsPipeline(d, desc, p.layout);
+    return p;
+}
+
+void createPipelines(Renderer& r) {
+    namespace s = gpu::shaders;
+    gpu::Device& d = *r.device;
+    PipelineDesc background;
+    background.name = "background";
+    background.vertexCode = code(s::kBackgroundVert, s::kBackgroundVertWords);
+    background.fragmentCode = code(s::kBackgroundFrag, s::kBackgroundFragWords);
+    background.setLayouts = {r.frameLayout};
+    background.renderPass = r.passes.first;
+    r.background = makePipeline(d, background);
+
+    PipelineDesc mesh = background;
+    mesh.name = "colliders";
+    mesh.vertexCode = code(s::kMeshVert, s::kMeshVertWords);
+    mesh.fragmentCode = code(s::kMeshFrag, s::kMeshFragWords);
+    mesh.vertexFloat3Attributes = 3;
+    mesh.depthTest = mesh.depthWrite = true;
+    r.mesh = makePipeline(d, mesh);
+
+    PipelineDesc splats;
+    splats.name = "fluid splats";
+    splats.vertexCode = code(s::kSplatsVert, s::kSplatsVertWords);
+    splats.fragmentCode = code(s::kSplatsFrag, s::kSplatsFragWords);
+    splats.setLayouts = {r.frameLayout, r.splatLayout};
+    splats.blend = Blend::PremultipliedAlpha;
+    splats.depthTest = true;
+    splats.renderPass = r.passes.second;
+    r.splats = makePipeline(d, splats);
+
+    PipelineDesc sprites;
+    sprites.name = "sprites";
+    sprites.vertexCode = code(s::kSpritesVert, s::kSpritesVertWords);
+    sprites.fragmentCode = code(s::kSpritesFrag, s::kSpritesFragWords);
+    sprites.setLayouts = {r.frameLayout, r.spriteLayout};
+    sprites.pushConstantBytes = 16;
+    sprites.blend = Blend::Additive;
+    sprites.depthTest = true;
+    sprites.renderPass = r.passes.second;
+    r.spritesAdditive = makePipeline(d, sprites);
+    sprites.blend = Blend::PremultipliedAlpha;
+    r.spritesAlpha = makePipeline(d, sprites);
+}
+
+void destroyPipeline(gpu::Device& d, Pipeline& p) {
+    vkDestroyPipeline(d.device, p.pipeline, nullptr);
+    vkDestroyPipelineLayout(d.device, p.layout, nullptr);
+    p = Pipeline{};
+}
+
+// A host-visible vertex buffer holding `vertices` (at least one vertex of room).
+gpu::Buffer vertexBuffer(gpu::Device& d, const std::vector<MeshVertex>& vertices) {
+    gpu::Buffer b = gpu::createBuffer(d, std::max<std::size_t>(vertices.size(), 1) * sizeof(MeshVertex),
+                                      VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
+                                      VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+    std::memcpy(b.mapped, vertices.data(), vertices.size() * sizeof(MeshVertex));
+    return b;
+}
+
+void createCommands(Renderer& r) {
+    gpu::Device& d = *r.device;
+    auto pool = gpu::vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+    pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+    pool.queueFamilyIndex = d.queueFamily;
+    gpu::check(vkCreateCommandPool(d.device, &pool, nullptr, &r.commandPool), "vkCreateCommandPool");
+    auto alloc = gpu::vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+    alloc.commandPool = r.commandPool;
+    alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+    alloc.commandBufferCount = 1;
+    gpu::check(vkAllocateCommandBuffers(d.device, &alloc, &r.cmd), "vkAllocateCommandBuffers");
+    auto fence = gpu::vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+    gpu::check(vkCreateFence(d.device, &fence, nullptr, &r.fence), "vkCreateFence");
+    std::uint32_t families = 0;
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physical, &families, nullptr);
+    std::vector<VkQueueFamilyProperties> props(families);
+    vkGetPhysicalDeviceQueueFamilyProperties(d.physical, &families, props.data());
+    if (props[d.queueFamily].timestampValidBits > 0 && d.properties.limits.timestampPeriod > 0.0f) {
+        auto q = gpu::vkStruct<VkQueryPoolCreateInfo>(VK_STRUCTURE_TYPE_QUERY_POOL_CREATE_INFO);
+        q.queryType = VK_QUERY_TYPE_TIMESTAMP;
+        q.queryCount = kTimestamps;
+        gpu::check(vkCreateQueryPool(d.device, &q, nullptr, &r.timestamps), "vkCreateQueryPool");
+        r.timestampPeriodNs = d.properties.limits.timestampPeriod;
+    }
+}
+
+void createResources(Renderer& r) {
+    gpu::Device& d = *r.device;
+    if (!d.graphics) {
+        throw Error("render: the Vulkan device's queue cannot draw (no graphics queue)");
+    }
+    r.passes = createRenderPasses(d);
+    r.target = createRenderTarget(d, r.passes, r.def.width, r.def.height);
+    r.linearSampler = createLinearSampler(d);
+    r.placeholderImage = whiteImage(d);
+    if (r.def.background.kind == BackgroundKind::Image) {
+        r.backgroundImage = loadImage(d, r.def.background.image, "render background");
+    }
+    createDescriptors(r);
+    createPipelines(r);
+    createCommands(r);
+    const float aspect = float(r.def.width) / float(r.def.height);
+    r.staticMesh = vertexBuffer(d, r.def.drawColliders ? staticColliderMesh(r.world, planeExtent(r.def.camera, aspect))
+                                                       : std::vector<MeshVertex>{});
+    r.staticVertices = r.def.drawColliders
+                           ? static_cast<std::uint32_t>(r.staticMesh.size / sizeof(MeshVertex))
+                           : 0u;
+    createSpriteEmitters(r);
+}
+
+FrameUniforms frameUniforms(const RenderDef& def, double time) {
+    const CameraDef& c = def.camera;
+    const float aspect = float(def.width) / float(def.height);
+    const glm::vec3 forward = glm::normalize(c.target - c.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, c.up));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float distance = glm::length(c.target - c.eye);
+    const float reach = distance + 4.0f * planeExtent(c, aspect);
+    glm::mat4 proj;
+    if (c.orthographic) {
+        // Near plane behind the eye: in a 2D view nothing in front of the
+        // camera plane should be cut away (collider slabs reach toward it).
+        const float h = 0.5f * c.orthoHeight;
+        proj = glm::orthoRH_ZO(-h * aspect, h * aspect, -h, h, -reach, reach);
+    } else {
+        proj = glm::perspectiveRH_ZO(glm::radians(c.fovDegrees), aspect, std::max(1e-3f, 0.01f * distance), reach);
+    }
+    proj[1][1] *= -1.0f;  // Vulkan's clip space has y down
+    FrameUniforms u{};
+    u.viewProj = proj * glm::lookAtRH(c.eye, c.target, c.up);
+    u.eye = glm::vec4(c.eye, c.orthographic ? 1.0f : 0.0f);
+    u.right = glm::vec4(right, float(def.width));
+    u.up = glm::vec4(up, float(def.height));
+    u.forward = glm::vec4(forward, static_cast<float>(time));
+    u.sun = glm::vec4(glm::normalize(def.sunDirection), 0.0f);
+    const BackgroundDef& b = def.background;
+    u.backgroundTop = glm::vec4(b.kind == BackgroundKind::Colour ? b.colour : b.top, float(b.kind));
+    u.backgroundBottom = glm::vec4(b.bottom, 0.0f);
+    u.waterColour = glm::vec4(def.fluid.colour, def.fluid.opacity);
+    u.waterFlags = glm::vec4(def.fluid.refraction ? 1.0f : 0.0f, def.fluid.edges ? 1.0f : 0.0f,
+                             kRefractionStrength, 0.0f);
+    return u;
+}
+
+void timestamp(Renderer& r, VkCommandBuffer cmd, VkPipelineStageFlagBits stage, std::uint32_t index) {
+    if (r.timestamps != VK_NULL_HANDLE) {
+        vkCmdWriteTimestamp(cmd, stage, r.timestamps, index);
+    }
+}
+
+void readTimestamps(Renderer& r) {
+    if (r.timestamps == VK_NULL_HANDLE) {
+        return;
+    }
+    std::uint64_t t[kTimestamps] = {};
+    if (vkGetQueryPoolResults(r.device->device, r.timestamps, 0, kTimestamps, sizeof(t), t, sizeof(std::uint64_t),
+                              VK_QUERY_RESULT_64_BIT | VK_QUERY_RESULT_WAIT_BIT) != VK_SUCCESS) {
+        return;
+    }
+    auto ms = [&](std::uint32_t a, std::uint32_t b) { return double(t[b] - t[a]) * r.timestampPeriodNs * 1e-6; };
+    r.stats.backgroundMs = ms(0, 1);
+    r.stats.collidersMs = ms(1, 2);
+    r.stats.fluidMs = ms(3, 4);
+    r.stats.spritesMs = ms(4, 5);
+    r.stats.totalDeviceMs = ms(0, 5);
+}
+
+void beginPass(Renderer& r, VkCommandBuffer cmd, bool first) {
+    VkClearValue clear[2] = {};
+    clear[1].depthStencil = {1.0f, 0};
+    auto info = gpu::vkStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
+    info.renderPass = first ? r.passes.first : r.passes.second;
+    info.framebuffer = first ? r.target.framebufferA : r.target.framebufferB;
+    info.renderArea = {{0, 0}, {r.target.width, r.target.height}};
+    info.clearValueCount = first ? 2u : 0u;
+    info.pClearValues = clear;
+    vkCmdBeginRenderPass(cmd, &info, VK_SUBPASS_CONTENTS_INLINE);
+    VkViewport viewport{0.0f, 0.0f, float(r.target.width), float(r.target.height), 0.0f, 1.0f};
+    VkRect2D scissor{{0, 0}, {r.target.width, r.target.height}};
+    vkCmdSetViewport(cmd, 0, 1, &viewport);
+    vkCmdSetScissor(cmd, 0, 1, &scissor);
+}
+
+}  // namespace
 
 std::unique_ptr<Renderer> createRenderer(WorldId world, const RenderDef& def) {
     auto r = std::make_unique<Renderer>();
     r->world = world;
     r->def = def;
+    World& w = worldFromId(world);
+    if (w.gpu) {
+        r->device = w.gpu->device.get();  // draw straight from the world's buffers
+    } else {
+        r->ownDevice = gpu::createDevice(gpu::worldDeviceOptions());
+        r->device = r->ownDevice.get();
+    }
+    try {
+        createResources(*r);
+    } catch (...) {
+        destroyRenderer(*r);
+        throw;
+    }
     return r;
 }
 
-void destroyRenderer(Renderer&) {}
+void destroyRenderer(Renderer& r) {
+    if (r.device == nullptr) {
+        return;
+    }
+    gpu::Device& d = *r.device;
+    if (d.device != VK_NULL_HANDLE) {
+        vkDeviceWaitIdle(d.device);
+        destroySpriteEmitters(r);
+        destroySplats(r);
+        r.sort.reset();
+        for (gpu::Buffer* b : {&r.staticMesh, &r.dynamicMesh, &r.frameUniforms}) {
+            if (b->buffer != VK_NULL_HANDLE) {
+                gpu::destroyBuffer(d, *b);
+            }
+        }
+        for (Pipeline* p : {&r.background, &r.mesh, &r.spritesAdditive, &r.spritesAlpha, &r.splats}) {
+            destroyPipeline(d, *p);
+        }
+        vkDestroyDescriptorPool(d.device, r.pool, nullptr);
+        for (VkDescriptorSetLayout l : {r.frameLayout, r.spriteLayout, r.splatLayout}) {
+            vkDestroyDescriptorSetLayout(d.device, l, nullptr);
+        }
+        for (gpu::Image* i : {&r.backgroundImage, &r.placeholderImage}) {
+            if (i->image != VK_NULL_HANDLE) {
+                gpu::destroyImage(d, *i);
+            }
+        }
+        vkDestroySampler(d.device, r.linearSampler, nullptr);
+        if (r.target.colour.image != VK_NULL_HANDLE) {
+            destroyRenderTarget(d, r.target);
+        }
+        destroyRenderPasses(d, r.passes);
+        vkDestroyQueryPool(d.device, r.timestamps, nullptr);
+        vkDestroyFence(d.device, r.fence, nullptr);
+        vkDestroyCommandPool(d.device, r.commandPool, nullptr);
+    }
+    if (r.ownDevice) {
+        gpu::destroyDevice(*r.ownDevice);
+        r.ownDevice.reset();
+    }
+    r.device = nullptr;
+}
+
+void prepareFrame(Renderer& r) {
+    World& w = worldFromId(r.world);
+    if (w.gpu) {
+        // Draw the state of every step submitted so far. The frame's barrier
+        // orders this frame after them on the one queue; waiting here keeps
+        // the next step from writing what this frame still reads.
+        gpu::waitForSteps(*w.gpu);
+    }
+    const float dt = r.lastTime < 0.0 ? 0.0f : static_cast<float>(std::max(0.0, w.time - r.lastTime));
+    r.lastTime = w.time;
+    FrameUniforms u = frameUniforms(r.def, w.time);
+    std::memcpy(r.frameUniforms.mapped, &u, sizeof(u));
+    prepareSplats(r, dt);
+    prepareSprites(r);
+}
+
+void recordFrame(Renderer& r, VkCommandBuffer cmd) {
+    // Particle data written by the world's compute passes (Vulkan world) or
+    // by the host (CPU world) is read by the vertex stage.
+    gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                       VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_VERTEX_SHADER_BIT,
+                       VK_ACCESS_SHADER_READ_BIT);
+    if (r.timestamps != VK_NULL_HANDLE) {
+        vkCmdResetQueryPool(cmd, r.timestamps, 0, kTimestamps);
+    }
+    timestamp(r, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
+    {  // Pass A: background, colliders.
+        beginPass(r, cmd, true);
+        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.background.pipeline);
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.background.layout, 0, 1, &r.frameSet, 0,
+                                nullptr);
+        vkCmdDraw(cmd, 3, 1, 0, 0);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
+        if (r.staticVertices > 0) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.mesh.pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.mesh.layout, 0, 1, &r.frameSet, 0,
+                                    nullptr);
+            VkDeviceSize offset = 0;
+            vkCmdBindVertexBuffers(cmd, 0, 1, &r.staticMesh.buffer, &offset);
+            vkCmdDraw(cmd, r.staticVertices, 1, 0, 0);
+        }
+        vkCmdEndRenderPass(cmd);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 2);
+    }
+    {  // What refraction sees behind the water.
+        recordCopyBehind(cmd, r.target);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
+    }
+    {  // Pass B: fluid splats, then sprites.
+        beginPass(r, cmd, false);
+        recordSplats(r, cmd);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
+        recordSprites(r, cmd);
+        vkCmdEndRenderPass(cmd);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 5);
+    }
+}
 
 Frame renderFrame(Renderer& r) {
-    Frame f;
-    f.width = r.def.width;
-    f.height = r.def.height;
-    f.rgba.resize(std::size_t{f.width} * f.height * 4);
-    for (std::uint32_t y = 0; y < f.height; ++y) {
-        const float t = f.height > 1 ? 1.0f - float(y) / float(f.height - 1) : 0.5f;
-        const glm::vec3 c = r.def.background.kind == BackgroundKind::Gradient
-                                ? glm::mix(r.def.background.bottom, r.def.background.top, t)
-                                : r.def.background.colour;
-        for (std::uint32_t x = 0; x < f.width; ++x) {
-            std::uint8_t* p = &f.rgba[(std::size_t{y} * f.width + x) * 4];
-            for (int i = 0; i < 3; ++i) {
-                const float s = std::pow(std::clamp(c[i], 0.0f, 1.0f), 1.0f / 2.2f);
-                p[i] = static_cast<std::uint8_t>(std::lround(s * 255.0f));
-            }
-            p[3] = 255;
-        }
-    }
-    return f;
+    gpu::Device& d = *r.device;
+    auto start = std::chrono::steady_clock::now();
+    prepareFrame(r);
+    r.stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() -
+                    r.stats.sortMs;
+    gpu::check(vkResetCommandBuffer(r.cmd, 0), "vkResetCommandBuffer");
+    auto begin = gpu::vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    gpu::check(vkBeginCommandBuffer(r.cmd, &begin), "vkBeginCommandBuffer");
+    recordFrame(r, r.cmd);
+    recordReadback(r.cmd, r.target);
+    gpu::check(vkEndCommandBuffer(r.cmd), "vkEndCommandBuffer");
+    auto submit = gpu::vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &r.cmd;
+    gpu::check(vkResetFences(d.device, 1, &r.fence), "vkResetFences");
+    gpu::check(vkQueueSubmit(d.queue, 1, &submit, r.fence), "vkQueueSubmit");
+    gpu::check(vkWaitForFences(d.device, 1, &r.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+    readTimestamps(r);
+    return readFrame(r.target);
 }
 
 }  // namespace spindrift::render

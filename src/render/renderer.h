@@ -1,23 +1,113 @@
-// The Vulkan renderer behind include/spindrift/render.h. Internal so the
-// viewer (apps/spindrift) can record a frame into its own command buffer and
-// present it.
+// The Vulkan renderer behind include/spindrift/render.h: plain structs and
+// free functions (zeux/niagara style). A frame is:
+//   pass A (clears): background, colliders and bodies;
+//   copy of the colour target (what refraction sees behind the water);
+//   pass B (loads): fluid splats, then effect sprites (additive, then alpha
+//   back to front).
+// Internal, so the viewer (apps/spindrift) can record a frame into its own
+// command buffer and present the colour target.
 #pragma once
+
+#include "gpu/gpu_sort.h"
+#include "gpu/vulkan_buffer.h"
+#include "render/fluid_splats.h"
+#include "render/render_target.h"
 
 #include <spindrift/render.h>
 
+#include <glm/glm.hpp>
+
 #include <memory>
+#include <vector>
 
 namespace spindrift::render {
+
+/// std140 mirror of `Frame` in src/render/shaders/frame.glsl.
+struct FrameUniforms {
+    glm::mat4 viewProj;
+    glm::vec4 eye, right, up, forward, sun;
+    glm::vec4 backgroundTop, backgroundBottom;
+    glm::vec4 waterColour, waterFlags;
+};
+
+/// A graphics pipeline with its layout.
+struct Pipeline {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+};
+
+/// What one effect emitter draws with: its particle buffers (the GPU world's
+/// own, or host-visible copies written each frame for a CPU world), its draw
+/// order, its sprite image.
+struct SpriteEmitter {
+    std::size_t index = 0;  // into World::emitters
+    bool stateless = false;
+    bool alpha = false;
+    std::uint32_t capacity = 0;
+    float stretch = 0.0f;  // SpriteDef::stretch (s)
+    // Owned (CPU world, or stateless): host-visible, mapped.
+    gpu::Buffer params, positions, velocities, ages, births, rotations, runs;
+    gpu::Buffer order;  // device-local: slot per instance (alpha blending)
+    gpu::Image texture;
+    bool ownTexture = false;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    std::uint32_t instances = 0;  // this frame
+    std::uint32_t runCount = 0;   // stateless: this frame
+};
+
+/// Per-fluid splat state and its instance buffer.
+struct SplatFluid {
+    FluidSplatState state;
+    std::vector<SplatInstance> instances;
+};
 
 struct Renderer {
     WorldId world;
     RenderDef def;
     RenderStats stats;
     double lastTime = -1.0;  // world time of the previous frame; < 0: none yet
+
+    gpu::Device* device = nullptr;             // the world's, or `ownDevice`
+    std::unique_ptr<gpu::Device> ownDevice;    // CPU worlds
+    RenderPasses passes;
+    RenderTarget target;
+    VkSampler linearSampler = VK_NULL_HANDLE;
+    VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE, spriteLayout = VK_NULL_HANDLE,
+                          splatLayout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet frameSet = VK_NULL_HANDLE, splatSet = VK_NULL_HANDLE;
+    gpu::Buffer frameUniforms;  // host-visible
+    gpu::Image backgroundImage, placeholderImage;
+    Pipeline background, mesh, spritesAdditive, spritesAlpha, splats;
+
+    // Colliders: the static mesh, built once; bodies are rebuilt each frame.
+    gpu::Buffer staticMesh, dynamicMesh;
+    std::uint32_t staticVertices = 0, dynamicVertices = 0;
+
+    std::vector<SpriteEmitter> emitters;
+    std::unique_ptr<gpu::GpuSort> sort;
+    std::vector<SplatFluid> fluids;
+    gpu::Buffer splatBuffer;  // host-visible SplatInstance array of every fluid
+    std::uint32_t splatCount = 0;
+
+    VkCommandPool commandPool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence fence = VK_NULL_HANDLE;
+    VkQueryPool timestamps = VK_NULL_HANDLE;
+    double timestampPeriodNs = 0.0;
 };
 
 std::unique_ptr<Renderer> createRenderer(WorldId world, const RenderDef& def);
 void destroyRenderer(Renderer& r);
+
+/// Host work of a frame: uniforms, particle uploads (CPU worlds), stateless
+/// runs, fluid splats, bodies; and the back-to-front sorts of alpha emitters,
+/// each its own submission (a GpuSort sorts once per submission).
+void prepareFrame(Renderer& r);
+/// Records both passes into `cmd`; leaves the colour target in
+/// TRANSFER_SRC_OPTIMAL.
+void recordFrame(Renderer& r, VkCommandBuffer cmd);
+/// prepareFrame, recordFrame, a copy to the read-back buffer, submit and wait.
 Frame renderFrame(Renderer& r);
 
 }  // namespace spindrift::render

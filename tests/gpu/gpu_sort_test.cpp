@@ -49,7 +49,7 @@ protected:
         }
         Shared& s = shared();
         if (!s.device) {
-            s.device = gpu::createDevice({true, &gpu::worldDebugLog()});
+            s.device = gpu::createDevice({true, &gpu::worldDebugLog(), {}});
             s.sort = gpu::createGpuSort(*s.device);
         }
     }

@@ -1,0 +1,152 @@
+// Meshes of colliders and obstacles (see collider_mesh.h).
+#include "render/collider_mesh.h"
+
+#include "effects/world_internal.h"
+
+#include <spindrift/fluid.h>
+
+#include <glm/gtc/constants.hpp>
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift::render {
+namespace {
+
+const glm::vec3 kColliderColour{0.42f, 0.40f, 0.37f};
+const glm::vec3 kTerrainColour{0.30f, 0.38f, 0.22f};
+const glm::vec3 kObstacleColour{0.50f, 0.45f, 0.40f};
+// Depth (m) of 2D obstacles along z: they stand in front of the particles in
+// the xy plane, so a wall covers the water at its edge.
+constexpr float kPrismDepth = 0.5f;
+
+void triangle(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 colour) {
+    glm::vec3 n = glm::cross(b - a, c - a);
+    float len = glm::length(n);
+    n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    out.push_back({a, n, colour});
+    out.push_back({b, n, colour});
+    out.push_back({c, n, colour});
+}
+
+void quad(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 colour) {
+    triangle(out, a, b, c, colour);
+    triangle(out, a, c, d, colour);
+}
+
+// Two unit vectors perpendicular to n and to each other.
+glm::mat3 basisAround(glm::vec3 n) {
+    glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
+    glm::vec3 t = glm::normalize(glm::cross(helper, n));
+    return glm::mat3(n, t, glm::cross(n, t));
+}
+
+void appendSphere(std::vector<MeshVertex>& out, glm::vec3 centre, float r, glm::vec3 colour) {
+    constexpr int kRings = 12, kSegments = 24;
+    auto point = [&](int i, int j) {
+        float theta = glm::pi<float>() * float(i) / kRings;
+        float phi = glm::two_pi<float>() * float(j) / kSegments;
+        return glm::vec3(std::sin(theta) * std::cos(phi), std::cos(theta), std::sin(theta) * std::sin(phi));
+    };
+    for (int i = 0; i < kRings; ++i) {
+        for (int j = 0; j < kSegments; ++j) {
+            glm::vec3 n[4] = {point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)};
+            int order[6] = {0, 1, 2, 0, 2, 3};
+            for (int k : order) {
+                out.push_back({centre + r * n[k], n[k], colour});  // smooth normals
+            }
+        }
+    }
+}
+
+void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& c, const HeightMap& map) {
+    if (map.nx < 2 || map.nz < 2) {
+        return;
+    }
+    // Every other vertex of large maps: the picture needs shape, not detail.
+    const std::uint32_t stride = std::max(1u, std::max(map.nx, map.nz) / 128u);
+    auto vertex = [&](std::uint32_t i, std::uint32_t j) {
+        i = std::min(i, map.nx - 1);
+        j = std::min(j, map.nz - 1);
+        float x = c.position.x + c.grid.x * float(i) / float(map.nx - 1);
+        float z = c.position.z + c.grid.y * float(j) / float(map.nz - 1);
+        return glm::vec3(x, c.position.y + map.height[i + std::size_t{map.nx} * j], z);
+    };
+    for (std::uint32_t j = 0; j + 1 < map.nz; j += stride) {
+        for (std::uint32_t i = 0; i + 1 < map.nx; i += stride) {
+            quad(out, vertex(i, j), vertex(i, j + stride), vertex(i + stride, j + stride), vertex(i + stride, j),
+                 kTerrainColour);
+        }
+    }
+}
+
+}  // namespace
+
+float planeExtent(const CameraDef& camera, float aspect) {
+    float view = camera.orthographic ? camera.orthoHeight * std::max(aspect, 1.0f)
+                                     : glm::length(camera.target - camera.eye);
+    return 4.0f * view + 10.0f;
+}
+
+void appendBox(std::vector<MeshVertex>& out, glm::vec3 centre, const glm::mat3& axes, glm::vec3 h, glm::vec3 colour) {
+    auto corner = [&](float sx, float sy, float sz) {
+        return centre + axes[0] * (sx * h.x) + axes[1] * (sy * h.y) + axes[2] * (sz * h.z);
+    };
+    quad(out, corner(1, -1, -1), corner(1, 1, -1), corner(1, 1, 1), corner(1, -1, 1), colour);       // +x
+    quad(out, corner(-1, -1, -1), corner(-1, -1, 1), corner(-1, 1, 1), corner(-1, 1, -1), colour);   // -x
+    quad(out, corner(-1, 1, -1), corner(-1, 1, 1), corner(1, 1, 1), corner(1, 1, -1), colour);       // +y
+    quad(out, corner(-1, -1, -1), corner(1, -1, -1), corner(1, -1, 1), corner(-1, -1, 1), colour);   // -y
+    quad(out, corner(-1, -1, 1), corner(1, -1, 1), corner(1, 1, 1), corner(-1, 1, 1), colour);       // +z
+    quad(out, corner(-1, -1, -1), corner(-1, 1, -1), corner(1, 1, -1), corner(1, -1, -1), colour);   // -z
+}
+
+void appendPrism(std::vector<MeshVertex>& out, const std::vector<glm::vec2>& polygon, float depth, glm::vec3 colour) {
+    const std::size_t n = polygon.size();
+    if (n < 2) {
+        return;
+    }
+    auto at = [&](std::size_t i, float z) { return glm::vec3(polygon[i % n], z); };
+    for (std::size_t i = 1; i + 1 < n; ++i) {  // caps: fans (the polygon is convex)
+        triangle(out, at(0, depth), at(i, depth), at(i + 1, depth), colour);
+        triangle(out, at(0, -depth), at(i + 1, -depth), at(i, -depth), colour);
+    }
+    for (std::size_t i = 0; i < (n == 2 ? 1 : n); ++i) {
+        quad(out, at(i, -depth), at(i + 1, -depth), at(i + 1, depth), at(i, depth), colour);
+    }
+}
+
+std::vector<MeshVertex> staticColliderMesh(WorldId id, float extent) {
+    const World& world = worldFromId(id);
+    std::vector<MeshVertex> out;
+    for (std::size_t i = 0; i < world.colliders.size(); ++i) {
+        const kernels::ColliderParams& c = world.colliders[i];
+        const glm::vec3 p(c.position);
+        switch (c.kind) {
+            case kernels::SD_COLLIDER_PLANE: {
+                glm::mat3 axes = basisAround(glm::vec3(c.normal));
+                appendBox(out, p - axes[0] * (0.5f * extent), axes, glm::vec3(0.5f * extent, extent, extent),
+                          kColliderColour);
+                break;
+            }
+            case kernels::SD_COLLIDER_SPHERE: appendSphere(out, p, c.position.w, kColliderColour); break;
+            case kernels::SD_COLLIDER_BOX:
+                appendBox(out, p, glm::mat3(glm::vec3(c.axisX), glm::vec3(c.axisY), glm::vec3(c.axisZ)),
+                          glm::vec3(c.halfExtents), kColliderColour);
+                break;
+            case kernels::SD_COLLIDER_TERRAIN:
+                if (c.dataIndex < world.fields.heights.size()) {
+                    appendTerrain(out, c, world.fields.heights[c.dataIndex]);
+                }
+                break;
+            default: break;  // cube maps: not drawn
+        }
+    }
+    for (std::uint32_t f = 0; f < world.fluids.size(); ++f) {
+        for (const FluidPolygonDef& polygon : fluidDef(id, FluidId{f + 1}).polygons) {
+            appendPrism(out, polygon.vertices, kPrismDepth, kObstacleColour);
+        }
+    }
+    return out;
+}
+
+}  // namespace spindrift::render

@@ -1,0 +1,36 @@
+// Graphics pipelines of the renderer: one small description per pipeline,
+// one function that builds it.
+#pragma once
+
+#include "gpu/vulkan_device.h"
+
+#include <cstdint>
+#include <span>
+#include <vector>
+
+namespace spindrift::render {
+
+enum class Blend { None, Additive, PremultipliedAlpha };
+
+struct PipelineDesc {
+    const char* name = "";
+    std::span<const std::uint32_t> vertexCode, fragmentCode;
+    std::vector<VkDescriptorSetLayout> setLayouts;
+    std::uint32_t pushConstantBytes = 0;  // vertex and fragment stages
+    /// Vertex input: one interleaved binding of float3 attributes; 0: none.
+    std::uint32_t vertexFloat3Attributes = 0;
+    Blend blend = Blend::None;
+    bool depthTest = false;
+    bool depthWrite = false;
+    VkRenderPass renderPass = VK_NULL_HANDLE;
+};
+
+/// Throws Error naming desc.name and the failing call.
+VkPipeline createGraphicsPipeline(gpu::Device& d, const PipelineDesc& desc, VkPipelineLayout layout);
+VkPipelineLayout createPipelineLayout(gpu::Device& d, const PipelineDesc& desc);
+
+/// A descriptor set layout of `types[i]` at binding i, visible to the
+/// vertex and fragment stages.
+VkDescriptorSetLayout createSetLayout(gpu::Device& d, std::span<const VkDescriptorType> types);
+
+}  // namespace spindrift::render

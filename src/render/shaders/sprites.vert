@@ -1,0 +1,97 @@
+#version 450
+// Effect particles as camera-facing quads (GPU particle talk, "Rendering"),
+// read straight from the particle buffers: one instance per slot (stored
+// emitters) or per candidate serial (stateless emitters, evaluated here from
+// their closed form). Colour and size are recomputed with the update's own
+// kernels::restoreDerived, so the device stores nothing for drawing.
+#include "frame.glsl"
+#include "derived.glsl"
+#include "stateless.glsl"
+
+layout(std430, set = 1, binding = 0) readonly buffer Emitter { EmitterParams emitter; };
+// The GPU world's layout (effects_update.comp): float triples, one per slot.
+layout(std430, set = 1, binding = 1) readonly buffer Positions { float positions[]; };
+layout(std430, set = 1, binding = 2) readonly buffer Velocities { float velocities[]; };
+layout(std430, set = 1, binding = 3) readonly buffer Ages { float ages[]; };
+layout(std430, set = 1, binding = 4) readonly buffer Births { uint births[]; };
+layout(std430, set = 1, binding = 5) readonly buffer Rotations { float rotations[]; };
+// Draw order: slot of instance i (back to front for alpha blending).
+layout(std430, set = 1, binding = 6) readonly buffer Order { uint order[]; };
+// Stateless candidates in runs: x first serial, y instances before this run,
+// z age of the first serial (float bits), w birth interval (float bits).
+layout(std430, set = 1, binding = 7) readonly buffer Runs { uvec4 runs[]; };
+
+layout(push_constant) uniform Draw {
+    uint mode;      // 0: stored slots in instance order, 1: stored slots via order[], 2: stateless runs
+    uint runCount;  // stateless runs
+    float stretch;  // s: quad lengthened by speed x stretch (m) along the screen velocity
+    uint textured;  // 1: sample the sprite image
+} draw;
+
+layout(location = 0) out vec4 colour;  // linear, premultiplied by alpha
+layout(location = 1) out vec2 local;   // quad coordinates, -1..1
+
+Particle storedParticle(uint slot) {
+    Particle p;
+    p.position = vec3(positions[3u * slot], positions[3u * slot + 1u], positions[3u * slot + 2u]);
+    p.velocity = vec3(velocities[3u * slot], velocities[3u * slot + 1u], velocities[3u * slot + 2u]);
+    p.age = ages[slot];
+    p.rotation = rotations[slot];
+    p.birth = births[slot];
+    p.mass = emitter.mass;
+    p.alive = p.age >= 0.0 ? 1u : 0u;
+    return restoreDerived(emitter, p);
+}
+
+Particle statelessParticle(uint instance) {
+    uint r = 0u;
+    while (r + 1u < draw.runCount && runs[r + 1u].y <= instance) {
+        ++r;
+    }
+    uint j = instance - runs[r].y;
+    float age = uintBitsToFloat(runs[r].z) - float(j) * uintBitsToFloat(runs[r].w);
+    Particle p = evaluateStatelessParticle(emitter, runs[r].x + j, age);
+    if (age < 0.0) {
+        p.alive = 0u;
+    }
+    return p;
+}
+
+void main() {
+    uint instance = uint(gl_InstanceIndex);
+    Particle p;
+    if (draw.mode == 2u) {
+        p = statelessParticle(instance);
+    } else {
+        p = storedParticle(draw.mode == 1u ? order[instance] : instance);
+    }
+    if (p.alive == 0u || p.size <= 0.0) {
+        gl_Position = kCulled;
+        return;
+    }
+    vec2 corner = quadCorner(gl_VertexIndex);
+    local = corner;
+    float half_ = 0.5 * p.size;
+    // Axes of the quad in the camera plane: rotated by the particle's rotation,
+    // or along its screen-space velocity when stretched.
+    vec3 axisA = frame.right.xyz;
+    vec3 axisB = frame.up.xyz;
+    float lengthA = half_;
+    vec2 screenVelocity = vec2(dot(p.velocity, frame.right.xyz), dot(p.velocity, frame.up.xyz));
+    float speed = length(screenVelocity);
+    if (draw.stretch > 0.0 && speed > 1e-6) {
+        vec2 d = screenVelocity / speed;
+        axisA = d.x * frame.right.xyz + d.y * frame.up.xyz;
+        axisB = -d.y * frame.right.xyz + d.x * frame.up.xyz;
+        lengthA = half_ + 0.5 * speed * draw.stretch;
+    } else {
+        float c = cos(p.rotation);
+        float s = sin(p.rotation);
+        axisA = c * frame.right.xyz + s * frame.up.xyz;
+        axisB = -s * frame.right.xyz + c * frame.up.xyz;
+    }
+    vec3 world = p.position + axisA * (corner.x * lengthA) + axisB * (corner.y * half_);
+    gl_Position = frame.viewProj * vec4(world, 1.0);
+    float alpha = clamp(p.color.a, 0.0, 1.0);
+    colour = vec4(max(p.color.rgb, vec3(0.0)) * alpha, alpha);
+}

@@ -1,0 +1,73 @@
+// Fluid splats (see splat_pass.h).
+#include "render/splat_pass.h"
+
+#include <spindrift/fluid.h>
+
+#include <cstring>
+
+namespace spindrift::render {
+namespace {
+
+void bindSplatBuffer(Renderer& r) {
+    VkDescriptorBufferInfo info{r.splatBuffer.buffer, 0, VK_WHOLE_SIZE};
+    auto w = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    w.dstSet = r.splatSet;
+    w.dstBinding = 0;
+    w.descriptorCount = 1;
+    w.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+    w.pBufferInfo = &info;
+    vkUpdateDescriptorSets(r.device->device, 1, &w, 0, nullptr);
+}
+
+// Room for `count` instances; the renderer waits for each frame, so the old
+// buffer is not in use when it is replaced.
+void reserve(Renderer& r, std::size_t count) {
+    const VkDeviceSize bytes = std::max<VkDeviceSize>(count, 1024) * sizeof(SplatInstance);
+    if (r.splatBuffer.buffer != VK_NULL_HANDLE && r.splatBuffer.size >= bytes) {
+        return;
+    }
+    if (r.splatBuffer.buffer != VK_NULL_HANDLE) {
+        gpu::destroyBuffer(*r.device, r.splatBuffer);
+    }
+    r.splatBuffer = gpu::createHostStorageBuffer(*r.device, bytes + bytes / 2);  // head room: jets keep adding
+    bindSplatBuffer(r);
+}
+
+}  // namespace
+
+void prepareSplats(Renderer& r, float dt) {
+    const std::uint32_t fluids = fluidCount(r.world);
+    r.fluids.resize(fluids);
+    std::size_t total = 0;
+    for (std::uint32_t f = 0; f < fluids; ++f) {
+        updateFluidSplats(r.fluids[f].state, r.world, FluidId{f + 1}, r.def.fluid, dt, r.fluids[f].instances);
+        total += r.fluids[f].instances.size();
+    }
+    reserve(r, total);
+    auto* out = static_cast<SplatInstance*>(r.splatBuffer.mapped);
+    for (const SplatFluid& f : r.fluids) {
+        std::memcpy(out, f.instances.data(), f.instances.size() * sizeof(SplatInstance));
+        out += f.instances.size();
+    }
+    r.splatCount = static_cast<std::uint32_t>(total);
+    r.stats.splats = total;
+}
+
+void recordSplats(Renderer& r, VkCommandBuffer cmd) {
+    if (r.splatCount == 0) {
+        return;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.splats.pipeline);
+    VkDescriptorSet sets[2] = {r.frameSet, r.splatSet};
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.splats.layout, 0, 2, sets, 0, nullptr);
+    vkCmdDraw(cmd, 6, r.splatCount, 0, 0);
+}
+
+void destroySplats(Renderer& r) {
+    if (r.splatBuffer.buffer != VK_NULL_HANDLE) {
+        gpu::destroyBuffer(*r.device, r.splatBuffer);
+    }
+    r.fluids.clear();
+}
+
+}  // namespace spindrift::render

@@ -86,6 +86,9 @@ struct Frame {
 /// preparation, uploads).
 struct RenderStats {
     double backgroundMs = 0.0, collidersMs = 0.0, spritesMs = 0.0, sortMs = 0.0, fluidMs = 0.0;
+    /// The copy of the frame that refraction samples, with the extra pass
+    /// it needs (0 when nothing refracts).
+    double refractionCopyMs = 0.0;
     double totalDeviceMs = 0.0;
     double cpuMs = 0.0;
     std::uint64_t sprites = 0;   ///< sprite instances drawn

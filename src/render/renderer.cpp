@@ -255,6 +255,7 @@ void readTimestamps(Renderer& r) {
     auto ms = [&](std::uint32_t a, std::uint32_t b) { return double(t[b] - t[a]) * r.timestampPeriodNs * 1e-6; };
     r.stats.backgroundMs = ms(0, 1);
     r.stats.collidersMs = ms(1, 2);
+    r.stats.refractionCopyMs = ms(2, 3);
     r.stats.fluidMs = ms(3, 4);
     r.stats.spritesMs = ms(4, 5);
     r.stats.totalDeviceMs = ms(0, 5);
@@ -342,13 +343,11 @@ void destroyRenderer(Renderer& r) {
 }
 
 void prepareFrame(Renderer& r) {
+    // A Vulkan world's steps in flight need no wait here: the frame is
+    // submitted after them to the same queue and its first barrier makes
+    // their writes visible; renderFrame waits for the frame before the next
+    // step can be submitted.
     World& w = worldFromId(r.world);
-    if (w.gpu) {
-        // Draw the state of every step submitted so far. The frame's barrier
-        // orders this frame after them on the one queue; waiting here keeps
-        // the next step from writing what this frame still reads.
-        gpu::waitForSteps(*w.gpu);
-    }
     const float dt = r.lastTime < 0.0 ? 0.0f : static_cast<float>(std::max(0.0, w.time - r.lastTime));
     r.lastTime = w.time;
     FrameUniforms u = frameUniforms(r.def, w.time);
@@ -367,7 +366,11 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
         vkCmdResetQueryPool(cmd, r.timestamps, 0, kTimestamps);
     }
     timestamp(r, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
-    {  // Pass A: background, colliders.
+    // One render pass, or two around a copy of the colour target when
+    // something refracts (the copy is what the water shows behind it; on
+    // lavapipe each extra pass costs a full-frame store and load).
+    const bool refracts = r.def.fluid.refraction && r.splatCount > 0;
+    {  // Background and colliders.
         beginPass(r, cmd, true);
         vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.background.pipeline);
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.background.layout, 0, 1, &r.frameSet, 0,
@@ -382,15 +385,15 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
             vkCmdBindVertexBuffers(cmd, 0, 1, &r.staticMesh.buffer, &offset);
             vkCmdDraw(cmd, r.staticVertices, 1, 0, 0);
         }
-        vkCmdEndRenderPass(cmd);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 2);
     }
-    {  // What refraction sees behind the water.
+    if (refracts) {  // What refraction sees behind the water.
+        vkCmdEndRenderPass(cmd);
         recordCopyBehind(cmd, r.target);
-        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
-    }
-    {  // Pass B: fluid splats, then sprites.
         beginPass(r, cmd, false);
+    }
+    timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
+    {  // Fluid splats, then sprites.
         recordSplats(r, cmd);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
         recordSprites(r, cmd);

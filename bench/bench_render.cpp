@@ -1,0 +1,136 @@
+// Frame time of the renderer at 1080p (docs/performance.md, "Renderer").
+//
+//   build/release/bench_render --benchmark_repetitions=3
+//       --benchmark_report_aggregates_only=true --benchmark_format=json
+// (one command line).
+//
+// Sprites: one recycle emitter of N particles (a fountain under gravity with
+// a ground plane, every slot alive after 1.5 s of warm-up), drawn additive or
+// alpha-blended (then sorted back to front on the device every frame).
+// Argument 0: particles; argument 1: world backend (0 cpu: one upload per
+// frame, 1 vulkan: drawn from the world's buffers); argument 2: 1 alpha.
+// Fluid: a 2D block of 100k particles at 1 cm after one step (so neighbour
+// data exists), every splat step on, refraction included.
+// Each iteration is renderFrame: host preparation, the device's passes, and
+// the read-back of the 8 MB frame. The world is not stepped in the loop. The
+// counters are the last frame's device time per pass (timestamps). Without a
+// GPU this runs on Mesa's lavapipe, on the same two cores as everything else.
+#include <spindrift/render.h>
+
+#include <benchmark/benchmark.h>
+
+#include <cstdint>
+#include <exception>
+
+namespace {
+
+using namespace spindrift;
+
+RenderDef fullHd(bool orthographic) {
+    RenderDef def;
+    def.width = 1920;
+    def.height = 1080;
+    def.camera.eye = orthographic ? glm::vec3(0.0f, 0.0f, 5.0f) : glm::vec3(0.0f, 3.0f, 12.0f);
+    def.camera.target = {0.0f, orthographic ? 0.0f : 2.0f, 0.0f};
+    def.camera.orthographic = orthographic;
+    def.camera.orthoHeight = 1.2f;
+    return def;
+}
+
+void report(benchmark::State& state, RendererId r) {
+    RenderStats s = renderStats(r);
+    state.counters["device_ms"] = s.totalDeviceMs;
+    state.counters["background_ms"] = s.backgroundMs;
+    state.counters["colliders_ms"] = s.collidersMs;
+    state.counters["copy_ms"] = s.refractionCopyMs;
+    state.counters["splats_ms"] = s.fluidMs;
+    state.counters["sprites_ms"] = s.spritesMs;
+    state.counters["sort_ms"] = s.sortMs;
+    state.counters["host_ms"] = s.cpuMs;
+    state.counters["sprites"] = static_cast<double>(s.sprites);
+    state.counters["splats"] = static_cast<double>(s.splats);
+}
+
+void BM_Sprites(benchmark::State& state) {
+    try {
+        const auto n = static_cast<std::uint32_t>(state.range(0));
+        WorldDef wd;
+        wd.backend = state.range(1) == 1 ? Backend::Vulkan : Backend::Cpu;
+        wd.threads = 2;
+        wd.framesInFlight = 1;
+        WorldId w = createWorld(wd);
+        ForceDef g;
+        createForce(w, g);
+        ColliderDef floor;
+        createCollider(w, floor);
+        EmitterDef e;
+        e.lifecycle = Lifecycle::Recycle;
+        e.capacity = n;
+        e.shape.kind = SpawnShapeKind::Cone;
+        e.shape.radius = 0.2f;
+        e.shape.spreadAngle = 0.35f;
+        e.speed = {6.0f, 8.0f};
+        e.lifetime = {1.0f, 1.5f};
+        e.size = {0.03f, 0.05f};
+        e.color = {{1.0f, 0.6f, 0.2f, 0.5f}, {0.3f, 0.6f, 1.0f, 0.8f}};
+        e.sprite.blend = state.range(2) == 1 ? SpriteBlend::Alpha : SpriteBlend::Additive;
+        createEmitter(w, e);
+        for (int i = 0; i < 90; ++i) {
+            stepWorld(w, 1.0f / 60.0f);
+        }
+        RendererId r = createRenderer(w, fullHd(false));
+        renderFrame(r);  // warm-up: first-use costs
+        for (auto _ : state) {
+            Frame f = renderFrame(r);
+            benchmark::DoNotOptimize(f.rgba.data());
+        }
+        report(state, r);
+        destroyRenderer(r);
+        destroyWorld(w);
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+    }
+}
+BENCHMARK(BM_Sprites)
+    ->ArgNames({"particles", "vulkan", "alpha"})
+    ->Args({100000, 0, 0})
+    ->Args({100000, 1, 0})
+    ->Args({100000, 0, 1})
+    ->Args({1000000, 0, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+
+void BM_FluidSplats(benchmark::State& state) {
+    try {
+        WorldDef wd;
+        wd.threads = 2;
+        WorldId w = createWorld(wd);
+        FluidDef fluid;
+        fluid.spacing = 0.01f;
+        // 100k particles: 5 m x 2 m at 1 cm.
+        fluid.blocks = {FluidBlockDef{{-2.5f, -0.5f, 0.0f}, {2.5f, 1.5f, 0.0f}, glm::vec3(0.0f)}};
+        createFluid(w, fluid);
+        stepWorld(w, 1.0f / 60.0f);
+        RenderDef def = fullHd(true);
+        def.camera.orthoHeight = 2.4f;
+        def.camera.target = {0.0f, 0.5f, 0.0f};
+        def.camera.eye = {0.0f, 0.5f, 5.0f};
+        def.fluid = FluidRenderDef::upTo(static_cast<int>(state.range(0)));
+        RendererId r = createRenderer(w, def);
+        renderFrame(r);
+        for (auto _ : state) {
+            Frame f = renderFrame(r);
+            benchmark::DoNotOptimize(f.rgba.data());
+        }
+        report(state, r);
+        destroyRenderer(r);
+        destroyWorld(w);
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+    }
+}
+BENCHMARK(BM_FluidSplats)->ArgNames({"steps"})->Arg(1)->Arg(7)->Unit(benchmark::kMillisecond)->Iterations(5);
+
+}  // namespace
+
+BENCHMARK_MAIN();

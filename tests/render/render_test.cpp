@@ -260,6 +260,55 @@ TEST_P(RenderTest, SphereColliderIsDrawnWhereItIs) {
     EXPECT_EQ(pixel(f, 48, 32)[0], 0);
 }
 
+// A sprite image replaces the round spot: an opaque green square PNG makes
+// the whole quad green, corners included; a moving sprite with a stretch is
+// lengthened along its velocity by speed x stretch.
+TEST_P(RenderTest, SpriteImageAndVelocityStretchShapeTheQuad) {
+    const std::filesystem::path dir = std::filesystem::temp_directory_path() / "spindrift_render_test";
+    std::filesystem::create_directories(dir);
+    const std::string path = (dir / "green.png").string();
+    std::vector<std::uint8_t> green(4 * 4 * 4);
+    for (std::size_t i = 0; i < green.size(); i += 4) {
+        green[i + 1] = 255;
+        green[i + 3] = 255;
+    }
+    ASSERT_NE(stbi_write_png(path.c_str(), 4, 4, 4, green.data(), 16), 0);
+    for (float stretch : {0.0f, 0.2f}) {
+        BackendWorld world(GetParam());
+        EmitterDef e = restingBurst({0.0f, 0.0f, 0.0f}, 1, 0.5f);
+        e.speed = {2.0f, 2.0f};
+        e.shape.direction = {1.0f, 0.0f, 0.0f};
+        e.sprite.texture = path;
+        e.sprite.stretch = stretch;
+        createEmitter(world.id, e);
+        stepWorld(world.id, 0.05f);
+        flushWorld(world.id);
+        ParticleSnapshot p = readParticles(world.id, EmitterId{1});
+        ASSERT_EQ(p.count(), 1u);
+        ScopedRenderer r(world.id, orthoView(128, 64, 2.0f));
+        Frame f = renderFrame(r.id);
+        // Lit pixels (green) span the quad: their centres lie within it.
+        std::uint32_t minX = f.width, maxX = 0, minY = f.height, maxY = 0;
+        for (std::uint32_t y = 0; y < f.height; ++y) {
+            for (std::uint32_t x = 0; x < f.width; ++x) {
+                if (pixel(f, x, y)[1] > 128) {
+                    EXPECT_EQ(pixel(f, x, y)[0], 0);
+                    minX = std::min(minX, x), maxX = std::max(maxX, x);
+                    minY = std::min(minY, y), maxY = std::max(maxY, y);
+                }
+            }
+        }
+        ASSERT_LE(minX, maxX) << "nothing drawn";
+        const double pxPerM = 32.0;
+        const double halfLength = 0.25 + (stretch > 0.0f ? 0.5 * 2.0 * stretch : 0.0);  // m, along x
+        const double cx = 64.0 + p.position[0].x * pxPerM;
+        // Pixel centres inside [c - h, c + h]: the extremes are within a pixel of the edges.
+        EXPECT_NEAR(minX + 0.5, cx - halfLength * pxPerM, 1.0) << "stretch " << stretch;
+        EXPECT_NEAR(maxX + 0.5, cx + halfLength * pxPerM, 1.0) << "stretch " << stretch;
+        EXPECT_NEAR(maxY - minY + 1.0, 0.5 * pxPerM, 1.0) << "stretch " << stretch;
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, RenderTest, ::testing::Values(Backend::Cpu, Backend::Vulkan),
                          [](const auto& info) { return info.param == Backend::Cpu ? "cpu" : "vulkan"; });
 

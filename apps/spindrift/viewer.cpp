@@ -731,7 +731,7 @@ int viewCommand(const ViewOptions& o) {
                 s.simMs = s.last.milliseconds;
             }
             // readParticles copies back from the device: a few times a second.
-            if (frames % 15 == 0 || steps > 0) refreshAlive(s);
+            if (frames % 15 == 0 || (paused && steps > 0)) refreshAlive(s);
 
             applyCamera(s, window.handle, drag, in);
             ImGui_ImplVulkan_NewFrame();

@@ -51,7 +51,9 @@ void checkLiveChanges(Backend backend) {
     // Those born before keep theirs.
     const ParticleSnapshot all = readParticles(w.id, id);
     for (std::size_t i = 0; i < all.count(); ++i) {
-        if (all.birth[i] < bornBefore) EXPECT_NEAR(glm::length(all.velocity[i]), 1.0f, 1e-4f);
+        if (all.birth[i] < bornBefore) {
+            EXPECT_NEAR(glm::length(all.velocity[i]), 1.0f, 1e-4f);
+        }
     }
 
     setEmitterRate(w.id, id, 0.0f);

@@ -4,6 +4,7 @@
 #include "io/cache.h"
 #include "io/progress.h"
 #include "io/summary.h"
+#include "viewer.h"
 
 #include <spindrift/scene.h>
 #include <spindrift/world.h>
@@ -352,12 +353,24 @@ int main(int argc, char** argv) {
     CLI::App* run = app.add_subcommand("run", "Simulate a scene, optionally writing caches and a summary");
     addRunOptions(*run, runOptions);
 
+    spindrift::app::ViewOptions viewOptions;
+    CLI::App* view = app.add_subcommand("view", "Show a scene in a window as it simulates (docs/cli.md)");
+    view->add_option("scene", viewOptions.scene, "Scene file (TOML)")->required();
+    view->add_option("--frames", viewOptions.frames, "Show N frames, then exit (0: until closed)");
+    view->add_option("--width", viewOptions.width, "Frame width in pixels (default: the scene's)")
+        ->check(CLI::Range(1u, 16384u));
+    view->add_option("--height", viewOptions.height, "Frame height in pixels (default: the scene's)")
+        ->check(CLI::Range(1u, 16384u));
+    view->add_option("--backend,-b", viewOptions.backend, "cpu, vulkan or auto (default: the scene's)")
+        ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+
     try {
         app.parse(argc, argv);
     } catch (const CLI::ParseError& e) {
         return app.exit(e) == 0 ? 0 : kExitUsage;
     }
     if (validate->parsed()) return reportErrors([&] { return validateCommand(validatePath); });
+    if (view->parsed()) return reportErrors([&] { return spindrift::app::viewCommand(viewOptions); });
     noteGiven(*run, runOptions);
     return reportErrors([&] { return runCommand(runOptions); });
 }

@@ -128,6 +128,17 @@ EventBatch takeEvents(WorldId world);
 /// available to takeEvents. The CPU backend has nothing pending.
 StepStats flushWorld(WorldId world);
 
+/// Live changes to a state-preserving emitter, from the next step on (the
+/// viewer's panel). Only what acts at birth can change, so that particles
+/// already alive are untouched and the CPU and Vulkan backends agree: the
+/// spawn rate (particles per second, >= 0; ignored by recycle emitters) and
+/// the launch speed range. The vulkan backend waits for the steps in flight
+/// and re-uploads the emitter's parameters. Throws Error for a stateless
+/// emitter (its closed form covers all time) or a value EmitterDef rejects;
+/// nothing changes then.
+void setEmitterRate(WorldId world, EmitterId emitter, float rate);
+void setEmitterSpeed(WorldId world, EmitterId emitter, FloatRange speed);
+
 /// Simulated time (s) of the world.
 double worldTime(WorldId world);
 

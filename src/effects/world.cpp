@@ -233,6 +233,43 @@ void addTotals(const World& w, StepStats& stats) {
 
 }  // namespace
 
+namespace {
+
+// Re-derives the kernel parameters from `def` (validating it) before
+// anything changes; the masks stay those computed at creation.
+void changeEmitter(World& w, EmitterId id, const EmitterDef& def) {
+    EmitterState& e = emitterFromId(w, id);
+    if (e.def.stateless) {
+        throw Error(fmt::format("emitter '{}' is stateless: its closed form covers all time and cannot change "
+                                "during a run",
+                                e.def.name));
+    }
+    const std::uint32_t index = id.index - 1;
+    const kernels::EmitterParams params =
+        makeEmitterParams(def, w.def.seed, index, e.params.forceMask, e.params.colliderMask);
+    if (w.gpu) {
+        gpu::setEmitterParams(*w.gpu, index, params);
+    }
+    e.def = def;
+    e.params = params;
+}
+
+}  // namespace
+
+void setEmitterRate(WorldId id, EmitterId emitter, float rate) {
+    World& w = worldFromId(id);
+    EmitterDef def = emitterFromId(w, emitter).def;
+    def.rate = rate;
+    changeEmitter(w, emitter, def);
+}
+
+void setEmitterSpeed(WorldId id, EmitterId emitter, FloatRange speed) {
+    World& w = worldFromId(id);
+    EmitterDef def = emitterFromId(w, emitter).def;
+    def.speed = speed;
+    changeEmitter(w, emitter, def);
+}
+
 StepStats stepWorld(WorldId id, float dt) {
     World& w = worldFromId(id);
     if (!(dt > 0.0f) || !std::isfinite(dt)) {

@@ -962,6 +962,14 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     collectFrame(w, static_cast<std::uint32_t>(w.submitted % w.framesInFlight), emitters, stats, events);
 }
 
+void setEmitterParams(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params) {
+    GpuEmitter& e = *w.emitters.at(index);
+    waitForSteps(w);
+    kernels::EmitterParams copy = params;  // Transfer's host pointer is not const
+    const std::array<Transfer, 1> parameters{{{&e.params, &copy, sizeof(copy)}}};
+    upload(*w.device, parameters);
+}
+
 ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params) {
     waitForSteps(w);
     GpuEmitter& e = *w.emitters.at(index);

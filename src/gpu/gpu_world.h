@@ -172,6 +172,10 @@ void collectAll(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emit
 /// nothing): before the host reads or rewrites what a step uses.
 void waitForSteps(GpuWorld& w);
 
+/// Replaces emitter `index`'s parameters on the device, after the steps in
+/// flight (which read them) have finished.
+void setEmitterParams(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params);
+
 /// Copies all slots of emitter `index` back to the host, with the attributes
 /// the device does not store restored from `params` (its EmitterParams).
 ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params);

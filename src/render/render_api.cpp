@@ -45,6 +45,8 @@ render::Renderer& rendererFromId(RendererId id) {
 
 }  // namespace
 
+render::Renderer& render::rendererOf(RendererId id) { return rendererFromId(id); }
+
 void validateRenderDef(const RenderDef& def) {
     // 16384: the smallest maxImageDimension2D a desktop driver reports is far
     // above what a frame needs; lavapipe allows 16384.

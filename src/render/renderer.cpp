@@ -243,7 +243,9 @@ void timestamp(Renderer& r, VkCommandBuffer cmd, VkPipelineStageFlagBits stage, 
     }
 }
 
-void readTimestamps(Renderer& r) {
+}  // namespace
+
+void readFrameTimes(Renderer& r) {
     if (r.timestamps == VK_NULL_HANDLE) {
         return;
     }
@@ -260,6 +262,8 @@ void readTimestamps(Renderer& r) {
     r.stats.spritesMs = ms(4, 5);
     r.stats.totalDeviceMs = ms(0, 5);
 }
+
+namespace {
 
 void beginPass(Renderer& r, VkCommandBuffer cmd, bool first) {
     VkClearValue clear[2] = {};
@@ -421,7 +425,7 @@ Frame renderFrame(Renderer& r) {
     gpu::check(vkResetFences(d.device, 1, &r.fence), "vkResetFences");
     gpu::check(vkQueueSubmit(d.queue, 1, &submit, r.fence), "vkQueueSubmit");
     gpu::check(vkWaitForFences(d.device, 1, &r.fence, VK_TRUE, UINT64_MAX), "vkWaitForFences");
-    readTimestamps(r);
+    readFrameTimes(r);
     return readFrame(r.target);
 }
 

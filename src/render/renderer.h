@@ -109,5 +109,13 @@ void prepareFrame(Renderer& r);
 void recordFrame(Renderer& r, VkCommandBuffer cmd);
 /// prepareFrame, recordFrame, a copy to the read-back buffer, submit and wait.
 Frame renderFrame(Renderer& r);
+/// Fills r.stats' device times from the timestamps of the last recorded
+/// frame; call once its submission has finished (the viewer, which submits
+/// frames itself).
+void readFrameTimes(Renderer& r);
+
+/// The renderer behind a public id (render_api.cpp), for the viewer, which
+/// records frames into its own command buffers. Throws Error for a bad id.
+Renderer& rendererOf(RendererId id);
 
 }  // namespace spindrift::render

@@ -196,6 +196,9 @@ void prepareSprites(Renderer& r) {
         }
         const gpu::GpuEmitter* g = w.gpu ? w.gpu->emitters[s.index].get() : nullptr;
         if (!g) {
+            // The parameters too: setEmitterSpeed and the like change them
+            // during a run (a few hundred bytes).
+            std::memcpy(s.params.mapped, &e.params, sizeof(kernels::EmitterParams));
             uploadSlots(s, e);
         }
         s.instances = s.capacity;

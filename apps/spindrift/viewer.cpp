@@ -1,0 +1,767 @@
+// `spindrift view`: the scene in a GLFW window. Each frame steps the world
+// (unless paused), records the renderer's offscreen frame, blits its colour
+// target into the acquired swapchain image, draws a Dear ImGui panel over it in
+// a small render pass of its own, and presents. One frame in flight: the
+// renderer's host-visible buffers (uniforms, splats, sprite copies) are single,
+// so the host waits for the previous frame before it writes them again.
+//
+// Restart (R) rebuilds everything Vulkan from the scene: a CPU world's renderer
+// owns its device, so the surface, swapchain and ImGui's Vulkan objects die
+// with it. The window and ImGui's context live for the whole session.
+#include "viewer.h"
+
+#include "gpu/gpu_world.h"
+#include "gpu/vulkan_device.h"
+#include "render/render_target.h"
+#include "render/renderer.h"
+
+#include <spindrift/render.h>
+#include <spindrift/scene.h>
+#include <spindrift/world.h>
+
+#define GLFW_INCLUDE_NONE
+#include <GLFW/glfw3.h>
+#include <backends/imgui_impl_glfw.h>
+#include <backends/imgui_impl_vulkan.h>
+#include <fmt/format.h>
+#include <imgui.h>
+
+#include <glm/gtc/constants.hpp>
+#include <glm/gtc/quaternion.hpp>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <cstdio>
+#include <cstdlib>
+#include <string>
+#include <vector>
+
+namespace spindrift::app {
+namespace {
+
+using gpu::check;
+using gpu::vkStruct;
+
+// Window and input ------------------------------------------------------------------
+
+/// What the callbacks saw since the last frame; consumed by the loop.
+struct Input {
+    bool togglePause = false, quit = false, restart = false;
+    int steps = 0;         // single steps asked for while paused
+    double scroll = 0.0;   // wheel notches, up positive
+    bool resized = false;
+};
+
+Input& inputOf(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
+
+// Installed before ImGui's, which chains to them: they see every event, and
+// skip those ImGui wants (typing in a field, scrolling the panel).
+void onKey(GLFWwindow* window, int key, int, int action, int) {
+    if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
+    if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureKeyboard) return;
+    Input& in = inputOf(window);
+    switch (key) {
+        case GLFW_KEY_ESCAPE: in.quit = true; break;
+        case GLFW_KEY_SPACE: if (action == GLFW_PRESS) in.togglePause = true; break;
+        case GLFW_KEY_N:
+        case GLFW_KEY_RIGHT: ++in.steps; break;
+        case GLFW_KEY_R: if (action == GLFW_PRESS) in.restart = true; break;
+        default: break;
+    }
+}
+
+void onScroll(GLFWwindow* window, double, double y) {
+    if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureMouse) return;
+    inputOf(window).scroll += y;
+}
+
+void onResize(GLFWwindow* window, int, int) { inputOf(window).resized = true; }
+
+void onGlfwError(int code, const char* text) { std::fprintf(stderr, "glfw error %d: %s\n", code, text); }
+
+/// Owns glfwInit and the window.
+struct Window {
+    GLFWwindow* handle = nullptr;
+    Input input;
+    Window(std::uint32_t width, std::uint32_t height, const std::string& title) {
+        glfwSetErrorCallback(onGlfwError);
+        if (glfwInit() == GLFW_FALSE) {
+            throw Error("view: cannot open a window (no display? set DISPLAY or run under xvfb-run)");
+        }
+        if (glfwVulkanSupported() == GLFW_FALSE) {
+            glfwTerminate();
+            throw Error("view: GLFW finds no Vulkan loader able to present");
+        }
+        glfwWindowHint(GLFW_CLIENT_API, GLFW_NO_API);
+        handle = glfwCreateWindow(int(width), int(height), title.c_str(), nullptr, nullptr);
+        if (handle == nullptr) {
+            glfwTerminate();
+            throw Error("view: glfwCreateWindow failed");
+        }
+        glfwSetWindowUserPointer(handle, &input);
+        glfwSetKeyCallback(handle, onKey);
+        glfwSetScrollCallback(handle, onScroll);
+        glfwSetFramebufferSizeCallback(handle, onResize);
+    }
+    ~Window() {
+        glfwDestroyWindow(handle);
+        glfwTerminate();
+    }
+    Window(const Window&) = delete;
+    Window& operator=(const Window&) = delete;
+};
+
+/// The instance extensions a surface needs, for every device built from now on.
+void requestPresentation() {
+    std::uint32_t count = 0;
+    const char** names = glfwGetRequiredInstanceExtensions(&count);
+    if (names == nullptr) throw Error("view: Vulkan cannot present to this window system");
+    gpu::setPresentationExtensions(std::vector<std::string>(names, names + count));
+}
+
+// Presentation ------------------------------------------------------------------------
+
+struct Swapchain {
+    VkSwapchainKHR swapchain = VK_NULL_HANDLE;
+    VkFormat format = VK_FORMAT_UNDEFINED;
+    VkExtent2D extent{};
+    std::uint32_t minImages = 2;
+    std::vector<VkImage> images;
+    std::vector<VkImageView> views;
+    std::vector<VkFramebuffer> framebuffers;
+    /// Per image: a semaphore may be signalled again only once the present
+    /// that waited on it is done, which is known per image (its next acquire).
+    std::vector<VkSemaphore> rendered;
+};
+
+/// Everything that presents on one device: surface, swapchain, the overlay
+/// pass ImGui draws in, the frame's command buffer and synchronisation.
+struct Presenter {
+    gpu::Device* d = nullptr;
+    VkSurfaceKHR surface = VK_NULL_HANDLE;
+    VkSurfaceFormatKHR surfaceFormat{};
+    VkPresentModeKHR presentMode = VK_PRESENT_MODE_FIFO_KHR;
+    VkRenderPass overlay = VK_NULL_HANDLE;
+    Swapchain chain;
+    VkDescriptorPool imguiPool = VK_NULL_HANDLE;
+    bool imgui = false;
+    VkCommandPool pool = VK_NULL_HANDLE;
+    VkCommandBuffer cmd = VK_NULL_HANDLE;
+    VkFence done = VK_NULL_HANDLE;        // created signalled: no frame pending
+    VkSemaphore acquired = VK_NULL_HANDLE;
+};
+
+VkSurfaceFormatKHR chooseFormat(const gpu::Device& d, VkSurfaceKHR surface) {
+    std::uint32_t n = 0;
+    check(vkGetPhysicalDeviceSurfaceFormatsKHR(d.physical, surface, &n, nullptr), "vkGetPhysicalDeviceSurfaceFormatsKHR");
+    std::vector<VkSurfaceFormatKHR> formats(n);
+    check(vkGetPhysicalDeviceSurfaceFormatsKHR(d.physical, surface, &n, formats.data()),
+          "vkGetPhysicalDeviceSurfaceFormatsKHR");
+    auto blittable = [&](VkFormat f) {
+        VkFormatProperties p{};
+        vkGetPhysicalDeviceFormatProperties(d.physical, f, &p);
+        return (p.optimalTilingFeatures & VK_FORMAT_FEATURE_BLIT_DST_BIT) != 0;
+    };
+    // sRGB first: the blit then keeps the renderer's sRGB bytes as they are
+    // (decode and re-encode), like the PNGs of `spindrift render`.
+    for (VkFormat want : {VK_FORMAT_B8G8R8A8_SRGB, VK_FORMAT_R8G8B8A8_SRGB}) {
+        for (const VkSurfaceFormatKHR& f : formats) {
+            if (f.format == want && f.colorSpace == VK_COLOR_SPACE_SRGB_NONLINEAR_KHR && blittable(f.format)) return f;
+        }
+    }
+    for (const VkSurfaceFormatKHR& f : formats) {
+        if (blittable(f.format)) return f;
+    }
+    throw Error("view: no surface format the renderer's frame can be blitted to");
+}
+
+VkPresentModeKHR choosePresentMode(const gpu::Device& d, VkSurfaceKHR surface) {
+    std::uint32_t n = 0;
+    check(vkGetPhysicalDeviceSurfacePresentModesKHR(d.physical, surface, &n, nullptr),
+          "vkGetPhysicalDeviceSurfacePresentModesKHR");
+    std::vector<VkPresentModeKHR> modes(n);
+    check(vkGetPhysicalDeviceSurfacePresentModesKHR(d.physical, surface, &n, modes.data()),
+          "vkGetPhysicalDeviceSurfacePresentModesKHR");
+    // Mailbox: no tearing and never blocks on a display that may have no
+    // vblank (Xvfb); FIFO is the one mode every driver has.
+    return std::find(modes.begin(), modes.end(), VK_PRESENT_MODE_MAILBOX_KHR) != modes.end()
+               ? VK_PRESENT_MODE_MAILBOX_KHR
+               : VK_PRESENT_MODE_FIFO_KHR;
+}
+
+/// The pass ImGui draws in: it loads the blitted frame and hands the image to
+/// the presentation engine.
+VkRenderPass createOverlayPass(const gpu::Device& d, VkFormat format) {
+    VkAttachmentDescription colour{};
+    colour.format = format;
+    colour.samples = VK_SAMPLE_COUNT_1_BIT;
+    colour.loadOp = VK_ATTACHMENT_LOAD_OP_LOAD;
+    colour.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    colour.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    colour.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    colour.initialLayout = VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL;
+    colour.finalLayout = VK_IMAGE_LAYOUT_PRESENT_SRC_KHR;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &ref;
+    VkSubpassDependency dep{};
+    dep.srcSubpass = VK_SUBPASS_EXTERNAL;
+    dep.dstSubpass = 0;
+    dep.srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dep.dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dep.srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dep.dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    auto info = vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
+    info.attachmentCount = 1;
+    info.pAttachments = &colour;
+    info.subpassCount = 1;
+    info.pSubpasses = &subpass;
+    info.dependencyCount = 1;
+    info.pDependencies = &dep;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    check(vkCreateRenderPass(d.device, &info, nullptr, &pass), "vkCreateRenderPass");
+    return pass;
+}
+
+void destroyChainViews(const gpu::Device& d, Swapchain& c) {
+    for (VkFramebuffer f : c.framebuffers) vkDestroyFramebuffer(d.device, f, nullptr);
+    for (VkImageView v : c.views) vkDestroyImageView(d.device, v, nullptr);
+    for (VkSemaphore s : c.rendered) vkDestroySemaphore(d.device, s, nullptr);
+    c.framebuffers.clear();
+    c.views.clear();
+    c.rendered.clear();
+    c.images.clear();
+}
+
+/// (Re)creates the swapchain at the window's framebuffer size, retiring the
+/// old one. The caller has waited for the device to be idle.
+void createSwapchain(Presenter& p, GLFWwindow* window) {
+    gpu::Device& d = *p.d;
+    VkSurfaceCapabilitiesKHR caps{};
+    check(vkGetPhysicalDeviceSurfaceCapabilitiesKHR(d.physical, p.surface, &caps),
+          "vkGetPhysicalDeviceSurfaceCapabilitiesKHR");
+    if ((caps.supportedUsageFlags & VK_IMAGE_USAGE_TRANSFER_DST_BIT) == 0) {
+        throw Error("view: the swapchain's images cannot be blitted to (no TRANSFER_DST usage)");
+    }
+    VkExtent2D extent = caps.currentExtent;
+    if (extent.width == 0xFFFFFFFFu) {  // the surface takes the swapchain's size
+        int w = 0, h = 0;
+        glfwGetFramebufferSize(window, &w, &h);
+        extent.width = std::clamp(std::uint32_t(w), caps.minImageExtent.width, caps.maxImageExtent.width);
+        extent.height = std::clamp(std::uint32_t(h), caps.minImageExtent.height, caps.maxImageExtent.height);
+    }
+    std::uint32_t images = std::max(caps.minImageCount + 1, 2u);
+    if (caps.maxImageCount > 0) images = std::min(images, caps.maxImageCount);
+
+    Swapchain old = std::move(p.chain);
+    destroyChainViews(d, old);
+    p.chain = Swapchain{};
+    Swapchain& c = p.chain;
+    c.format = p.surfaceFormat.format;
+    c.extent = extent;
+    c.minImages = std::max(images, 2u);
+    auto info = vkStruct<VkSwapchainCreateInfoKHR>(VK_STRUCTURE_TYPE_SWAPCHAIN_CREATE_INFO_KHR);
+    info.surface = p.surface;
+    info.minImageCount = images;
+    info.imageFormat = p.surfaceFormat.format;
+    info.imageColorSpace = p.surfaceFormat.colorSpace;
+    info.imageExtent = extent;
+    info.imageArrayLayers = 1;
+    info.imageUsage = VK_IMAGE_USAGE_TRANSFER_DST_BIT | VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT;
+    info.imageSharingMode = VK_SHARING_MODE_EXCLUSIVE;
+    info.preTransform = caps.currentTransform;
+    info.compositeAlpha = (caps.supportedCompositeAlpha & VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR) != 0
+                              ? VK_COMPOSITE_ALPHA_OPAQUE_BIT_KHR
+                              : VkCompositeAlphaFlagBitsKHR(caps.supportedCompositeAlpha & -caps.supportedCompositeAlpha);
+    info.presentMode = p.presentMode;
+    info.clipped = VK_TRUE;
+    info.oldSwapchain = old.swapchain;
+    check(vkCreateSwapchainKHR(d.device, &info, nullptr, &c.swapchain), "vkCreateSwapchainKHR");
+    vkDestroySwapchainKHR(d.device, old.swapchain, nullptr);
+
+    std::uint32_t n = 0;
+    check(vkGetSwapchainImagesKHR(d.device, c.swapchain, &n, nullptr), "vkGetSwapchainImagesKHR");
+    c.images.resize(n);
+    check(vkGetSwapchainImagesKHR(d.device, c.swapchain, &n, c.images.data()), "vkGetSwapchainImagesKHR");
+    for (VkImage image : c.images) {
+        auto view = vkStruct<VkImageViewCreateInfo>(VK_STRUCTURE_TYPE_IMAGE_VIEW_CREATE_INFO);
+        view.image = image;
+        view.viewType = VK_IMAGE_VIEW_TYPE_2D;
+        view.format = c.format;
+        view.subresourceRange = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+        c.views.push_back(VK_NULL_HANDLE);
+        check(vkCreateImageView(d.device, &view, nullptr, &c.views.back()), "vkCreateImageView");
+        auto fb = vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
+        fb.renderPass = p.overlay;
+        fb.attachmentCount = 1;
+        fb.pAttachments = &c.views.back();
+        fb.width = extent.width;
+        fb.height = extent.height;
+        fb.layers = 1;
+        c.framebuffers.push_back(VK_NULL_HANDLE);
+        check(vkCreateFramebuffer(d.device, &fb, nullptr, &c.framebuffers.back()), "vkCreateFramebuffer");
+        auto sem = vkStruct<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
+        c.rendered.push_back(VK_NULL_HANDLE);
+        check(vkCreateSemaphore(d.device, &sem, nullptr, &c.rendered.back()), "vkCreateSemaphore");
+    }
+}
+
+void checkImGuiVk(VkResult r) {
+    if (r < 0) {  // ImGui's backend cannot carry on after a failed call
+        std::fprintf(stderr, "error: ImGui Vulkan backend: %s\n", gpu::resultName(r));
+        std::abort();
+    }
+}
+
+void initImGuiVulkan(Presenter& p) {
+    gpu::Device& d = *p.d;
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 8};
+    auto pool = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    pool.flags = VK_DESCRIPTOR_POOL_CREATE_FREE_DESCRIPTOR_SET_BIT;
+    pool.maxSets = 8;
+    pool.poolSizeCount = 1;
+    pool.pPoolSizes = &size;
+    check(vkCreateDescriptorPool(d.device, &pool, nullptr, &p.imguiPool), "vkCreateDescriptorPool");
+    ImGui_ImplVulkan_InitInfo info{};
+    info.Instance = d.instance;
+    info.PhysicalDevice = d.physical;
+    info.Device = d.device;
+    info.QueueFamily = d.queueFamily;
+    info.Queue = d.queue;
+    info.DescriptorPool = p.imguiPool;
+    info.MinImageCount = p.chain.minImages;
+    info.ImageCount = std::max<std::uint32_t>(std::uint32_t(p.chain.images.size()), p.chain.minImages);
+    info.MSAASamples = VK_SAMPLE_COUNT_1_BIT;
+    info.CheckVkResultFn = checkImGuiVk;
+    if (!ImGui_ImplVulkan_Init(&info, p.overlay)) throw Error("view: ImGui_ImplVulkan_Init failed");
+    p.imgui = true;
+    gpu::submitOnce(d, [](VkCommandBuffer cmd) { ImGui_ImplVulkan_CreateFontsTexture(cmd); });
+    ImGui_ImplVulkan_DestroyFontUploadObjects();
+}
+
+void destroyPresenter(Presenter& p) {
+    if (p.d == nullptr || p.d->device == VK_NULL_HANDLE) return;
+    gpu::Device& d = *p.d;
+    vkDeviceWaitIdle(d.device);
+    if (p.imgui) ImGui_ImplVulkan_Shutdown();
+    p.imgui = false;
+    vkDestroyDescriptorPool(d.device, p.imguiPool, nullptr);
+    destroyChainViews(d, p.chain);
+    vkDestroySwapchainKHR(d.device, p.chain.swapchain, nullptr);
+    vkDestroyRenderPass(d.device, p.overlay, nullptr);
+    vkDestroySemaphore(d.device, p.acquired, nullptr);
+    vkDestroyFence(d.device, p.done, nullptr);
+    vkDestroyCommandPool(d.device, p.pool, nullptr);
+    vkDestroySurfaceKHR(d.instance, p.surface, nullptr);
+    p = Presenter{};
+}
+
+Presenter createPresenter(gpu::Device& d, GLFWwindow* window) {
+    Presenter p;
+    p.d = &d;
+    try {
+        check(glfwCreateWindowSurface(d.instance, window, nullptr, &p.surface), "glfwCreateWindowSurface");
+        VkBool32 supported = VK_FALSE;
+        check(vkGetPhysicalDeviceSurfaceSupportKHR(d.physical, d.queueFamily, p.surface, &supported),
+              "vkGetPhysicalDeviceSurfaceSupportKHR");
+        if (supported == VK_FALSE) throw Error("view: the device's queue cannot present to this window");
+        p.surfaceFormat = chooseFormat(d, p.surface);
+        p.presentMode = choosePresentMode(d, p.surface);
+        p.overlay = createOverlayPass(d, p.surfaceFormat.format);
+        createSwapchain(p, window);
+        auto pool = vkStruct<VkCommandPoolCreateInfo>(VK_STRUCTURE_TYPE_COMMAND_POOL_CREATE_INFO);
+        pool.flags = VK_COMMAND_POOL_CREATE_RESET_COMMAND_BUFFER_BIT;
+        pool.queueFamilyIndex = d.queueFamily;
+        check(vkCreateCommandPool(d.device, &pool, nullptr, &p.pool), "vkCreateCommandPool");
+        auto alloc = vkStruct<VkCommandBufferAllocateInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_ALLOCATE_INFO);
+        alloc.commandPool = p.pool;
+        alloc.level = VK_COMMAND_BUFFER_LEVEL_PRIMARY;
+        alloc.commandBufferCount = 1;
+        check(vkAllocateCommandBuffers(d.device, &alloc, &p.cmd), "vkAllocateCommandBuffers");
+        auto fence = vkStruct<VkFenceCreateInfo>(VK_STRUCTURE_TYPE_FENCE_CREATE_INFO);
+        fence.flags = VK_FENCE_CREATE_SIGNALED_BIT;
+        check(vkCreateFence(d.device, &fence, nullptr, &p.done), "vkCreateFence");
+        auto sem = vkStruct<VkSemaphoreCreateInfo>(VK_STRUCTURE_TYPE_SEMAPHORE_CREATE_INFO);
+        check(vkCreateSemaphore(d.device, &sem, nullptr, &p.acquired), "vkCreateSemaphore");
+        initImGuiVulkan(p);
+    } catch (...) {
+        destroyPresenter(p);
+        throw;
+    }
+    return p;
+}
+
+/// The largest rectangle of the frame's aspect centred in the window.
+VkOffset3D fitted(std::uint32_t fw, std::uint32_t fh, VkExtent2D win, bool end) {
+    const double scale = std::min(double(win.width) / fw, double(win.height) / fh);
+    const auto w = std::int32_t(std::lround(fw * scale)), h = std::int32_t(std::lround(fh * scale));
+    const std::int32_t x = (std::int32_t(win.width) - w) / 2, y = (std::int32_t(win.height) - h) / 2;
+    return end ? VkOffset3D{x + w, y + h, 1} : VkOffset3D{x, y, 0};
+}
+
+/// After recordFrame: the frame blitted (scaled, letterboxed) into swapchain
+/// image `index`, then ImGui's draw data over it; leaves it PRESENT_SRC.
+void recordPresent(Presenter& p, const render::RenderTarget& target, std::uint32_t index) {
+    const Swapchain& c = p.chain;
+    VkImage image = c.images[index];
+    // From UNDEFINED: the whole image is rewritten. The stage is the one the
+    // acquire semaphore is waited at, so the two chain.
+    render::imageBarrier(p.cmd, image, VK_IMAGE_LAYOUT_UNDEFINED, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkClearColorValue black{};
+    VkImageSubresourceRange range{VK_IMAGE_ASPECT_COLOR_BIT, 0, 1, 0, 1};
+    vkCmdClearColorImage(p.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, &black, 1, &range);
+    // The blit writes over part of what the clear wrote (the bars stay).
+    render::imageBarrier(p.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_TRANSFER_BIT,
+                         VK_ACCESS_TRANSFER_WRITE_BIT);
+    VkImageBlit blit{};
+    blit.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.srcOffsets[1] = {std::int32_t(target.width), std::int32_t(target.height), 1};
+    blit.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
+    blit.dstOffsets[0] = fitted(target.width, target.height, c.extent, false);
+    blit.dstOffsets[1] = fitted(target.width, target.height, c.extent, true);
+    if (blit.dstOffsets[1].x > blit.dstOffsets[0].x && blit.dstOffsets[1].y > blit.dstOffsets[0].y) {
+        // vkCmdBlitImage converts RGBA sRGB to the swapchain's format.
+        vkCmdBlitImage(p.cmd, target.colour.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, image,
+                       VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &blit, VK_FILTER_LINEAR);
+    }
+    render::imageBarrier(p.cmd, image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL,
+                         VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                         VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT,
+                         VK_ACCESS_COLOR_ATTACHMENT_READ_BIT | VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT);
+    auto begin = vkStruct<VkRenderPassBeginInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_BEGIN_INFO);
+    begin.renderPass = p.overlay;
+    begin.framebuffer = c.framebuffers[index];
+    begin.renderArea = {{0, 0}, c.extent};
+    vkCmdBeginRenderPass(p.cmd, &begin, VK_SUBPASS_CONTENTS_INLINE);
+    ImGui_ImplVulkan_RenderDrawData(ImGui::GetDrawData(), p.cmd);
+    vkCmdEndRenderPass(p.cmd);
+}
+
+// Session: world, renderer, presenter ----------------------------------------------------
+
+struct Session {
+    WorldId world{};
+    RendererId renderer{};
+    bool hasWorld = false, hasRenderer = false;
+    Presenter presenter;
+    std::vector<EmitterDef> emitters;     // as last applied (the panel edits copies)
+    std::vector<std::uint64_t> alive;     // per emitter, refreshed now and then
+    StepStats last;                       // of the last step
+    double simMs = 0.0, frameMs = 0.0;
+};
+
+void stopSession(Session& s) {
+    destroyPresenter(s.presenter);
+    if (s.hasRenderer) destroyRenderer(s.renderer);
+    if (s.hasWorld) destroyWorld(s.world);
+    s = Session{};
+}
+
+void startSession(Session& s, const SceneDef& scene, GLFWwindow* window) {
+    try {
+        s.world = buildWorld(scene);
+        s.hasWorld = true;
+        s.renderer = createRenderer(s.world, scene.render);
+        s.hasRenderer = true;
+        s.presenter = createPresenter(*render::rendererOf(s.renderer).device, window);
+    } catch (...) {
+        stopSession(s);
+        throw;
+    }
+    for (std::uint32_t i = 0; i < emitterCount(s.world); ++i) s.emitters.push_back(emitterDef(s.world, EmitterId{i + 1}));
+    s.alive.assign(s.emitters.size(), 0);
+}
+
+void refreshAlive(Session& s) {
+    for (std::uint32_t i = 0; i < s.emitters.size(); ++i) {
+        s.alive[i] = readParticles(s.world, EmitterId{i + 1}).count();
+    }
+}
+
+// Camera ---------------------------------------------------------------------------------
+
+/// Mouse drag: orbit the target (perspective) or pan (orthographic); wheel:
+/// dolly or zoom. `dx`, `dy` in pixels of a window `height` pixels tall.
+CameraDef moveCamera(CameraDef c, double dx, double dy, double scroll, double height) {
+    const glm::vec3 forward = glm::normalize(c.target - c.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, c.up));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float zoom = std::pow(0.9f, float(scroll));
+    if (c.orthographic) {
+        const float perPixel = c.orthoHeight / float(std::max(height, 1.0));
+        const glm::vec3 shift = (-float(dx) * right + float(dy) * up) * perPixel;
+        c.eye += shift;
+        c.target += shift;
+        c.orthoHeight = std::clamp(c.orthoHeight * zoom, 1e-3f, 1e5f);
+        return c;
+    }
+    glm::vec3 offset = c.eye - c.target;
+    const float radians = glm::pi<float>() / float(std::max(height, 1.0));  // a window's height: half a turn
+    offset = glm::angleAxis(-float(dx) * radians, glm::normalize(c.up)) * offset;
+    // Pitch, stopping short of the poles where the view would flip over up.
+    const glm::vec3 side = glm::normalize(glm::cross(glm::normalize(c.up), offset));
+    const glm::vec3 pitched = glm::angleAxis(float(dy) * radians, side) * offset;
+    if (std::abs(glm::dot(glm::normalize(pitched), glm::normalize(c.up))) < 0.99f) offset = pitched;
+    const float distance = std::clamp(glm::length(offset) * zoom, 1e-3f, 1e5f);
+    c.eye = c.target + glm::normalize(offset) * distance;
+    return c;
+}
+
+// Panel ------------------------------------------------------------------------------------
+
+void panel(Session& s, bool paused, std::uint64_t frames) {
+    const RendererId rid = s.renderer;
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    ImGui::Begin("spindrift", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Text("%s  t = %.3f s  frame %llu", paused ? "paused" : "running", worldTime(s.world),
+                static_cast<unsigned long long>(frames));
+    ImGui::TextDisabled("Space pause, N step, R restart, drag/scroll camera, Esc quit");
+    if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
+        const RenderStats rs = renderStats(rid);
+        ImGui::Text("sim %.2f ms/step   frame %.2f ms", s.simMs, s.frameMs);
+        ImGui::Text("render: device %.2f ms (fluid %.2f, sprites %.2f), host %.2f ms", rs.totalDeviceMs, rs.fluidMs,
+                    rs.spritesMs, rs.cpuMs);
+        ImGui::Text("sprites %llu  splats %llu", static_cast<unsigned long long>(rs.sprites),
+                    static_cast<unsigned long long>(rs.splats));
+        for (const FluidStepStats& f : s.last.fluids) {
+            ImGui::Text("fluid %u: %llu particles, density error mean %.2f%% max %.2f%%", f.fluid.index,
+                        static_cast<unsigned long long>(f.particles), 100.0 * f.meanDensityError,
+                        100.0 * f.maxDensityError);
+        }
+    }
+    if (!s.last.fluids.empty() && ImGui::CollapsingHeader("Fluid splats")) {
+        FluidRenderDef fluid = render::rendererOf(rid).def.fluid;
+        bool changed = false;
+        changed |= ImGui::Checkbox("size from density", &fluid.sizeFromDensity);
+        changed |= ImGui::Checkbox("stretch", &fluid.stretch);
+        changed |= ImGui::Checkbox("refraction", &fluid.refraction);
+        changed |= ImGui::Checkbox("edges", &fluid.edges);
+        changed |= ImGui::Checkbox("splashes", &fluid.splashes);
+        changed |= ImGui::Checkbox("bubbles", &fluid.bubbles);
+        changed |= ImGui::SliderFloat("opacity", &fluid.opacity, 0.05f, 1.0f);
+        changed |= ImGui::SliderFloat("radius scale", &fluid.radiusScale, 0.25f, 4.0f);
+        changed |= ImGui::ColorEdit3("colour", &fluid.colour.x);
+        if (changed) setFluidRender(rid, fluid);
+    }
+    for (std::uint32_t i = 0; i < s.emitters.size(); ++i) {
+        EmitterDef& e = s.emitters[i];
+        ImGui::PushID(int(i));
+        const std::string title = fmt::format("emitter {} '{}': {} alive###emitter", i + 1, e.name, s.alive[i]);
+        if (ImGui::CollapsingHeader(title.c_str())) {
+            if (e.stateless) {
+                ImGui::TextDisabled("stateless: its closed form is fixed at creation");
+            } else {
+                // Only what acts at birth is live (setEmitterRate/Speed): both
+                // backends then agree on every particle already alive.
+                if (e.lifecycle == Lifecycle::Spawn && ImGui::DragFloat("rate /s", &e.rate, 1.0f, 0.0f, 1e6f)) {
+                    e.rate = std::max(e.rate, 0.0f);
+                    setEmitterRate(s.world, EmitterId{i + 1}, e.rate);
+                }
+                FloatRange speed = e.speed;
+                if (ImGui::DragFloatRange2("speed m/s", &speed.min, &speed.max, 0.05f, 0.0f, 1e3f) &&
+                    speed.min <= speed.max) {
+                    setEmitterSpeed(s.world, EmitterId{i + 1}, speed);
+                    e.speed = speed;
+                }
+            }
+        }
+        ImGui::PopID();
+    }
+    ImGui::End();
+}
+
+// Loop --------------------------------------------------------------------------------------
+
+/// Mouse drag since the last frame, unless ImGui has the mouse.
+struct Drag {
+    bool active = false;
+    double x = 0.0, y = 0.0;
+};
+
+void applyCamera(Session& s, GLFWwindow* window, Drag& drag, Input& in) {
+    double x = 0.0, y = 0.0;
+    glfwGetCursorPos(window, &x, &y);
+    const bool down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    if (down && !drag.active && ImGui::GetIO().WantCaptureMouse) return;  // a drag that starts on the panel
+    double dx = 0.0, dy = 0.0;
+    if (down && drag.active) {
+        dx = x - drag.x;
+        dy = y - drag.y;
+    }
+    drag = {down, x, y};
+    if (dx == 0.0 && dy == 0.0 && in.scroll == 0.0) return;
+    int w = 0, h = 0;
+    glfwGetWindowSize(window, &w, &h);
+    const CameraDef now = render::rendererOf(s.renderer).def.camera;
+    setRenderCamera(s.renderer, moveCamera(now, dx, dy, in.scroll, double(h)));
+    in.scroll = 0.0;
+}
+
+/// Records and submits one frame; false when the swapchain must be
+/// recreated before anything can be shown.
+bool drawFrame(Session& s, GLFWwindow* window, bool& recreate) {
+    Presenter& p = s.presenter;
+    gpu::Device& d = *p.d;
+    render::Renderer& r = render::rendererOf(s.renderer);
+    std::uint32_t index = 0;
+    const VkResult acquired = vkAcquireNextImageKHR(d.device, p.chain.swapchain, UINT64_MAX, p.acquired,
+                                                    VK_NULL_HANDLE, &index);
+    if (acquired == VK_ERROR_OUT_OF_DATE_KHR) return false;
+    if (acquired != VK_SUBOPTIMAL_KHR) check(acquired, "vkAcquireNextImageKHR");
+    recreate |= acquired == VK_SUBOPTIMAL_KHR;
+
+    const auto start = std::chrono::steady_clock::now();
+    render::prepareFrame(r);
+    r.stats.cpuMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+    (void)window;
+    check(vkResetCommandBuffer(p.cmd, 0), "vkResetCommandBuffer");
+    auto begin = vkStruct<VkCommandBufferBeginInfo>(VK_STRUCTURE_TYPE_COMMAND_BUFFER_BEGIN_INFO);
+    begin.flags = VK_COMMAND_BUFFER_USAGE_ONE_TIME_SUBMIT_BIT;
+    check(vkBeginCommandBuffer(p.cmd, &begin), "vkBeginCommandBuffer");
+    render::recordFrame(r, p.cmd);
+    recordPresent(p, r.target, index);
+    check(vkEndCommandBuffer(p.cmd), "vkEndCommandBuffer");
+
+    const VkPipelineStageFlags waitStage = VK_PIPELINE_STAGE_TRANSFER_BIT;  // the first write to the image
+    auto submit = vkStruct<VkSubmitInfo>(VK_STRUCTURE_TYPE_SUBMIT_INFO);
+    submit.waitSemaphoreCount = 1;
+    submit.pWaitSemaphores = &p.acquired;
+    submit.pWaitDstStageMask = &waitStage;
+    submit.commandBufferCount = 1;
+    submit.pCommandBuffers = &p.cmd;
+    submit.signalSemaphoreCount = 1;
+    submit.pSignalSemaphores = &p.chain.rendered[index];
+    check(vkResetFences(d.device, 1, &p.done), "vkResetFences");
+    check(vkQueueSubmit(d.queue, 1, &submit, p.done), "vkQueueSubmit");
+
+    auto present = vkStruct<VkPresentInfoKHR>(VK_STRUCTURE_TYPE_PRESENT_INFO_KHR);
+    present.waitSemaphoreCount = 1;
+    present.pWaitSemaphores = &p.chain.rendered[index];
+    present.swapchainCount = 1;
+    present.pSwapchains = &p.chain.swapchain;
+    present.pImageIndices = &index;
+    const VkResult presented = vkQueuePresentKHR(d.queue, &present);
+    if (presented == VK_ERROR_OUT_OF_DATE_KHR || presented == VK_SUBOPTIMAL_KHR) {
+        recreate = true;
+    } else {
+        check(presented, "vkQueuePresentKHR");
+    }
+    return true;
+}
+
+void recreateSwapchain(Presenter& p, GLFWwindow* window) {
+    int w = 0, h = 0;
+    glfwGetFramebufferSize(window, &w, &h);
+    while ((w == 0 || h == 0) && glfwWindowShouldClose(window) == GLFW_FALSE) {  // minimised: wait
+        glfwWaitEvents();
+        glfwGetFramebufferSize(window, &w, &h);
+    }
+    check(vkDeviceWaitIdle(p.d->device), "vkDeviceWaitIdle");
+    createSwapchain(p, window);
+}
+
+}  // namespace
+
+int viewCommand(const ViewOptions& o) {
+    SceneDef scene = loadScene(o.scene);  // before any window: a bad file is just an error
+    if (!o.backend.empty()) {
+        scene.world.backend = o.backend == "vulkan" ? Backend::Vulkan : o.backend == "auto" ? Backend::Auto : Backend::Cpu;
+    }
+    if (o.width > 0) scene.render.width = o.width;
+    if (o.height > 0) scene.render.height = o.height;
+    validateRenderDef(scene.render);
+
+    Window window(scene.render.width, scene.render.height, "spindrift - " + o.scene);
+    requestPresentation();
+    gpu::worldDebugLog().clear();
+    const bool validation = gpu::worldDeviceOptions().validation;
+
+    IMGUI_CHECKVERSION();
+    ImGui::CreateContext();
+    ImGui::GetIO().IniFilename = nullptr;  // no imgui.ini left in the working directory
+    ImGui::StyleColorsDark();
+    ImGui_ImplGlfw_InitForVulkan(window.handle, true);
+    struct ImGuiGuard {
+        ~ImGuiGuard() {
+            ImGui_ImplGlfw_Shutdown();
+            ImGui::DestroyContext();
+        }
+    } imguiGuard;
+
+    Session s;
+    std::uint64_t frames = 0;
+    try {
+        startSession(s, scene, window.handle);
+        bool paused = false, recreate = false, submitted = false;
+        Drag drag;
+        Input& in = window.input;
+        while (glfwWindowShouldClose(window.handle) == GLFW_FALSE && !in.quit && (o.frames == 0 || frames < o.frames)) {
+            glfwPollEvents();
+            if (in.restart) {
+                stopSession(s);
+                startSession(s, scene, window.handle);
+                in = Input{};
+                submitted = false;
+                continue;
+            }
+            if (in.togglePause) paused = !paused;
+            in.togglePause = false;
+
+            // The previous frame: done before its buffers are written again.
+            Presenter& p = s.presenter;
+            check(vkWaitForFences(p.d->device, 1, &p.done, VK_TRUE, UINT64_MAX), "vkWaitForFences");
+            if (submitted) render::readFrameTimes(render::rendererOf(s.renderer));
+            if (recreate || in.resized) {
+                recreateSwapchain(p, window.handle);
+                recreate = in.resized = false;
+            }
+
+            const auto frameStart = std::chrono::steady_clock::now();
+            const int steps = paused ? in.steps : 1;
+            in.steps = 0;
+            for (int i = 0; i < steps; ++i) {
+                s.last = stepWorld(s.world, scene.run.dt);
+                s.simMs = s.last.milliseconds;
+            }
+            // readParticles copies back from the device: a few times a second.
+            if (frames % 15 == 0 || (paused && steps > 0)) refreshAlive(s);
+
+            applyCamera(s, window.handle, drag, in);
+            ImGui_ImplVulkan_NewFrame();
+            ImGui_ImplGlfw_NewFrame();
+            ImGui::NewFrame();
+            panel(s, paused, frames);
+            ImGui::Render();
+
+            if (!drawFrame(s, window.handle, recreate)) {
+                recreate = true;
+                continue;
+            }
+            submitted = true;
+            ++frames;
+            s.frameMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - frameStart).count();
+        }
+        stopSession(s);
+    } catch (...) {
+        stopSession(s);
+        throw;
+    }
+
+    if (!validation) {
+        fmt::print("{} frames shown\n", frames);
+        return 0;
+    }
+    const std::uint32_t messages = gpu::worldDebugLog().total();
+    fmt::print("{} frames shown, {} validation messages\n", frames, messages);
+    if (messages > 0) std::fprintf(stderr, "%s\n", gpu::worldDebugLog().text().c_str());
+    return messages == 0 ? 0 : 1;
+}
+
+}  // namespace spindrift::app

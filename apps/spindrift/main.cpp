@@ -1,16 +1,22 @@
 // spindrift: the command line tool. `validate` checks scene files, `run`
-// simulates one and writes particle caches plus a JSON summary. Usage and the
-// file formats are documented in docs/cli.md.
+// simulates one and writes particle caches plus a JSON summary, `render`
+// draws one into PNG frames and an MP4 video. Usage and the file formats are
+// documented in docs/cli.md.
 #include "io/cache.h"
+#include "io/frame_schedule.h"
+#include "io/png_writer.h"
 #include "io/progress.h"
 #include "io/summary.h"
 #include "viewer.h"
+#include "io/video_writer.h"
 
+#include <spindrift/render.h>
 #include <spindrift/scene.h>
 #include <spindrift/world.h>
 
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <unistd.h>
 
@@ -23,6 +29,7 @@
 #include <iostream>
 #include <limits>
 #include <map>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>
@@ -54,6 +61,24 @@ struct RunOptions {
     bool hasThreads = false, hasSeed = false;
 };
 
+struct RenderOptions {
+    std::string scene;
+    std::string out;
+    std::uint32_t width = 0;
+    std::uint32_t height = 0;
+    double fps = 0.0;
+    double seconds = 0.0;
+    std::uint64_t frames = 0;
+    std::vector<std::string> formats;  ///< empty: the default (see chooseOutputs)
+    int fluidSteps = 0;
+    std::string backend;
+    std::uint32_t threads = 0;
+    bool quiet = false;
+    // Which options were given, so the scene's own values stay otherwise.
+    bool hasWidth = false, hasHeight = false, hasFps = false, hasSeconds = false, hasFrames = false;
+    bool hasFluidSteps = false, hasBackend = false, hasThreads = false;
+};
+
 /// CLI11 validator for a finite number > 0 ("inf" and "nan" parse as doubles).
 CLI::Validator positiveFinite() {
     return CLI::Validator(
@@ -83,6 +108,24 @@ Backend parseBackend(const std::string& name) {
         {"cpu", Backend::Cpu}, {"vulkan", Backend::Vulkan}, {"auto", Backend::Auto}};
     return kByName.at(name);  // CLI11 has already checked membership
 }
+
+/// Destroys the renderer on every exit path, before its world.
+class RendererGuard {
+public:
+    explicit RendererGuard(RendererId id) : id_(id) {}
+    ~RendererGuard() {
+        try {
+            destroyRenderer(id_);
+        } catch (...) {  // nothing useful to do while already leaving
+        }
+    }
+    RendererGuard(const RendererGuard&) = delete;
+    RendererGuard& operator=(const RendererGuard&) = delete;
+    RendererId id() const { return id_; }
+
+private:
+    RendererId id_;
+};
 
 /// Destroys the world on every exit path, errors included.
 class WorldGuard {
@@ -289,6 +332,105 @@ int runCommand(const RunOptions& o) {
     return 0;
 }
 
+// render -------------------------------------------------------------------------------
+
+/// Options override the scene's [world] and [render] values.
+void applyRenderOverrides(SceneDef& scene, const RenderOptions& o) {
+    if (o.hasBackend) scene.world.backend = parseBackend(o.backend);
+    if (o.hasThreads) scene.world.threads = o.threads;
+    RenderDef& r = scene.render;
+    if (o.hasWidth) r.width = o.width;
+    if (o.hasHeight) r.height = o.height;
+    if (o.hasFps) r.fps = static_cast<float>(o.fps);
+    if (o.hasSeconds) r.seconds = static_cast<float>(o.seconds);
+    if (o.hasFluidSteps) {
+        // The preset switches the six steps; the scene's colour, opacity and
+        // radius stay.
+        const FluidRenderDef steps = FluidRenderDef::upTo(o.fluidSteps);
+        r.fluid.sizeFromDensity = steps.sizeFromDensity;
+        r.fluid.stretch = steps.stretch;
+        r.fluid.refraction = steps.refraction;
+        r.fluid.edges = steps.edges;
+        r.fluid.splashes = steps.splashes;
+        r.fluid.bubbles = steps.bubbles;
+    }
+}
+
+struct RenderOutputs {
+    bool png = false;
+    std::optional<fs::path> ffmpeg;  ///< set when an MP4 is written
+};
+
+/// MP4 by default when ffmpeg is on PATH; PNG frames when asked for, and
+/// instead of a video that cannot be made.
+RenderOutputs chooseOutputs(const std::vector<std::string>& formats) {
+    const bool wantPng = std::find(formats.begin(), formats.end(), "png") != formats.end();
+    const bool wantMp4 = formats.empty() || std::find(formats.begin(), formats.end(), "mp4") != formats.end();
+    RenderOutputs outputs;
+    outputs.png = wantPng;
+    if (wantMp4) {
+        outputs.ffmpeg = io::findOnPath("ffmpeg");
+        if (!outputs.ffmpeg) {
+            std::fprintf(stderr, "ffmpeg not found: writing PNG frames only; install it with tools/install-deps.sh\n");
+            outputs.png = true;
+        }
+    }
+    return outputs;
+}
+
+std::string frameFileName(std::uint64_t frame) { return fmt::format("frame_{:05}.png", frame); }
+
+int renderCommand(const RenderOptions& o) {
+    SceneDef scene = loadScene(o.scene);
+    applyRenderOverrides(scene, o);
+    validateRenderDef(scene.render);
+    const RenderDef& def = scene.render;
+    const std::uint64_t frames = o.hasFrames ? o.frames : io::FrameSchedule::frameCount(def.seconds, def.fps);
+    const io::FrameSchedule schedule(def.fps, scene.run.dt);
+    const RenderOutputs outputs = chooseOutputs(o.formats);
+
+    // World and renderer first: a scene or a missing Vulkan driver that fails
+    // leaves no empty directory.
+    WorldGuard world(buildWorld(scene));
+    RendererGuard renderer(createRenderer(world.id(), def));
+    createOutputDir(o.out);
+    const fs::path dir(o.out);
+    std::optional<io::VideoWriter> video;
+    if (outputs.ffmpeg) {
+        video.emplace(*outputs.ffmpeg, dir / (fs::path(o.scene).stem().string() + ".mp4"), def.width, def.height,
+                      def.fps);
+    }
+
+    io::ProgressReporter::Options progressOptions;
+    progressOptions.unit = io::ProgressReporter::Unit::Frames;
+    progressOptions.terminal = isatty(STDERR_FILENO) != 0;
+    io::ProgressReporter progress(std::cerr, frames, progressOptions);
+    const auto start = std::chrono::steady_clock::now();
+    std::uint64_t steps = 0;
+    for (std::uint64_t k = 0; k < frames; ++k) {
+        for (const std::uint64_t target = schedule.stepsBefore(k); steps < target; ++steps) {
+            stepWorld(world.id(), scene.run.dt);
+        }
+        const Frame frame = renderFrame(renderer.id());
+        if (outputs.png) io::writePng(dir / frameFileName(k), frame);
+        if (video) video->write(frame);
+        if (!o.quiet) progress.update(k + 1, 0, secondsSince(start));
+    }
+    if (video) video->finish();
+    const double wall = secondsSince(start);
+    if (!o.quiet) progress.finish(frames, 0, wall);
+
+    std::vector<std::string> written;
+    if (video) written.push_back(video->target().string());
+    if (outputs.png) {
+        written.push_back((dir / frameFileName(0)).string() +
+                          (frames > 1 ? " .. " + frameFileName(frames - 1) : std::string()));
+    }
+    fmt::print("{} frames of {}x{} at {:g} fps ({:.3f} s simulated in {} steps), {:.1f} s wall: {}\n", frames,
+               def.width, def.height, def.fps, worldTime(world.id()), steps, wall, fmt::join(written, ", "));
+    return 0;
+}
+
 // command line ---------------------------------------------------------------------
 
 void addRunOptions(CLI::App& run, RunOptions& o) {
@@ -325,6 +467,41 @@ void noteGiven(const CLI::App& run, RunOptions& o) {
     o.hasSeed = run.count("--seed") > 0;
 }
 
+void addRenderOptions(CLI::App& render, RenderOptions& o) {
+    render.add_option("scene", o.scene, "Scene file (TOML)")->required();
+    render.add_option("--out,-o", o.out, "Directory for the video and the PNG frames")->required();
+    render.add_option("--width", o.width, "Frame width in pixels (default: the scene's render.width)")
+        ->check(CLI::Range(1u, 16384u));
+    render.add_option("--height", o.height, "Frame height in pixels (default: the scene's render.height)")
+        ->check(CLI::Range(1u, 16384u));
+    render.add_option("--fps", o.fps, "Frames per second (default: the scene's render.fps)")->check(positiveFinite());
+    auto* seconds = render.add_option("--seconds,-s", o.seconds, "Video length in seconds (default: render.seconds)")
+                        ->check(positiveFinite());
+    auto* frames = render.add_option("--frames,-n", o.frames, "Number of frames instead of --seconds")
+                       ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000}));
+    frames->excludes(seconds);
+    render.add_option("--format,-f", o.formats, "Outputs, comma separated: mp4, png (default: mp4 if ffmpeg is found)")
+        ->delimiter(',')
+        ->check(CLI::IsMember({"png", "mp4"}));
+    render.add_option("--fluid-steps", o.fluidSteps, "Fluid splat steps 1..7 of the Sprinkle slides")
+        ->check(CLI::Range(1, 7));
+    render.add_option("--backend,-b", o.backend, "Simulation backend: cpu, vulkan or auto (default: the scene's)")
+        ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+    render.add_option("--threads,-j", o.threads, "CPU worker threads, 0 = all (default: the scene's)");
+    render.add_flag("--quiet,-q", o.quiet, "No progress line on stderr");
+}
+
+void noteRenderGiven(const CLI::App& render, RenderOptions& o) {
+    o.hasWidth = render.count("--width") > 0;
+    o.hasHeight = render.count("--height") > 0;
+    o.hasFps = render.count("--fps") > 0;
+    o.hasSeconds = render.count("--seconds") > 0;
+    o.hasFrames = render.count("--frames") > 0;
+    o.hasFluidSteps = render.count("--fluid-steps") > 0;
+    o.hasBackend = render.count("--backend") > 0;
+    o.hasThreads = render.count("--threads") > 0;
+}
+
 /// Runs a command, turning errors into a message on stderr and exit code 1.
 template <class Command>
 int reportErrors(Command&& command) {
@@ -341,7 +518,7 @@ int reportErrors(Command&& command) {
 }  // namespace
 
 int main(int argc, char** argv) {
-    CLI::App app{"spindrift: simulate particle effects from scene files"};
+    CLI::App app{"spindrift: simulate and render particle effects and fluids from scene files"};
     app.set_version_flag("--version", fmt::format("spindrift {}", versionString()));
     app.require_subcommand(1);
 
@@ -363,6 +540,9 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1u, 16384u));
     view->add_option("--backend,-b", viewOptions.backend, "cpu, vulkan or auto (default: the scene's)")
         ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+    RenderOptions renderOptions;
+    CLI::App* render = app.add_subcommand("render", "Draw a scene into an MP4 video and/or PNG frames");
+    addRenderOptions(*render, renderOptions);
 
     try {
         app.parse(argc, argv);
@@ -371,6 +551,10 @@ int main(int argc, char** argv) {
     }
     if (validate->parsed()) return reportErrors([&] { return validateCommand(validatePath); });
     if (view->parsed()) return reportErrors([&] { return spindrift::app::viewCommand(viewOptions); });
+    if (render->parsed()) {
+        noteRenderGiven(*render, renderOptions);
+        return reportErrors([&] { return renderCommand(renderOptions); });
+    }
     noteGiven(*run, runOptions);
     return reportErrors([&] { return runCommand(runOptions); });
 }

@@ -28,9 +28,18 @@ std::string ProgressReporter::line(std::uint64_t done, std::uint64_t total, std:
                        std::floor(percent), alive, 1000.0 * secondsPerStep, clockText(eta));
 }
 
+std::string ProgressReporter::frameLine(std::uint64_t done, std::uint64_t total, double secondsPerFrame) {
+    const double percent = total == 0 ? 100.0 : 100.0 * static_cast<double>(done) / static_cast<double>(total);
+    const double eta = secondsPerFrame * static_cast<double>(total - std::min(done, total));
+    const double fps = secondsPerFrame > 0.0 ? 1.0 / secondsPerFrame : 0.0;
+    return fmt::format("frame {}/{} ({:.0f}%)  {:.1f} fps  ETA {}", done, total, std::floor(percent), fps,
+                       clockText(eta));
+}
+
 void ProgressReporter::show(std::uint64_t done, std::uint64_t alive, double secondsPerStep,
                             double elapsed) {
-    const std::string text = line(done, total_, alive, secondsPerStep);
+    const std::string text = options_.unit == Unit::Frames ? frameLine(done, total_, secondsPerStep)
+                                                           : line(done, total_, alive, secondsPerStep);
     if (options_.terminal) {
         // Pad over the tail of a longer previous line instead of relying on
         // terminal escape codes.

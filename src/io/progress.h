@@ -1,4 +1,4 @@
-// Progress of a long run on stderr.
+// Progress of a long run or render on stderr.
 #pragma once
 
 #include <cstdint>
@@ -8,14 +8,19 @@
 namespace spindrift::io {
 
 /// Reports "step i/N (p%)  alive A  x ms/step  ETA m:ss" while a run goes
-/// (ms/step measured since the previous report).
+/// (ms/step measured since the previous report), or "frame i/N (p%)
+/// x.x fps  ETA m:ss" while a render goes.
 /// On a terminal one line is redrawn in place with '\r'; in a log (not a
 /// terminal) a plain line is written at most every `plainInterval` seconds, so
 /// CI logs stay short. Short runs print nothing: the first report comes only
 /// after `quietStart` seconds. Time is passed in, which keeps this testable.
 class ProgressReporter {
 public:
+    /// What is counted: simulation steps (`run`) or video frames (`render`).
+    enum class Unit { Steps, Frames };
+
     struct Options {
+        Unit unit = Unit::Steps;
         bool terminal = false;
         double quietStart = 0.5;     ///< s before anything is shown
         double redrawInterval = 0.1; ///< s between terminal redraws
@@ -24,7 +29,8 @@ public:
 
     ProgressReporter(std::ostream& out, std::uint64_t totalSteps, Options options);
 
-    /// After each step: `done` steps taken, `elapsed` wall seconds since start.
+    /// After each step (frame): `done` steps (frames) taken, `elapsed` wall
+    /// seconds since start; `alive` is not shown for frames.
     void update(std::uint64_t done, std::uint64_t alive, double elapsed);
     /// At the end: a last report, only if progress was shown at all.
     void finish(std::uint64_t done, std::uint64_t alive, double elapsed);
@@ -33,6 +39,8 @@ public:
     /// remaining steps take `secondsPerStep` each.
     static std::string line(std::uint64_t done, std::uint64_t total, std::uint64_t alive,
                             double secondsPerStep);
+    /// The same for frames: rate in frames per second of wall time.
+    static std::string frameLine(std::uint64_t done, std::uint64_t total, double secondsPerFrame);
 
 private:
     void show(std::uint64_t done, std::uint64_t alive, double secondsPerStep, double elapsed);

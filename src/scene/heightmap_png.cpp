@@ -81,4 +81,25 @@ bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& erro
 #endif
 }
 
+bool checkPng(const std::string& bytes, std::string& error) {
+    if (!hasPngSignature(bytes)) {
+        error = "not a PNG file (the PNG signature is missing)";
+        return false;
+    }
+#ifdef SPINDRIFT_HAVE_STB
+    int w = 0;
+    int h = 0;
+    int channels = 0;
+    if (stbi_info_from_memory(reinterpret_cast<const stbi_uc*>(bytes.data()), static_cast<int>(bytes.size()), &w,
+                              &h, &channels) == 0) {
+        error = fmt::format("cannot decode the PNG: {}", stbi_failure_reason());
+        return false;
+    }
+    return true;
+#else
+    error = "this build of spindrift reads no PNG files (it was built without stb_image)";
+    return false;
+#endif
+}
+
 }  // namespace spindrift::scene

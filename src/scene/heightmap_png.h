@@ -1,4 +1,6 @@
-// Greyscale PNG height maps (decoded with stb_image).
+// PNG files that scenes name (decoded with stb_image): greyscale height maps
+// are decoded here; sprite textures and background images are only checked,
+// the renderer decodes them.
 #pragma once
 
 #include <cstdint>
@@ -19,5 +21,9 @@ struct GreyImage {
 /// failure returns false and says why in `error`; colour images are refused
 /// rather than silently converted.
 bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& error);
+
+/// Checks that `bytes` are a PNG that stb_image can decode (any channel
+/// count); on failure returns false and says why in `error`.
+bool checkPng(const std::string& bytes, std::string& error);
 
 }  // namespace spindrift::scene

@@ -1,5 +1,6 @@
 // [[emitter]]: spawning, launch shape, per-particle ranges, curves, forces,
-// collisions and the stateless closed form. Angles in the file are degrees.
+// collisions, the stateless closed form and the sprite it is drawn with.
+// Angles in the file are degrees.
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
 
@@ -22,7 +23,8 @@ const std::vector<std::string_view> kEmitterKeys = {
     "size",           "rotation",   "angular_velocity",
     "color",          "mass",       "color_over_life",
     "size_over_life", "integrator", "forces",
-    "collision",      "stateless",  "stateless_gravity"};
+    "collision",      "stateless",  "stateless_gravity",
+    "sprite"};
 
 FloatRange toRadians(FloatRange degrees) {
     return {degrees.min * kRadiansPerDegree, degrees.max * kRadiansPerDegree};
@@ -276,6 +278,21 @@ void readDynamics(const Table& t, EmitterDef& def, const NameTable& forces,
     }
 }
 
+// --- Drawing -------------------------------------------------------------------
+
+SpriteDef readSprite(const Table& t) {
+    t.allowOnly({"blend", "stretch", "texture"}, "[emitter.sprite]");
+    SpriteDef def;
+    if (auto v = t.find("blend")) {
+        def.blend = v->choice<SpriteBlend>({{"additive", SpriteBlend::Additive}, {"alpha", SpriteBlend::Alpha}});
+    }
+    def.stretch = t.real("stretch", def.stretch, Bounds::nonNegative());
+    if (auto v = t.find("texture")) {
+        def.texture = readPngPath(*v);
+    }
+    return def;
+}
+
 }  // namespace
 
 EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& forces,
@@ -290,6 +307,9 @@ EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& force
     }
     readParticleRanges(t, def);
     readDynamics(t, def, forces, colliders);
+    if (auto sprite = t.subTable("sprite")) {
+        def.sprite = readSprite(*sprite);
+    }
     return def;
 }
 

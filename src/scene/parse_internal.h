@@ -36,11 +36,18 @@ private:
 /// Reads a data file named by a string value (relative to the scene's
 /// directory). A file that cannot be read is an error at the value.
 std::string readDataFile(const Value& value, DataFileRef& ref);
+/// A PNG named by a string value (sprite texture, background image): read
+/// and checked now, so a missing or broken file is an error at the value and
+/// not a failure mid-render. Returns the resolved path.
+std::string readPngPath(const Value& value);
 
 FlowFieldDef parseFlowField(const Table& table, NameTable& names);
 ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
 ColliderDef parseCollider(const Table& table, NameTable& names);
 FluidDef parseFluid(const Table& table, NameTable& names);
+/// [render] with its [render.background] and [render.fluid]; the camera is
+/// left at its default ([camera] is read separately).
+RenderDef parseRender(const Table& table);
 EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,
                         const NameTable& colliders);
 

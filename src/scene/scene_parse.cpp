@@ -1,5 +1,6 @@
 // Scene files: the top level (world, camera, run) and the order in which the
 // object arrays are read. See docs/scene-format.md for the format.
+#include "scene/heightmap_png.h"
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
 
@@ -126,6 +127,16 @@ std::string readDataFile(const Value& value, DataFileRef& ref) {
     return *text;
 }
 
+std::string readPngPath(const Value& value) {
+    DataFileRef ref;
+    const std::string bytes = readDataFile(value, ref);
+    std::string error;
+    if (!checkPng(bytes, error)) {
+        value.fail(fmt::format("\"{}\" (resolved to \"{}\"): {}", value.string(), ref.display, error));
+    }
+    return ref.display;
+}
+
 }  // namespace scene
 
 using scene::Table;
@@ -142,12 +153,13 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
                          "TOML syntax error: " + std::string(e.description()));
     }
     const Table root(ctx, document, "");
-    root.allowOnly({"world", "camera", "run", "flow_field", "force", "collider", "emitter", "fluid"},
+    root.allowOnly({"world", "camera", "render", "run", "flow_field", "force", "collider", "emitter", "fluid"},
                    "the scene");
 
     SceneDef scene;
     scene.source = sourceName;
     scene.world = scene::parseOptionalTable<WorldDef>(root, "world", scene::parseWorld);
+    scene.render = scene::parseOptionalTable<RenderDef>(root, "render", scene::parseRender);
     scene.render.camera = scene::parseOptionalTable<CameraDef>(root, "camera", scene::parseCamera);
     scene.run = scene::parseOptionalTable<RunDef>(root, "run", scene::parseRun);
 

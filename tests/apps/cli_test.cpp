@@ -1,12 +1,15 @@
 // The command line tool, run as a separate process the way users run it.
 #include <spindrift/scene.h>
 
+#include <stb/stb_image.h>
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
@@ -15,6 +18,7 @@
 #include <set>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace spindrift_test {  // tests/io/json_check.cpp
@@ -67,10 +71,11 @@ protected:
         fs::remove_all(dir_, ignored);
     }
 
-    /// Runs `spindrift ARGS` in dir/cwd, capturing both streams.
-    Result cli(const std::string& args) {
+    /// Runs `spindrift ARGS` in dir/cwd, capturing both streams; `env` holds
+    /// shell variable assignments for the command alone ("PATH=...").
+    Result cli(const std::string& args, const std::string& env = "") {
         const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string command = "cd " + quoted(dir_ / "cwd") + " && " + quoted(kCli) + " " + args +
+        const std::string command = "cd " + quoted(dir_ / "cwd") + " && " + env + " " + quoted(kCli) + " " + args +
                                     " >" + quoted(out) + " 2>" + quoted(err);
         const int status = std::system(command.c_str());
         Result r;
@@ -129,7 +134,14 @@ TEST_F(CliTest, BadUsageExitsWith2AndSaysWhy) {
                          "run x.toml --every 5",
                          "run x.toml --out d --every 0",
                          "run x.toml --no-such-option",
-                         "validate"};
+                         "validate",
+                         "render x.toml",
+                         "render x.toml --out d --frames 0",
+                         "render x.toml --out d --frames 3 --seconds 1",
+                         "render x.toml --out d --format gif",
+                         "render x.toml --out d --fluid-steps 8",
+                         "render x.toml --out d --width 0",
+                         "render x.toml --out d --fps nan"};
     for (const char* args : bad) {
         const Result r = cli(args);
         EXPECT_EQ(r.code, 2) << "spindrift " << args;
@@ -269,6 +281,133 @@ TEST_F(CliTest, RunOnVulkanFailsCleanlyOrWorks) {
     } else {
         EXPECT_TRUE(fs::exists(out / "summary.json"));
     }
+}
+
+// render ----------------------------------------------------------------------------------------
+
+/// A quick scene: a few particles, 64 x 48, 0.25 s at 24 fps (6 frames).
+const char* kSmallRenderScene = R"(
+[run]
+dt = 0.016666667
+
+[render]
+width = 64
+height = 48
+fps = 24
+seconds = 0.25
+
+[[emitter]]
+name = "drops"
+rate = 50
+)";
+
+/// Width and height of a PNG, or {0, 0} if it cannot be read.
+std::pair<int, int> pngSize(const fs::path& file) {
+    int w = 0, h = 0, channels = 0;
+    if (stbi_info(file.c_str(), &w, &h, &channels) == 0) return {0, 0};
+    return {w, h};
+}
+
+std::vector<std::string> pngNames(std::size_t count) {
+    std::vector<std::string> names;
+    for (std::size_t k = 0; k < count; ++k) {
+        char name[32];
+        std::snprintf(name, sizeof name, "frame_%05zu.png", k);
+        names.emplace_back(name);
+    }
+    return names;
+}
+
+class CliRenderTest : public CliTest {
+protected:
+    void SetUp() override {
+        CliTest::SetUp();
+        scene_ = dir() / "small.toml";
+        std::ofstream(scene_) << kSmallRenderScene;
+    }
+    const fs::path& scene() const { return scene_; }
+
+private:
+    fs::path scene_;
+};
+
+TEST_F(CliRenderTest, WritesOnePngPerFrameAtTheRequestedSize) {
+    const fs::path out = dir() / "frames";
+    const Result r = cli("render " + quoted(scene()) + " --out " + quoted(out) +
+                         " --format png --frames 5 --width 32 --height 24 --quiet");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(fileNames(out), pngNames(5));
+    for (const std::string& name : pngNames(5)) EXPECT_EQ(pngSize(out / name), std::make_pair(32, 24)) << name;
+    EXPECT_TRUE(r.out.starts_with("5 frames of 32x24 at 24 fps")) << r.out;
+    EXPECT_NE(r.out.find((out / "frame_00000.png").string() + " .. frame_00004.png"), std::string::npos) << r.out;
+    EXPECT_EQ(r.err, "");
+}
+
+TEST_F(CliRenderTest, SceneSecondsAndFpsGiveTheFrameCountAndTheSceneSize) {
+    const fs::path out = dir() / "frames";
+    // 0.25 s at 24 fps = 6 frames; frame 5 is at 5/24 s, after 12 steps of 1/60 s.
+    const Result r = cli("render " + quoted(scene()) + " -o " + quoted(out) + " -f png");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(fileNames(out), pngNames(6));
+    EXPECT_EQ(pngSize(out / "frame_00005.png"), std::make_pair(64, 48));
+    EXPECT_NE(r.out.find("in 12 steps"), std::string::npos) << r.out;
+}
+
+TEST_F(CliRenderTest, WithoutFfmpegWritesPngFramesAndSaysSo) {
+    const fs::path out = dir() / "video";
+    // An empty directory as the whole PATH: no ffmpeg to be found.
+    fs::create_directories(dir() / "empty-bin");
+    const Result r = cli("render " + quoted(scene()) + " --out " + quoted(out) + " --format mp4 --frames 3",
+                         "PATH=" + quoted(dir() / "empty-bin"));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_NE(r.err.find("ffmpeg not found: writing PNG frames only; install it with tools/install-deps.sh"),
+              std::string::npos)
+        << r.err;
+    EXPECT_EQ(fileNames(out), pngNames(3));
+}
+
+TEST_F(CliRenderTest, Mp4HasEveryFrameAtTheRequestedSize) {
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed";
+    if (std::system("command -v ffprobe >/dev/null 2>&1") != 0) GTEST_SKIP() << "ffprobe is not installed";
+    const fs::path out = dir() / "video";
+    const Result r = cli("render " + quoted(scene()) + " --out " + quoted(out) + " --frames 6 --quiet");
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(fileNames(out), std::vector<std::string>{"small.mp4"}) << "the default is the video alone";
+    const fs::path probeOut = dir() / "probe.txt";
+    const std::string probe = "ffprobe -v error -count_frames -select_streams v:0 -show_entries "
+                              "stream=width,height,nb_read_frames -of csv=p=0 " +
+                              quoted(out / "small.mp4") + " >" + quoted(probeOut);
+    ASSERT_EQ(std::system(probe.c_str()), 0);
+    EXPECT_EQ(readFile(probeOut), "64,48,6\n");
+    EXPECT_NE(r.out.find((out / "small.mp4").string()), std::string::npos) << r.out;
+}
+
+TEST_F(CliRenderTest, Mp4AndPngTogether) {
+    if (std::system("command -v ffmpeg >/dev/null 2>&1") != 0) GTEST_SKIP() << "ffmpeg is not installed";
+    const fs::path out = dir() / "both";
+    const Result r = cli("render " + quoted(scene()) + " --out " + quoted(out) + " --format png,mp4 --frames 2 -q");
+    ASSERT_EQ(r.code, 0) << r.err;
+    std::vector<std::string> expected = pngNames(2);
+    expected.push_back("small.mp4");
+    EXPECT_EQ(fileNames(out), expected);
+}
+
+TEST_F(CliRenderTest, BadRenderKeyExits1WithItsPositionAndWritesNothing) {
+    const fs::path bad = dir() / "bad.toml";
+    std::ofstream(bad) << "[render]\nwidth = 64\nfps = -5\n";
+    const fs::path out = dir() / "frames";
+    const Result r = cli("render " + quoted(bad) + " --out " + quoted(out));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_NE(r.err.find(bad.string() + ":3:7: render.fps: "), std::string::npos) << r.err;
+    EXPECT_FALSE(fs::exists(out));
+}
+
+TEST_F(CliRenderTest, UnwritableOutputDirectoryExits1) {
+    const fs::path file = dir() / "a-file";
+    std::ofstream(file) << "not a directory\n";
+    const Result r = cli("render " + quoted(scene()) + " --out " + quoted(file / "frames") + " --format png");
+    EXPECT_EQ(r.code, 1);
+    EXPECT_TRUE(r.err.starts_with("error: cannot create output directory")) << r.err;
 }
 
 }  // namespace

@@ -51,6 +51,22 @@ TEST(IoProgress, LineShowsRateAndEta) {
     EXPECT_EQ(ProgressReporter::line(1, 10000, 0, 1.0), "step 1/10000 (0%)  alive 0  1000.00 ms/step  ETA 2:46:39");
 }
 
+TEST(IoProgress, FrameLineShowsFramesPerSecondAndEta) {
+    // 30 of 120 frames at 200 ms/frame: 5 fps, 90 frames left = 18 s.
+    EXPECT_EQ(ProgressReporter::frameLine(30, 120, 0.2), "frame 30/120 (25%)  5.0 fps  ETA 0:18");
+}
+
+TEST(IoProgress, FramesUnitReportsFrames) {
+    std::ostringstream out;
+    ProgressReporter::Options options;
+    options.unit = ProgressReporter::Unit::Frames;
+    ProgressReporter progress(out, 10, options);
+    for (std::uint64_t i = 1; i <= 10; ++i) progress.update(i, 0, 0.5 * static_cast<double>(i));
+    progress.finish(10, 0, 5.0);
+    EXPECT_NE(out.str().find("frame 10/10 (100%)  2.0 fps  ETA 0:00"), std::string::npos) << out.str();
+    EXPECT_EQ(out.str().find("step"), std::string::npos) << out.str();
+}
+
 TEST(IoProgress, RateComesFromTheStepsSinceTheLastReport) {
     // 1 s per step for the first 4 steps, then 10 ms per step.
     std::ostringstream out;

@@ -490,6 +490,9 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         // emitter features
         "color_over_life", "size_over_life", "bursts", "stateless = true", "duration",
         "kill = true", "life_loss", "[world]", "[camera]", "[run]",
+        // drawing
+        "[render]", "kind = \"colour\"", "kind = \"gradient\"", "kind = \"image\"", "[render.fluid]", "steps = ",
+        "[emitter.sprite]", "blend = \"alpha\"", "texture = ",
         // data sources
         "generate = \"curl_noise\"", "generate = \"uniform\"", "generate = \"vortex\"",
         "file = \"data/swirl.flow\"", "generate = \"hills\"", "image = \"data/hills.png\"",

@@ -1,0 +1,187 @@
+// [render], [render.background], [render.fluid] and [emitter.sprite]: values
+// land in RenderDef and SpriteDef, PNG paths resolve against the scene's
+// folder, and every bad value is reported at its line and column.
+#include <gtest/gtest.h>
+#include <spindrift/scene.h>
+
+#include <filesystem>
+#include <string>
+
+namespace {
+
+using spindrift::BackgroundKind;
+using spindrift::SceneError;
+using spindrift::SpriteBlend;
+
+const std::filesystem::path kScenes = std::filesystem::path(SPINDRIFT_SOURCE_DIR) / "scenes";
+
+spindrift::SceneDef parse(const std::string& text) {
+    return spindrift::parseScene(text, "render.toml", kScenes.string());
+}
+
+struct Expected {
+    int line;
+    int column;
+    std::string keyPath;
+    std::string messagePart;
+};
+
+void expectError(const std::string& text, const Expected& e) {
+    try {
+        parse(text);
+        ADD_FAILURE() << "accepted a bad scene:\n" << text;
+    } catch (const SceneError& err) {
+        EXPECT_EQ(err.line(), e.line) << err.what();
+        EXPECT_EQ(err.column(), e.column) << err.what();
+        EXPECT_EQ(err.keyPath(), e.keyPath) << err.what();
+        EXPECT_NE(err.message().find(e.messagePart), std::string::npos)
+            << "message \"" << err.message() << "\" lacks \"" << e.messagePart << "\"";
+    }
+}
+
+TEST(SceneRender, DefaultsWithoutARenderTable) {
+    const spindrift::SceneDef scene = parse("");
+    const spindrift::RenderDef def;
+    EXPECT_EQ(scene.render.width, def.width);
+    EXPECT_EQ(scene.render.height, def.height);
+    EXPECT_EQ(scene.render.fps, def.fps);
+    EXPECT_EQ(scene.render.background.kind, def.background.kind);
+    EXPECT_TRUE(scene.render.fluid.bubbles);
+}
+
+TEST(SceneRender, EveryKeyLands) {
+    const spindrift::SceneDef scene = parse(R"(
+[camera]
+eye = [0, 0, 5]
+[render]
+width = 640
+height = 360
+fps = 24
+seconds = 2.5
+draw_colliders = false
+sun = [0, 2, 0]
+[render.background]
+kind = "image"
+image = "data/sky.png"
+[render.fluid]
+colour = [0.2, 0.5, 0.9]
+opacity = 0.5
+radius_scale = 2
+size_from_density = false
+stretch = false
+refraction = false
+edges = false
+splashes = false
+bubbles = false
+)");
+    const spindrift::RenderDef& r = scene.render;
+    EXPECT_EQ(r.width, 640u);
+    EXPECT_EQ(r.height, 360u);
+    EXPECT_FLOAT_EQ(r.fps, 24.0f);
+    EXPECT_FLOAT_EQ(r.seconds, 2.5f);
+    EXPECT_FALSE(r.drawColliders);
+    EXPECT_FLOAT_EQ(r.sunDirection.y, 1.0f);  // normalised
+    EXPECT_EQ(r.camera.eye, glm::vec3(0, 0, 5)) << "[camera] still lands in render.camera";
+    EXPECT_EQ(r.background.kind, BackgroundKind::Image);
+    EXPECT_EQ(std::filesystem::path(r.background.image), (kScenes / "data" / "sky.png").lexically_normal());
+    EXPECT_EQ(r.fluid.colour, glm::vec3(0.2f, 0.5f, 0.9f));
+    EXPECT_FLOAT_EQ(r.fluid.opacity, 0.5f);
+    EXPECT_FLOAT_EQ(r.fluid.radiusScale, 2.0f);
+    EXPECT_FALSE(r.fluid.sizeFromDensity || r.fluid.stretch || r.fluid.refraction || r.fluid.edges ||
+                 r.fluid.splashes || r.fluid.bubbles);
+}
+
+TEST(SceneRender, ColourAndGradientBackgrounds) {
+    const auto colour = parse("[render.background]\nkind = \"colour\"\ncolour = [1, 0.5, 0]\n").render.background;
+    EXPECT_EQ(colour.kind, BackgroundKind::Colour);
+    EXPECT_EQ(colour.colour, glm::vec3(1, 0.5f, 0));
+    const auto gradient =
+        parse("[render.background]\nkind = \"gradient\"\ntop = [0, 0, 1]\nbottom = [0, 0, 0.1]\n").render.background;
+    EXPECT_EQ(gradient.kind, BackgroundKind::Gradient);
+    EXPECT_EQ(gradient.top, glm::vec3(0, 0, 1));
+    EXPECT_EQ(gradient.bottom, glm::vec3(0, 0, 0.1f));
+}
+
+TEST(SceneRender, FluidStepsSetTheSixFlagsAndExplicitFlagsOverride) {
+    for (int n = 1; n <= 7; ++n) {
+        const auto fluid = parse("[render.fluid]\nsteps = " + std::to_string(n) + "\n").render.fluid;
+        const auto preset = spindrift::FluidRenderDef::upTo(n);
+        EXPECT_EQ(fluid.sizeFromDensity, preset.sizeFromDensity) << n;
+        EXPECT_EQ(fluid.stretch, preset.stretch) << n;
+        EXPECT_EQ(fluid.refraction, preset.refraction) << n;
+        EXPECT_EQ(fluid.edges, preset.edges) << n;
+        EXPECT_EQ(fluid.splashes, preset.splashes) << n;
+        EXPECT_EQ(fluid.bubbles, preset.bubbles) << n;
+    }
+    // Written before or after `steps`, a flag wins; the other keys stay.
+    const auto fluid = parse("[render.fluid]\nbubbles = true\nsteps = 2\nopacity = 0.4\n").render.fluid;
+    EXPECT_TRUE(fluid.sizeFromDensity);
+    EXPECT_FALSE(fluid.stretch);
+    EXPECT_FALSE(fluid.splashes);
+    EXPECT_TRUE(fluid.bubbles);
+    EXPECT_FLOAT_EQ(fluid.opacity, 0.4f);
+}
+
+TEST(SceneRender, EmitterSprite) {
+    const spindrift::SceneDef scene = parse(R"(
+[[emitter]]
+name = "plain"
+[[emitter]]
+name = "smoke"
+sprite = { blend = "alpha", stretch = 0.05, texture = "data/spark.png" }
+)");
+    EXPECT_EQ(scene.emitters[0].sprite.blend, SpriteBlend::Additive);
+    EXPECT_EQ(scene.emitters[0].sprite.texture, "");
+    EXPECT_EQ(scene.emitters[1].sprite.blend, SpriteBlend::Alpha);
+    EXPECT_FLOAT_EQ(scene.emitters[1].sprite.stretch, 0.05f);
+    EXPECT_EQ(std::filesystem::path(scene.emitters[1].sprite.texture),
+              (kScenes / "data" / "spark.png").lexically_normal());
+}
+
+TEST(SceneRender, BadRenderKeys) {
+    expectError("[render]\nwidth = 0\n", {2, 9, "render.width", "[1, 16384]"});
+    expectError("[render]\nheight = 20000\n", {2, 10, "render.height", "[1, 16384]"});
+    expectError("[render]\nwidth = 1.5\n", {2, 9, "render.width", "integer"});
+    expectError("[render]\nfps = 0\n", {2, 7, "render.fps", "> 0"});
+    expectError("[render]\nseconds = -1\n", {2, 11, "render.seconds", "> 0"});
+    expectError("[render]\nsun = [0, 0, 0]\n", {2, 7, "render.sun", "non-zero"});
+    expectError("[render]\ndraw_colliders = 1\n", {2, 18, "render.draw_colliders", "true or false"});
+    expectError("[render]\nwidht = 640\n", {2, 1, "render.widht", "did you mean"});
+}
+
+TEST(SceneRender, BadBackgrounds) {
+    expectError("[render.background]\ncolour = [1, 1, 1]\n",
+                {1, 1, "render.background.kind", "required key is missing"});
+    expectError("[render.background]\nkind = \"sky\"\n", {2, 8, "render.background.kind", "\"gradient\""});
+    expectError("[render.background]\nkind = \"colour\"\ntop = [1, 1, 1]\n",
+                {3, 1, "render.background.top", "a background of kind \"colour\""});
+    expectError("[render.background]\nkind = \"colour\"\ncolour = [1, -1, 1]\n",
+                {3, 14, "render.background.colour[1]", ">= 0"});
+    expectError("[render.background]\nkind = \"image\"\n", {1, 1, "render.background.image", "a PNG file path"});
+    expectError("[render.background]\nkind = \"image\"\nimage = \"data/no-such.png\"\n",
+                {3, 9, "render.background.image", "cannot read"});
+    expectError("[render.background]\nkind = \"image\"\nimage = \"data/swirl.flow\"\n",
+                {3, 9, "render.background.image", "not a PNG"});
+}
+
+TEST(SceneRender, BadFluidKeys) {
+    expectError("[render.fluid]\nsteps = 8\n", {2, 9, "render.fluid.steps", "[1, 7]"});
+    expectError("[render.fluid]\nsteps = 0\n", {2, 9, "render.fluid.steps", "[1, 7]"});
+    expectError("[render.fluid]\nopacity = 0\n", {2, 11, "render.fluid.opacity", "(0, 1]"});
+    expectError("[render.fluid]\nopacity = 1.5\n", {2, 11, "render.fluid.opacity", "(0, 1]"});
+    expectError("[render.fluid]\nradius_scale = 0\n", {2, 16, "render.fluid.radius_scale", "> 0"});
+    expectError("[render.fluid]\nbubbles = \"yes\"\n", {2, 11, "render.fluid.bubbles", "true or false"});
+    expectError("[render.fluid]\nsplash = true\n", {2, 1, "render.fluid.splash", "did you mean"});
+}
+
+TEST(SceneRender, BadSprites) {
+    const std::string emitter = "[[emitter]]\nname = \"e\"\n";
+    expectError(emitter + "sprite = { blend = \"multiply\" }\n", {3, 20, "emitter[0].sprite.blend", "\"alpha\""});
+    expectError(emitter + "sprite = { stretch = -0.1 }\n", {3, 22, "emitter[0].sprite.stretch", ">= 0"});
+    expectError(emitter + "sprite = { texture = \"data/missing.png\" }\n",
+                {3, 22, "emitter[0].sprite.texture", "cannot read"});
+    expectError(emitter + "sprite = { size = 2 }\n", {3, 12, "emitter[0].sprite.size", "[emitter.sprite]"});
+    expectError(emitter + "blend = \"alpha\"\n", {3, 1, "emitter[0].blend", "unknown key"});
+}
+
+}  // namespace

@@ -24,11 +24,11 @@ constexpr float kRadiusPerSpacing = 0.5f;
 constexpr float kDensityScaleMin = 0.3f;
 constexpr float kDensityScaleMax = 1.2f;
 /// Rule 3/5: |d| (average neighbour direction) at or below which a particle is
-/// interior, and at or above which it is surface. On the block lattice at
-/// h = 3 spacings |d| is 0 three rows deep, 0.06 one row below the top and
-/// 0.45 on the top row (3D flat surfaces: about 0.4).
-constexpr float kEdgeInterior = 0.1f;
-constexpr float kEdgeSurface = 0.35f;
+/// interior, and at or above which it is surface. On the block lattice |d| is
+/// 0.45 on a flat top in 2D (h = 3 spacings) and 0.30 in 3D (h = 2.5), one
+/// row below the top 0.06 (2D) and 0.009 (3D), and 0 deeper.
+constexpr float kEdgeInterior = 0.08f;
+constexpr float kEdgeSurface = 0.25f;
 /// Rule 3: extra stretch along the surface tangent at edge factor 1 (slide
 /// 57: "stretch and rotate in direction of edge tangent").
 constexpr float kEdgeStretch = 0.8f;

@@ -72,7 +72,7 @@ void updateFluidSplats(FluidSplatState& state, WorldId world, FluidId fluid, con
 // Leaf rules, exposed for tests and the docs.
 
 /// Edge factor from |d| in [0, 1], d = average neighbour direction (slide 57):
-/// 0 in the interior (|d| ~ 0), 1 on a flat surface (|d| ~ 0.45 in 2D).
+/// 0 in the interior (|d| ~ 0), 1 on a flat surface (|d| ~ 0.45 in 2D, 0.3 in 3D).
 float edgeFactor(float averageDirectionLength);
 /// Radius multiplier from rho / rho0 (slide 63): monotone, clamped.
 float densityScale(float density);

@@ -161,6 +161,44 @@ TEST(FluidSplats, RestingBlockTopIsHorizontalBrightEdge) {
     EXPECT_GT(dimmestTop, brightestOther);
 }
 
+// Rules 3 and 5 in 3D: the top face of a resting cube is edge, its axes lie
+// in the horizontal tangent plane, it is brightest; the core has no edge.
+TEST(FluidSplats, RestingCubeTopIsHorizontalBrightEdge3D) {
+    test::FluidWorld world;
+    FluidDef def;
+    def.dimension = 3;
+    def.spacing = kSpacing;
+    def.gravity = glm::vec3(0.0f, -0.01f, 0.0f);  // weak: the cube rests, "up" is +y
+    def.blocks.push_back(FluidBlockDef{{0.0f, 0.0f, 0.0f}, {0.2f, 0.2f, 0.2f}, {}});
+    const FluidId fluid = createFluid(world.id, def);
+    stepWorld(world.id, kDt);
+    FluidSplatState state;
+    std::vector<SplatInstance> out;
+    render::updateFluidSplats(state, world.id, fluid, FluidRenderDef::upTo(5), kDt, out);
+    const FluidSnapshot s = readFluid(world.id, fluid);
+    ASSERT_EQ(s.count(), 1000u);
+    const std::vector<SplatInstance> byId = waterById(s, out);
+    int tops = 0, cores = 0;
+    for (std::uint32_t id = 0; id < s.count(); ++id) {
+        // Ids run x fastest, then y, then z (10 x 10 x 10).
+        const int i = static_cast<int>(id % 10), j = static_cast<int>(id / 10 % 10), k = static_cast<int>(id / 100);
+        const bool awayFromSides = i >= 3 && i <= 6 && k >= 3 && k <= 6;  // > h = 2.5 spacings in
+        const SplatInstance& splat = byId[id];
+        EXPECT_NEAR(glm::length(glm::vec3(splat.axis)), 1.0f, 1e-5f);
+        if (j == 9 && awayFromSides) {
+            tops += 1;
+            EXPECT_GT(splat.shade.y, 0.9f) << "top id " << id;
+            EXPECT_LT(std::abs(splat.axis.y), 0.2f) << "top id " << id;
+            EXPECT_GT(splat.shade.x, 1.4f) << "top id " << id;
+        } else if ((j == 4 || j == 5) && awayFromSides) {
+            cores += 1;
+            EXPECT_LT(splat.shade.y, 0.1f) << "core id " << id;
+        }
+    }
+    EXPECT_EQ(tops, 16);
+    EXPECT_EQ(cores, 32);
+}
+
 // Rule 3's velocity stretch (slide 64): an interior particle (no edge) of a
 // block gliding at 0.5 m/s without gravity is stretched along x by
 // 1 + |v| 0.02 s / r = 1 + 0.5 x 0.02 / 0.015 = 1.667 (tolerance 1e-3: the
@@ -262,6 +300,25 @@ TEST(FluidSplats, SplashIsBallisticAndRemovedAtPlane) {
     EXPECT_TRUE(state.splashes.empty());
 }
 
+// Rule 6: the fluid's own polygons stop splashes too. The same flight as
+// above over a square whose top edge is y = 0: alive at frame 41, gone at 42.
+TEST(FluidSplats, SplashRemovedAtFluidPolygon) {
+    test::FluidWorld world;
+    FluidDef def;
+    def.spacing = kSpacing;
+    def.polygons.push_back(FluidPolygonDef{{{-2.0f, -2.0f}, {2.0f, -2.0f}, {2.0f, 0.0f}, {-2.0f, 0.0f}}});
+    const FluidId fluid = createFluid(world.id, def);
+    FluidSplatState state;
+    state.splashes.push_back(render::Splash{{0.0f, 1.0f, 0.0f}, {1.0f, 2.0f, 0.0f}, 0.0f});
+    std::vector<SplatInstance> out;
+    for (int frame = 1; frame <= 41; ++frame) {
+        render::updateFluidSplats(state, world.id, fluid, FluidRenderDef::upTo(6), kDt, out);
+        ASSERT_EQ(out.size(), 1u) << "frame " << frame;
+    }
+    render::updateFluidSplats(state, world.id, fluid, FluidRenderDef::upTo(6), kDt, out);
+    EXPECT_TRUE(out.empty());
+}
+
 /// A 2D block flung upward whose rest density is ten times what the lattice
 /// has, so every particle is a low-density (rho / rho0 ~ 0.1) rising stray:
 /// far more splash candidates than the cap.
@@ -300,6 +357,21 @@ TEST(FluidSplats, SplashCountNeverExceedsCap) {
         const std::size_t n = splashCount(out);
         EXPECT_LE(n, render::kMaxSplashes) << "frame " << f;
         EXPECT_EQ(n, state.splashes.size());
+        if (f == 0) {
+            // Newborn splashes start at their particle, which is a rising
+            // (> 1 m/s) stray (rho / rho0 < 0.5), and are half its radius.
+            const FluidSnapshot s = readFluid(spray.world.id, spray.fluid);
+            std::map<std::array<float, 3>, std::uint32_t> idAt;
+            for (std::size_t i = 0; i < s.count(); ++i) idAt[{s.position[i].x, s.position[i].y, s.position[i].z}] = s.id[i];
+            ASSERT_GT(n, 0u);
+            for (std::size_t i = s.count(); i < out.size(); ++i) {
+                const auto it = idAt.find({out[i].centre.x, out[i].centre.y, out[i].centre.z});
+                ASSERT_NE(it, idAt.end()) << "splash " << i;
+                EXPECT_LT(s.density[it->second], 0.5f);
+                EXPECT_GT(s.velocity[it->second].y, 1.0f);
+                EXPECT_FLOAT_EQ(out[i].centre.w, 0.5f * 1.5f * kSpacing / 2.0f);
+            }
+        }
         // Water first (1600), then the splashes.
         for (std::size_t i = 0; i < 1600; ++i) ASSERT_NE(kindOf(out[i]), static_cast<float>(SplatKind::Splash));
         most = std::max(most, n);
@@ -339,6 +411,7 @@ TEST(FluidSplats, BubbleSelectionIsStableAcrossFrames) {
         render::updateFluidSplats(state, b.world.id, b.fluid, FluidRenderDef::upTo(7), kDt, out);
         const FluidSnapshot s = readFluid(b.world.id, b.fluid);
         const std::vector<SplatInstance> byId = waterById(s, out);
+        EXPECT_EQ(splashCount(out), 0u);  // no particle of a resting tank rises: no splash
         std::vector<bool> isBubble(s.count());
         for (std::uint32_t id = 0; id < s.count(); ++id) {
             isBubble[id] = kindOf(byId[id]) == static_cast<float>(SplatKind::Bubble);

@@ -1,25 +1,88 @@
-// PLACEHOLDER (replaced by the fluid splat work on branch `splats`): raw
-// splats from readFluid, in the agreed instance layout.
+// Sprinkle-style fluid splats, the CPU side (slides 55-69, "Rendering"): each
+// rendered frame turns one fluid's state into per-splat instance data the
+// renderer draws as oriented, stretched discs. The rules build on each other in
+// the slides' order and each is switched by a FluidRenderDef flag:
+//   1 raw       every particle a round splat (slide 62)
+//   2 resize    radius from density: strays smaller (slide 63)
+//   3 stretch   along the surface tangent and the velocity, temporally
+//               smoothed per particle id (slides 57, 60, 64)
+//   4 refract   the shader's work: nothing here (slide 65)
+//   5 edges     edge factor, upward-facing surface brighter (slides 58, 66)
+//   6 splashes  ballistic particles from rising strays (slides 61, 67)
+//   7 bubbles   a stable subset of dense particles (slide 68)
+// docs/rendering-fluid-splats.md lists every constant.
 #pragma once
 
+#include <spindrift/fluid.h>
 #include <spindrift/render.h>
 
-#include <glm/glm.hpp>
-
+#include <cstdint>
 #include <vector>
 
 namespace spindrift::render {
 
+/// One splat as the shader reads it (std430 `vec4 centre; vec4 axis; vec4
+/// shade;`). 48 bytes.
 struct SplatInstance {
-    glm::vec4 centre;  // xyz position (m), w radius (m)
-    glm::vec4 axis;    // xyz unit major axis, w stretch >= 1
-    glm::vec4 shade;   // x brightness, y edge factor, z kind (0 water, 1 splash, 2 bubble), w density ratio
+    glm::vec4 centre;  ///< xyz position (m); w: radius (m) across the major axis
+    glm::vec4 axis;    ///< xyz unit major axis (2D: z = 0; (1,0,0) unoriented); w: stretch >= 1 (major semi-axis / radius)
+    glm::vec4 shade;   ///< x: brightness (1 base, > 1 sun highlight, splashes); y: edge factor in [0,1]; z: SplatKind; w: rho / rho0 (0 for splashes)
 };
-static_assert(sizeof(SplatInstance) == 48);
+static_assert(sizeof(SplatInstance) == 48, "std430 layout of three vec4");
 
-struct FluidSplatState {};
+enum class SplatKind : std::uint32_t { Water = 0, Splash = 1, Bubble = 2 };
 
+/// Displayed orientation of one particle, kept between frames (slide 60).
+struct SplatOrientation {
+    glm::vec3 axis{1.0f, 0.0f, 0.0f};  ///< unit, sign-free (a and -a are the same)
+    float stretch = 0.0f;              ///< >= 1; 0: not seen yet
+};
+
+/// A splash: ballistic from where it was born, so its position is the closed
+/// form origin + v0 age + g age^2 / 2 (no integration error).
+struct Splash {
+    glm::vec3 origin{0.0f};    ///< m
+    glm::vec3 velocity{0.0f};  ///< m/s at birth
+    float age = 0.0f;          ///< s
+};
+
+/// What one fluid's splats remember between frames.
+struct FluidSplatState {
+    /// Indexed by particle id (creation serial): ids survive the solver's
+    /// reordering into grid order every step.
+    std::vector<SplatOrientation> orientation;
+    std::vector<Splash> splashes;
+    /// Frames advanced (dt > 0): the counter of the splash RNG.
+    std::uint32_t frame = 0;
+};
+
+/// Most splashes alive at once (slide 61: 800 in the 2nd generation).
+inline constexpr std::size_t kMaxSplashes = 800;
+/// Fastest turn of a displayed axis (rad/s): slide 60 "allow small rotations";
+/// 6 rad/s is 0.1 rad (5.7 degrees) per frame at 60 fps.
+inline constexpr float kMaxTurnRate = 6.0f;
+
+/// Writes fluid `fluid`'s splats into `out` (cleared first): one per particle
+/// (in the solver's grid order), then the live splashes. `dt` (s) is world
+/// time since the previous rendered frame: smoothing and splashes advance by
+/// it; 0 (a repeated frame) changes no state. Throws Error for unknown ids.
 void updateFluidSplats(FluidSplatState& state, WorldId world, FluidId fluid, const FluidRenderDef& settings,
                        float dt, std::vector<SplatInstance>& out);
+
+// Leaf rules, exposed for tests and the docs.
+
+/// Edge factor from |d| in [0, 1], d = average neighbour direction (slide 57):
+/// 0 in the interior (|d| ~ 0), 1 on a flat surface (|d| ~ 0.45 in 2D, 0.3 in 3D).
+float edgeFactor(float averageDirectionLength);
+/// Radius multiplier from rho / rho0 (slide 63): monotone, clamped.
+float densityScale(float density);
+/// Rotates `previous` toward `target` (unit, sign-free: target is first
+/// flipped into previous's hemisphere) by at most `maxAngle` radians.
+glm::vec3 turnToward(glm::vec3 previous, glm::vec3 target, float maxAngle);
+/// Temporal smoothing of one particle's orientation (slide 60) over dt seconds.
+SplatOrientation smoothOrientation(SplatOrientation previous, SplatOrientation target, float dt);
+/// Whether particle `id` at density ratio `density` is drawn as a bubble
+/// (slide 68): a pure function, so the choice never flickers.
+bool isBubble(std::uint32_t id, float density);
 
 }  // namespace spindrift::render

@@ -1,0 +1,41 @@
+// Read-only access to one fluid's last step for code outside the solver (the
+// renderer's splats, src/render/fluid_splats.cpp): what the neighbour search
+// and constraint setup already know (slide 56: "we have a lot more information
+// than just particle position"), and the fluid's obstacles as path tests.
+// A new file rather than edits to fluid_world.cpp, which others change often.
+#pragma once
+
+#include "fluid/fluid_state.h"
+
+#include <span>
+
+namespace spindrift::fluid {
+
+/// One fluid's particles in grid order, and the neighbour lists of its last
+/// constraint setup: particle i's neighbours are neighbours[i * maxNeighbours
+/// + k] for k < count[i]. Before the first step there are no lists (count is
+/// empty); a particle added since the last step (i >= count.size()) has none.
+template <int D>
+struct FluidView {
+    std::span<const Vec<D>> position;    // m
+    std::span<const Vec<D>> velocity;    // m/s
+    std::span<const float> density;      // rho / rho0 at the last setup
+    std::span<const std::uint32_t> id;   // creation serial
+    std::span<const Neighbour<D>> neighbours;
+    std::span<const std::uint32_t> count;
+    std::uint32_t maxNeighbours = 0;
+};
+
+template <int D>
+FluidView<D> viewFluid(const FluidState& f);
+
+/// The fluid `fluid` of `world`; throws Error for an unknown id.
+const FluidState& fluidStateFromId(const World& world, FluidId fluid);
+
+/// True when the straight path x0 -> x1 of a point meets one of the fluid's
+/// obstacles: a world plane, sphere or box collider (the solver's own path
+/// tests from src/kernels/collide.glsl), or one of the fluid's polygons (end
+/// point inside, as integratePositions tests them). In 2D pass z = 0.
+bool pathMeetsObstacle(const World& world, const FluidState& f, glm::vec3 x0, glm::vec3 x1);
+
+}  // namespace spindrift::fluid

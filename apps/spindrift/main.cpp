@@ -68,6 +68,7 @@ struct RenderOptions {
     std::uint32_t height = 0;
     double fps = 0.0;
     double seconds = 0.0;
+    double start = 0.0;  ///< world time (s) of the first frame
     std::uint64_t frames = 0;
     std::vector<std::string> formats;  ///< empty: the default (see chooseOutputs)
     int fluidSteps = 0;
@@ -386,7 +387,7 @@ int renderCommand(const RenderOptions& o) {
     validateRenderDef(scene.render);
     const RenderDef& def = scene.render;
     const std::uint64_t frames = o.hasFrames ? o.frames : io::FrameSchedule::frameCount(def.seconds, def.fps);
-    const io::FrameSchedule schedule(def.fps, scene.run.dt);
+    const io::FrameSchedule schedule(def.fps, scene.run.dt, o.start);
     const RenderOutputs outputs = chooseOutputs(o.formats);
 
     // World and renderer first: a scene or a missing Vulkan driver that fails
@@ -480,6 +481,8 @@ void addRenderOptions(CLI::App& render, RenderOptions& o) {
     auto* frames = render.add_option("--frames,-n", o.frames, "Number of frames instead of --seconds")
                        ->check(CLI::Range(std::uint64_t{1}, std::uint64_t{100'000'000}));
     frames->excludes(seconds);
+    render.add_option("--start", o.start, "World time (s) of the first frame; earlier steps are simulated, not drawn")
+        ->check(CLI::Range(0.0, 1e6));
     render.add_option("--format,-f", o.formats, "Outputs, comma separated: mp4, png (default: mp4 if ffmpeg is found)")
         ->delimiter(',')
         ->check(CLI::IsMember({"png", "mp4"}));

@@ -15,7 +15,7 @@ constexpr double kRelativeTolerance = 1e-6;
 
 std::uint64_t FrameSchedule::stepsBefore(std::uint64_t frame) const {
     return static_cast<std::uint64_t>(
-        std::floor(static_cast<double>(frame) * stepsPerFrame_ * (1.0 + kRelativeTolerance)));
+        std::floor((startFrames_ + static_cast<double>(frame)) * stepsPerFrame_ * (1.0 + kRelativeTolerance)));
 }
 
 std::uint64_t FrameSchedule::frameCount(double seconds, double fps) {

@@ -14,7 +14,10 @@ namespace spindrift::io {
 /// after 5 steps, not 4.
 class FrameSchedule {
   public:
-    FrameSchedule(double fps, double dt) : stepsPerFrame_(1.0 / (fps * dt)) {}
+    /// `start` (s, >= 0): world time of frame 0; frame k is meant for
+    /// start + k / fps.
+    FrameSchedule(double fps, double dt, double start = 0.0)
+        : stepsPerFrame_(1.0 / (fps * dt)), startFrames_(start * fps) {}
 
     /// Steps taken before frame k is drawn.
     std::uint64_t stepsBefore(std::uint64_t frame) const;
@@ -25,6 +28,7 @@ class FrameSchedule {
 
   private:
     double stepsPerFrame_;
+    double startFrames_;  // start time in frame units
 };
 
 }  // namespace spindrift::io

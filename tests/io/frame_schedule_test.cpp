@@ -19,6 +19,15 @@ TEST(IoFrameSchedule, Dt60At24FpsTakesFloorOfTwoAndAHalfStepsPerFrame) {
     }
 }
 
+TEST(IoFrameSchedule, StartTimeShiftsEveryFrameByWholeFrames) {
+    // Frame k of a video starting at 1.5 s is meant for 1.5 + k / 24 s: at
+    // dt = 1/60 that is floor(90 + 2.5 k) steps.
+    const FrameSchedule schedule(24.0, static_cast<double>(1.0f / 60.0f), 1.5);
+    for (std::uint64_t k = 0; k < 24 * 60; ++k) {
+        ASSERT_EQ(schedule.stepsBefore(k), 90 + k * 60 / 24) << "frame " << k;
+    }
+}
+
 TEST(IoFrameSchedule, WholeStepsPerFrameAndFractionalRatios) {
     const FrameSchedule thirty(30.0, static_cast<double>(1.0f / 60.0f));
     const FrameSchedule seventy(70.0, 0.01);  // 1.43 steps per frame: never ahead of the frame time

@@ -408,6 +408,18 @@ int renderCommand(const RenderOptions& o) {
     io::ProgressReporter progress(std::cerr, frames, progressOptions);
     const auto start = std::chrono::steady_clock::now();
     std::uint64_t steps = 0;
+    // Frames of the second before --start are drawn and dropped: splashes
+    // and orientation smoothing advance with drawn frames, so the first kept
+    // frame shows them under way.
+    const double warmUp = std::min(o.start, 1.0);
+    const io::FrameSchedule warmUpSchedule(def.fps, scene.run.dt, o.start - warmUp);
+    const auto warmUpFrames = static_cast<std::uint64_t>(std::floor(warmUp * def.fps));
+    for (std::uint64_t k = 0; k < warmUpFrames; ++k) {
+        for (const std::uint64_t target = warmUpSchedule.stepsBefore(k); steps < target; ++steps) {
+            stepWorld(world.id(), scene.run.dt);
+        }
+        renderFrame(renderer.id());
+    }
     for (std::uint64_t k = 0; k < frames; ++k) {
         for (const std::uint64_t target = schedule.stepsBefore(k); steps < target; ++steps) {
             stepWorld(world.id(), scene.run.dt);

@@ -44,7 +44,7 @@ struct BackgroundDef {
 /// first n.
 struct FluidRenderDef {
     glm::vec3 colour{0.10f, 0.35f, 0.85f};  ///< linear RGB of water
-    float opacity = 0.85f;                   ///< of a splat's centre, in (0, 1]
+    float opacity = 0.6f;                    ///< of a splat's centre, in (0, 1]
     /// Splat radius as a multiple of the fluid's spacing (1 = touching discs).
     float radiusScale = 1.5f;
     bool sizeFromDensity = true;  ///< 2: splat size grows with density, strays shrink

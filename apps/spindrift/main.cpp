@@ -7,8 +7,9 @@
 #include "io/png_writer.h"
 #include "io/progress.h"
 #include "io/summary.h"
-#include "viewer.h"
 #include "io/video_writer.h"
+#include "validation_report.h"
+#include "viewer.h"
 
 #include <spindrift/render.h>
 #include <spindrift/scene.h>
@@ -439,9 +440,9 @@ int renderCommand(const RenderOptions& o) {
         written.push_back((dir / frameFileName(0)).string() +
                           (frames > 1 ? " .. " + frameFileName(frames - 1) : std::string()));
     }
-    fmt::print("{} frames of {}x{} at {:g} fps ({:.3f} s simulated in {} steps), {:.1f} s wall: {}\n", frames,
-               def.width, def.height, def.fps, worldTime(world.id()), steps, wall, fmt::join(written, ", "));
-    return 0;
+    return app::finishWithValidationReport(
+        fmt::format("{} frames of {}x{} at {:g} fps ({:.3f} s simulated in {} steps), {:.1f} s wall: {}", frames,
+                    def.width, def.height, def.fps, worldTime(world.id()), steps, wall, fmt::join(written, ", ")));
 }
 
 // command line ---------------------------------------------------------------------

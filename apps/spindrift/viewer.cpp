@@ -10,6 +10,8 @@
 // with it. The window and ImGui's context live for the whole session.
 #include "viewer.h"
 
+#include "validation_report.h"
+
 #include "gpu/gpu_world.h"
 #include "gpu/vulkan_device.h"
 #include "render/render_target.h"
@@ -681,7 +683,6 @@ int viewCommand(const ViewOptions& o) {
     Window window(scene.render.width, scene.render.height, "spindrift - " + o.scene);
     requestPresentation();
     gpu::worldDebugLog().clear();
-    const bool validation = gpu::worldDeviceOptions().validation;
 
     IMGUI_CHECKVERSION();
     ImGui::CreateContext();
@@ -754,14 +755,7 @@ int viewCommand(const ViewOptions& o) {
         throw;
     }
 
-    if (!validation) {
-        fmt::print("{} frames shown\n", frames);
-        return 0;
-    }
-    const std::uint32_t messages = gpu::worldDebugLog().total();
-    fmt::print("{} frames shown, {} validation messages\n", frames, messages);
-    if (messages > 0) std::fprintf(stderr, "%s\n", gpu::worldDebugLog().text().c_str());
-    return messages == 0 ? 0 : 1;
+    return finishWithValidationReport(fmt::format("{} frames shown", frames));
 }
 
 }  // namespace spindrift::app

@@ -1,6 +1,6 @@
 // Sprinkle-style fluid splats (slides 55-69): one fluid's state -> per-splat
 // instances, each frame. See fluid_splats.h for the rules and
-// docs/rendering-fluid-splats.md for the constants.
+// docs/rendering.md ("Fluid splats") for the constants.
 #include "render/fluid_splats.h"
 
 #include "effects/world_internal.h"
@@ -13,7 +13,7 @@
 namespace spindrift::render {
 namespace {
 
-// --- Constants of the rules (docs/rendering-fluid-splats.md) ----------------
+// --- Constants of the rules (docs/rendering.md ("Fluid splats")) ----------------
 
 /// Rule 1: splat radius = radiusScale * spacing / 2 (m); radiusScale 1 gives
 /// discs that touch on the block lattice (FluidRenderDef::radiusScale).

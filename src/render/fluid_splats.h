@@ -10,7 +10,7 @@
 //   5 edges     edge factor, upward-facing surface brighter (slides 58, 66)
 //   6 splashes  ballistic particles from rising strays (slides 61, 67)
 //   7 bubbles   a stable subset of dense particles (slide 68)
-// docs/rendering-fluid-splats.md lists every constant.
+// docs/rendering.md ("Fluid splats") lists every constant.
 #pragma once
 
 #include <spindrift/fluid.h>

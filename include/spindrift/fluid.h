@@ -81,8 +81,14 @@ struct FluidDef {
     /// keep the fastest particle under 0.4 h per substep.
     std::uint32_t substeps = 0;
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
+    /// Mass density of the fluid, for its exchange of momentum with rigid
+    /// bodies: a particle's mass is density x spacing^dimension. 2D: kg/m^2,
+    /// areal, like a body's density (1000: water in a slab 1 m thick); 3D:
+    /// kg/m^3 (3D fluids do not touch bodies yet).
+    float density = 1000.0f;
     /// Coulomb friction coefficient of particles against colliders (0:
-    /// frictionless, as the slides' particle body).
+    /// frictionless, as the slides' particle body); against a rigid body the
+    /// coefficient is sqrt(this x the body's friction), as Box2D mixes them.
     float friction = 0.0f;
     /// Most particles at once; jets stop emitting when it is reached.
     /// 0: the blocks' particles plus 10,000 per jet.
@@ -112,6 +118,7 @@ struct FluidStepStats {
     double maxSpeed = 0.0;              ///< m/s, after the step
     std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours), all substeps
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
+    std::uint64_t bodyContacts = 0;     ///< particle-body contacts, all substeps
     /// Wall time (ms) of each pass, summed over the substeps: binning,
     /// neighbours and constraint setup, contact search, solver, integration.
     double gridMs = 0.0, setupMs = 0.0, contactsMs = 0.0, solveMs = 0.0, integrateMs = 0.0;

@@ -14,6 +14,9 @@
 
 namespace spindrift {
 struct World;
+namespace coupling {
+struct FluidBodyStep;
+}
 }
 
 namespace spindrift::fluid {
@@ -129,6 +132,9 @@ struct FluidState {
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
     float lastSubstep = 0.0f;   // s, the substep the pressure was solved for
+    /// The rigid bodies near this 2D fluid during its step (src/coupling);
+    /// null outside stepFluid or when none are near.
+    coupling::FluidBodyStep* bodies = nullptr;
 
     template <int D> Particles<D>& particles() {
         if constexpr (D == 2) return p2; else return p3;

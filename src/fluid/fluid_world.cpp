@@ -226,6 +226,10 @@ void validateFluidDef(const FluidDef& def) {
         !(def.restDensity >= 0.0f) || !std::isfinite(def.restDensity)) {
         throw Error(fmt::format("{}: friction and rest density must be finite and >= 0, gravity finite", label(def)));
     }
+    if (!(def.density > 0.0f) || !std::isfinite(def.density)) {
+        throw Error(fmt::format("{}: density must be a finite mass density > 0 (kg/m^2 in 2D), got {}", label(def),
+                                def.density));
+    }
     for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i + 1);
     for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i + 1);
     for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i + 1);

@@ -63,6 +63,8 @@ WorldId buildWorld(const SceneDef& scene) {
     createAll(scene.emitters, "emitter",
               [&](const EmitterDef& d) { return createEmitter(world, d); });
     createAll(scene.fluids, "fluid", [&](const FluidDef& d) { return createFluid(world, d); });
+    createAll(scene.bodies, "body", [&](const BodyDef& d) { return createBody(world, d); });
+    createAll(scene.joints, "joint", [&](const JointDef& d) { return createJoint(world, d); });
     return guard.release();
 }
 

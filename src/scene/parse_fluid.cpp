@@ -48,7 +48,7 @@ FluidPolygonDef parsePolygon(const Table& t) {
 
 FluidDef parseFluid(const Table& t, NameTable& names) {
     t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
-                 "solver", "substeps", "gravity", "friction", "capacity", "rest_density", "block", "jet", "polygon"},
+                 "solver", "substeps", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
                 "a [[fluid]]");
     FluidDef def;
     def.name = names.add(t);
@@ -72,6 +72,7 @@ FluidDef parseFluid(const Table& t, NameTable& names) {
     def.substeps = static_cast<std::uint32_t>(t.integer("substeps", def.substeps, Bounds::between(0, 16)));
     def.gravity = t.vec3("gravity", def.gravity);
     def.friction = t.real("friction", def.friction, Bounds::nonNegative());
+    def.density = t.real("density", def.density, Bounds::positive());
     def.capacity = static_cast<std::uint32_t>(t.integer("capacity", def.capacity, Bounds::between(0, 16 * 1024 * 1024)));
     def.restDensity = t.real("rest_density", def.restDensity, Bounds::nonNegative());
     for (const Table& b : tableArray(t, "block")) def.blocks.push_back(parseBlock(b));

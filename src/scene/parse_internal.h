@@ -41,6 +41,8 @@ FlowFieldDef parseFlowField(const Table& table, NameTable& names);
 ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
 ColliderDef parseCollider(const Table& table, NameTable& names);
 FluidDef parseFluid(const Table& table, NameTable& names);
+BodyDef parseBody(const Table& table, NameTable& names);
+JointDef parseJoint(const Table& table, NameTable& names, const NameTable& bodies);
 EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,
                         const NameTable& colliders);
 

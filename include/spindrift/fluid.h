@@ -4,6 +4,7 @@
 // for now.
 #pragma once
 
+#include <spindrift/bodies.h>
 #include <spindrift/effects.h>
 
 #include <cstdint>
@@ -31,6 +32,13 @@ struct FluidBlockDef {
     glm::vec3 velocity{0.0f};  ///< m/s, initial velocity of every particle
 };
 
+/// One key of a 2D jet's aim: `time` s after the jet opens it points `angle`
+/// rad counter-clockwise from the x axis (the body's x axis when it rides one).
+struct FluidJetAimKey {
+    float time = 0.0f;   ///< s, >= 0
+    float angle = 0.0f;  ///< rad
+};
+
 /// A nozzle that emits particles at `rate` per second with `speed` along
 /// `direction`, spread over a segment (2D) or disk (3D) of `radius` across the
 /// direction at the fluid's spacing.
@@ -42,6 +50,16 @@ struct FluidJetDef {
     float radius = 0.0f;   ///< m; 0: a single stream
     float start = 0.0f;    ///< s, world time at which it opens
     float duration = -1.0f;///< s; < 0: never closes
+    /// 2D only: the direction over time, linear between keys (times
+    /// non-decreasing), held before the first and after the last; each
+    /// particle leaves in the direction of its birth time. Empty: `direction`.
+    std::vector<FluidJetAimKey> aim;
+    /// 2D only: the body the nozzle rides on (index 0: none). Then `position`,
+    /// `direction` and the aim are in the body's frame, particles leave with
+    /// the body's velocity at the nozzle added, and the body takes the recoil
+    /// (each particle's mass times its speed relative to the nozzle). A jet
+    /// whose body is destroyed stops.
+    BodyId body;
 };
 
 /// A convex polygon obstacle in the xy plane, extruded along z; vertices in

@@ -61,9 +61,9 @@ SceneDef loadScene(const std::string& path);
 SceneDef parseScene(std::string_view text, const std::string& sourceName,
                     const std::string& baseDir = ".");
 
-/// Creates a world with flow fields, forces, colliders, emitters, fluids,
-/// bodies and joints in that order, so their ids match the SceneDef's
-/// references.
+/// Creates a world with flow fields, forces, colliders, emitters, bodies,
+/// fluids (whose jets may ride on bodies) and joints in that order, so their
+/// ids match the SceneDef's references.
 WorldId buildWorld(const SceneDef& scene);
 
 }  // namespace spindrift

@@ -3,6 +3,7 @@
 #include "coupling/body_world.h"
 
 #include "effects/world_internal.h"
+#include "fluid/fluid_state.h"
 #include "kernels/fluid.glsl"
 
 #include <fmt/format.h>
@@ -265,6 +266,34 @@ void beginBodyStep(BodyWorld& b, float dt) {
 }
 
 void stepBodies(BodyWorld& b, float dt) { b.world.Step(dt, kVelocityIterations, kPositionIterations); }
+
+fluid::JetMount jetMount(World& w, BodyId id) {
+    fluid::JetMount m;
+    if (id.index == 0) return m;
+    if (!w.bodies || id.index > w.bodies->bodies.size() || w.bodies->bodies[id.index - 1].body == nullptr) {
+        m.active = false;
+        return m;
+    }
+    const b2Body& body = *w.bodies->bodies[id.index - 1].body;
+    m.origin = fromB2(body.GetPosition());
+    m.angle = body.GetAngle();
+    m.centre = fromB2(body.GetWorldCenter());
+    m.velocity = fromB2(body.GetLinearVelocity());
+    m.angularVelocity = body.GetAngularVelocity();
+    return m;
+}
+
+void applyRecoil(World& w, BodyId id, const fluid::JetMount& m) {
+    if (id.index == 0 || !m.active || (m.recoil.x == 0.0f && m.recoil.y == 0.0f)) return;
+    b2Body* body = w.bodies->bodies[id.index - 1].body;
+    if (body->GetType() == b2_dynamicBody) body->ApplyLinearImpulse(toB2(m.recoil), toB2(m.nozzle), true);
+}
+
+void checkJetBody(World& w, const FluidJetDef& jet) {
+    if (jet.body.index == 0) return;
+    if (!w.bodies) throw Error(fmt::format("a jet rides body id {}, but the world has no bodies", jet.body.index));
+    bodyFromId(*w.bodies, jet.body);
+}
 
 }  // namespace coupling
 

@@ -17,7 +17,10 @@
 
 namespace spindrift {
 struct World;
+namespace fluid {
+struct JetMount;
 }
+}  // namespace spindrift
 
 namespace spindrift::coupling {
 
@@ -62,5 +65,13 @@ void beginBodyStep(BodyWorld& bodies, float dt);
 /// After the fluids: Box2D steps the bodies by dt (body contacts, joints,
 /// integration of the velocities the water left them).
 void stepBodies(BodyWorld& bodies, float dt);
+
+/// Where a jet riding `body` is this step (index 0: fixed in the world; a
+/// destroyed body: inactive).
+fluid::JetMount jetMount(World& world, BodyId body);
+/// Gives a jet's body the recoil of the particles it emitted.
+void applyRecoil(World& world, BodyId body, const fluid::JetMount& mount);
+/// Throws Error if a jet names a body the world does not have.
+void checkJetBody(World& world, const FluidJetDef& jet);
 
 }  // namespace spindrift::coupling

@@ -86,7 +86,11 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     FluidStepStats stats;
     stats.fluid = id;
     // Emission: the jets' particles born during this step join before binning.
-    stats.born = emitJets(f, w.time, dt);
+    // A jet on a body moves with it and gives it the recoil.
+    std::vector<JetMount> mounts;
+    for (const Jet& jet : f.jets) mounts.push_back(coupling::jetMount(w, jet.def.body));
+    stats.born = emitJets(f, w.time, dt, mounts);
+    for (std::size_t j = 0; j < f.jets.size(); ++j) coupling::applyRecoil(w, f.jets[j].def.body, mounts[j]);
     // Substeps: a particle may move at most kCourant h per substep, or it
     // would pass through its neighbours before any constraint sees them
     // (a dam break at 2 cm spacing and 60 Hz reaches 2 h per step and

@@ -40,7 +40,8 @@ std::string readDataFile(const Value& value, DataFileRef& ref);
 FlowFieldDef parseFlowField(const Table& table, NameTable& names);
 ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
 ColliderDef parseCollider(const Table& table, NameTable& names);
-FluidDef parseFluid(const Table& table, NameTable& names);
+/// `bodies`: the names jets may ride on.
+FluidDef parseFluid(const Table& table, NameTable& names, const NameTable& bodies);
 BodyDef parseBody(const Table& table, NameTable& names);
 JointDef parseJoint(const Table& table, NameTable& names, const NameTable& bodies);
 EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,

@@ -176,13 +176,14 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     for (const Table& t : scene::tableArray(root, "emitter")) {
         scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames));
     }
-    scene::NameTable fluidNames("fluid");
-    for (const Table& t : scene::tableArray(root, "fluid")) {
-        scene.fluids.push_back(scene::parseFluid(t, fluidNames));
-    }
     scene::NameTable bodyNames("body");
     for (const Table& t : scene::tableArray(root, "body")) {
         scene.bodies.push_back(scene::parseBody(t, bodyNames));
+    }
+    // Fluids after bodies: a jet may ride on a body.
+    scene::NameTable fluidNames("fluid");
+    for (const Table& t : scene::tableArray(root, "fluid")) {
+        scene.fluids.push_back(scene::parseFluid(t, fluidNames, bodyNames));
     }
     scene::NameTable jointNames("joint");
     for (const Table& t : scene::tableArray(root, "joint")) {

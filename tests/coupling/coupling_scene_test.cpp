@@ -151,6 +151,17 @@ TEST(CouplingSceneErrors, PrismaticTakesAForceNotATorque) {
                 {15, 1, "joint[0].max_motor_torque", "max_motor_force"});
 }
 
+TEST(CouplingSceneErrors, JetRidesAnUnknownBody) {
+    expectError("[[body]]\nname = \"truck\"\nshape = [{ circle = 1.0 }]\n\n[[fluid]]\nname = \"f\"\n\n"
+                "[[fluid.jet]]\nposition = [0, 0, 0]\nbody = \"truk\"\n",
+                {10, 8, "fluid[0].jet[0].body", "did you mean \"truck\""});
+}
+
+TEST(CouplingSceneErrors, JetAimRunsBackwards) {
+    expectError("[[fluid]]\nname = \"f\"\n\n[[fluid.jet]]\nposition = [0, 0, 0]\naim = [[1.0, 0.0], [0.5, 1.0]]\n",
+                {6, 20, "fluid[0].jet[0].aim[1]", "not before the previous key's"});
+}
+
 TEST(CouplingSceneErrors, BodyGravityNeedsTwoNumbers) {
     expectError("[world]\nbody_gravity = [0, -9.81, 0]\n", {2, 16, "world.body_gravity", "an array of 2 numbers"});
 }

@@ -497,7 +497,7 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         // bodies and joints
         "type = \"static\"", "type = \"kinematic\"", "box = [", "circle = ", "polygon = [", "edge = [",
         "chain = [", "[[body.shape]]", "kind = \"revolute\"", "kind = \"prismatic\"", "kind = \"weld\"",
-        "body_gravity"};
+        "body_gravity", "aim = [[", "body = \"truck\""};
     for (const std::string& f : features) {
         EXPECT_NE(all.find(f), std::string::npos) << "no example shows " << f;
     }

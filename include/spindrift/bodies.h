@@ -7,6 +7,14 @@
 // Mass in 2D: a body's density is areal (kg/m^2, as Box2D's), and a 2D fluid's
 // FluidDef::density is too (default 1000 kg/m^2: water in a slab 1 m thick),
 // so a body of density 500 floats half submerged in a default fluid.
+//
+// Each step: dynamic bodies get WorldDef::bodyGravity x dt, every 2D fluid
+// solves its particle-body contacts against local copies of the bodies
+// (their velocities answer each contact impulse at once), the summed
+// impulses go to Box2D, and Box2D steps the bodies once by dt (body contacts,
+// joints). Box2D rounds polygons by 1 cm and lets rounded shapes overlap by
+// 5 mm, so bodies resting on bodies stand 1.5 cm apart; the fluid sees the
+// exact shapes. World colliders (ColliderDef) act on particles only.
 #pragma once
 
 #include <spindrift/effects.h>

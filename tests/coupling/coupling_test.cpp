@@ -7,6 +7,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace spindrift {
 namespace {
@@ -69,6 +70,7 @@ TEST(CouplingBuoyancy, HalfDenseBoxFloatsHalfSubmerged) {
     // level is known to about half a spacing (a free surface of particles,
     // under-dense by nature), the box rests on particles whose centres keep
     // half a spacing from it, and the water is ~1 % compressed.
+    RecordProperty("submerged_fraction", std::to_string(fraction));
     EXPECT_NEAR(fraction, 0.5, 0.1);
 }
 
@@ -82,6 +84,7 @@ TEST(CouplingBuoyancy, TwiceDenseBoxSinksToTheFloor) {
     // On the floor: its centre at the half height plus Box2D's resting gap
     // (test::kBodyGap, 1.5 cm), within 1 cm: water caught beneath and the
     // sloshing's push.
+    RecordProperty("resting_height", std::to_string(b.position.y));
     EXPECT_NEAR(b.position.y, 0.1f + test::kBodyGap, 0.01f);
     // At rest: slower than 5 cm/s (what the water's sloshing still gives it).
     EXPECT_LT(glm::length(b.linearVelocity), 0.05f);
@@ -115,7 +118,8 @@ TEST(CouplingJet, PushesACrateAlongTheFloor) {
     const BodySnapshot b = test::findBody(w.id, crate);
     // The jet carries 600 x 0.4 kg x 3 m/s = 720 N against 59 N of floor
     // friction on a 20 kg crate; 1.5 s of it moves the crate well over 0.1 m
-    // (measured: about 1 m), always in +x.
+    // (measured: about 3 m), always in +x.
+    RecordProperty("crate_displacement", std::to_string(b.position.x - 0.5f));
     EXPECT_GT(b.position.x - 0.5f, 0.1f);
     EXPECT_GT(b.linearVelocity.x, 0.0f);
 }
@@ -144,6 +148,7 @@ TEST(CouplingMomentum, ConservedWhenABlobHitsAFreeBody) {
     // put-back move positions only, so they carry no momentum. What remains
     // is float rounding: ~1e-7 of each of ~1e5 impulses, far under 1e-4 of
     // |P| = 400 x 0.4 kg x 2 m/s = 320 N s.
+    RecordProperty("relative_momentum_change", std::to_string(glm::length(after - before) / glm::length(before)));
     EXPECT_LT(glm::length(after - before), 1e-4 * glm::length(before));
 }
 
@@ -172,6 +177,7 @@ TEST(CouplingContainment, NoParticleInsideASweepingPaddle) {
         }
     }
     // A particle centre may come within its radius of the surface, no deeper.
+    RecordProperty("deepest_particle", std::to_string(deepest));
     EXPECT_LE(deepest, radius);
 }
 

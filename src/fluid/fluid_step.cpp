@@ -107,6 +107,7 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as
     // local copies during the substeps, and given their impulses at the end.
+    f.bodies = nullptr;
     if (w.bodies && coupling::gatherBodies(*w.bodies, f, dt, w.bodies->fluidStep)) {
         f.bodies = &w.bodies->fluidStep;
     }

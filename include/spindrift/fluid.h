@@ -4,6 +4,7 @@
 // for now.
 #pragma once
 
+#include <spindrift/bodies.h>
 #include <spindrift/effects.h>
 
 #include <cstdint>
@@ -31,6 +32,13 @@ struct FluidBlockDef {
     glm::vec3 velocity{0.0f};  ///< m/s, initial velocity of every particle
 };
 
+/// One key of a 2D jet's aim: `time` s after the jet opens it points `angle`
+/// rad counter-clockwise from the x axis (the body's x axis when it rides one).
+struct FluidJetAimKey {
+    float time = 0.0f;   ///< s, >= 0
+    float angle = 0.0f;  ///< rad
+};
+
 /// A nozzle that emits particles at `rate` per second with `speed` along
 /// `direction`, spread over a segment (2D) or disk (3D) of `radius` across the
 /// direction at the fluid's spacing.
@@ -42,6 +50,16 @@ struct FluidJetDef {
     float radius = 0.0f;   ///< m; 0: a single stream
     float start = 0.0f;    ///< s, world time at which it opens
     float duration = -1.0f;///< s; < 0: never closes
+    /// 2D only: the direction over time, linear between keys (times
+    /// non-decreasing), held before the first and after the last; each
+    /// particle leaves in the direction of its birth time. Empty: `direction`.
+    std::vector<FluidJetAimKey> aim;
+    /// 2D only: the body the nozzle rides on (index 0: none). Then `position`,
+    /// `direction` and the aim are in the body's frame, particles leave with
+    /// the body's velocity at the nozzle added, and the body takes the recoil
+    /// (each particle's mass times its speed relative to the nozzle). A jet
+    /// whose body is destroyed stops.
+    BodyId body;
 };
 
 /// A convex polygon obstacle in the xy plane, extruded along z; vertices in
@@ -81,8 +99,14 @@ struct FluidDef {
     /// keep the fastest particle under 0.4 h per substep.
     std::uint32_t substeps = 0;
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
+    /// Mass density of the fluid, for its exchange of momentum with rigid
+    /// bodies: a particle's mass is density x spacing^dimension. 2D: kg/m^2,
+    /// areal, like a body's density (1000: water in a slab 1 m thick); 3D:
+    /// kg/m^3 (3D fluids do not touch bodies yet).
+    float density = 1000.0f;
     /// Coulomb friction coefficient of particles against colliders (0:
-    /// frictionless, as the slides' particle body).
+    /// frictionless, as the slides' particle body); against a rigid body the
+    /// coefficient is sqrt(this x the body's friction), as Box2D mixes them.
     float friction = 0.0f;
     /// Most particles at once; jets stop emitting when it is reached.
     /// 0: the blocks' particles plus 10,000 per jet.
@@ -112,6 +136,7 @@ struct FluidStepStats {
     double maxSpeed = 0.0;              ///< m/s, after the step
     std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours), all substeps
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
+    std::uint64_t bodyContacts = 0;     ///< particle-body contacts, all substeps
     /// Wall time (ms) of each pass, summed over the substeps: binning,
     /// neighbours and constraint setup, contact search, solver, integration.
     double gridMs = 0.0, setupMs = 0.0, contactsMs = 0.0, solveMs = 0.0, integrateMs = 0.0;

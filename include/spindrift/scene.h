@@ -48,6 +48,9 @@ struct SceneDef {
     std::vector<ColliderDef> colliders;
     std::vector<EmitterDef> emitters;
     std::vector<FluidDef> fluids;
+    std::vector<BodyDef> bodies;
+    /// Bodies referred to by id (1-based position in `bodies`).
+    std::vector<JointDef> joints;
 };
 
 /// Parses and validates a scene file; throws SceneError on the first problem,
@@ -58,8 +61,9 @@ SceneDef loadScene(const std::string& path);
 SceneDef parseScene(std::string_view text, const std::string& sourceName,
                     const std::string& baseDir = ".");
 
-/// Creates a world with flow fields, forces, colliders, emitters and fluids in
-/// that order, so their ids match the SceneDef's references.
+/// Creates a world with flow fields, forces, colliders, emitters, bodies,
+/// fluids (whose jets may ride on bodies) and joints in that order, so their
+/// ids match the SceneDef's references.
 WorldId buildWorld(const SceneDef& scene);
 
 }  // namespace spindrift

@@ -1,6 +1,7 @@
 // spindrift public API: the world that owns emitters, forces and colliders.
 #pragma once
 
+#include <spindrift/bodies.h>
 #include <spindrift/effects.h>
 #include <spindrift/fluid.h>
 
@@ -30,6 +31,9 @@ struct WorldDef {
     /// without the CPU ever waiting on the GPU in the loop (see
     /// StepStats::countedSteps and flushWorld). The CPU backend ignores it.
     std::uint32_t framesInFlight = 2;
+    /// m/s^2, gravity of the rigid bodies (bodies.h). Each fluid has its own
+    /// (FluidDef::gravity), so a scene may float bodies without gravity.
+    glm::vec2 bodyGravity{0.0f, -9.81f};
 };
 
 /// Collision events of one step, per collider.
@@ -57,6 +61,7 @@ struct StepStats {
     std::vector<ColliderStepStats> colliderHits;
     /// One entry per fluid, in id order.
     std::vector<FluidStepStats> fluids;
+    double bodiesMs = 0.0;  ///< wall time of the Box2D step and the impulse exchange
     double milliseconds = 0.0;    ///< wall time of the step
     /// Vulkan: device time (ms) of the counted steps, from timestamps at the
     /// start and end of each step's submission; 0 on the CPU backend or where

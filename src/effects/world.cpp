@@ -1,5 +1,6 @@
 // World lifetime and object creation (Box2D v3 style: Def structs in, small ids
 // out). Ids index 1-based arrays in creation order.
+#include "coupling/body_world.h"
 #include "effects/params.h"
 #include "effects/world_internal.h"
 #include "gpu/gpu_world.h"
@@ -291,7 +292,15 @@ StepStats stepWorld(WorldId id, float dt) {
         stats.countedSteps = 1;
         stats.lastCountedStep = w.stepIndex;
     }
+    // Rigid bodies: gravity before the fluids (which exchange impulses with
+    // them during their solve), then Box2D steps them once by dt.
+    if (w.bodies) coupling::beginBodyStep(*w.bodies, dt);
     stepFluids(w, dt, stats);
+    if (w.bodies) {
+        const auto bodiesStart = std::chrono::steady_clock::now();
+        coupling::stepBodies(*w.bodies, dt);
+        stats.bodiesMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bodiesStart).count();
+    }
     addTotals(w, stats);
     w.time += dt;
     w.stepIndex += 1;

@@ -30,6 +30,14 @@ struct FluidStateDeleter {
 };
 }  // namespace fluid
 
+namespace coupling {
+struct BodyWorld;
+/// Destroys the bodies (defined in src/coupling, where BodyWorld is complete).
+struct BodyWorldDeleter {
+    void operator()(BodyWorld* b) const;
+};
+}  // namespace coupling
+
 struct World {
     explicit World(const WorldDef& d) : def(d), pool(d.threads) {}
 
@@ -50,6 +58,9 @@ struct World {
     std::unique_ptr<gpu::GpuWorld, gpu::GpuWorldDeleter> gpu;
     /// Constraint fluids (src/fluid), stepped after the emitters.
     std::vector<std::unique_ptr<fluid::FluidState, fluid::FluidStateDeleter>> fluids;
+    /// Rigid bodies (src/coupling), made with the first body; stepped after
+    /// the fluids, which exchange impulses with them.
+    std::unique_ptr<coupling::BodyWorld, coupling::BodyWorldDeleter> bodies;
 };
 
 World& worldFromId(WorldId id);

@@ -2,6 +2,7 @@
 // constraints solved after the fluid's, the particle a small rotationless body
 // of radius spacing / 2; then position integration, which puts back any
 // particle whose path still crossed a collider, so none ever passes through.
+#include "coupling/body_contacts.h"
 #include "effects/cpu_kernels.h"
 #include "effects/world_internal.h"
 #include "fluid/fluid_state.h"
@@ -105,6 +106,9 @@ void solveContacts(WorkerPool& pool, FluidState& f, float dt) {
             p.pseudo[c.particle] += from3<D>(moved - total);
         }
     });
+    if constexpr (D == 2) {
+        if (f.bodies != nullptr) coupling::solveBodyContacts(pool, *f.bodies, f, dt);
+    }
 }
 
 template <int D>
@@ -137,6 +141,15 @@ void integratePositions(WorkerPool& pool, FluidState& f, const World& world, flo
                 if (s.distance < 0.0f) {
                     x1 += s.normal * (kSkin - s.distance);
                     v -= s.normal * std::min(glm::dot(v, s.normal), 0.0f);
+                }
+            }
+            if constexpr (D == 2) {
+                // Rigid bodies (already at their end-of-substep poses): an end
+                // point inside goes out through the nearest surface. Position
+                // only, so momentum stays with the contact impulses.
+                if (f.bodies != nullptr) {
+                    const glm::vec2 x = coupling::pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, glm::vec2(x1));
+                    x1 = glm::vec3(x, 0.0f);
                 }
             }
             p.position[i] = from3<D>(x1);

@@ -14,6 +14,9 @@
 
 namespace spindrift {
 struct World;
+namespace coupling {
+struct FluidBodyStep;
+}
 }
 
 namespace spindrift::fluid {
@@ -129,6 +132,9 @@ struct FluidState {
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
     float lastSubstep = 0.0f;   // s, the substep the pressure was solved for
+    /// The rigid bodies near this 2D fluid during its step (src/coupling);
+    /// null outside stepFluid or when none are near.
+    coupling::FluidBodyStep* bodies = nullptr;
 
     template <int D> Particles<D>& particles() {
         if constexpr (D == 2) return p2; else return p3;
@@ -151,8 +157,24 @@ void validateFluidDef(const FluidDef& def);
 float latticeRestDensity(std::uint32_t dimension, float spacing, float h);
 
 void addBlock(FluidState& f, const FluidBlockDef& block);
-/// Emits the jets' particles of the step [t0, t0 + dt); returns how many.
-std::uint64_t emitJets(FluidState& f, double t0, float dt);
+/// Where a jet's nozzle is this step: the pose and motion of the body it
+/// rides on (identity and at rest for a jet fixed in the world); the recoil
+/// its particles give the body comes back out.
+struct JetMount {
+    bool active = true;            // false: its body is gone, the jet is shut
+    glm::vec2 origin{0.0f};        // m, the body's origin
+    float angle = 0.0f;            // rad
+    glm::vec2 centre{0.0f};        // m, the body's centre of mass
+    glm::vec2 velocity{0.0f};      // m/s, of the centre of mass
+    float angularVelocity = 0.0f;  // rad/s
+    glm::vec2 nozzle{0.0f};        // out: m, world point of the nozzle
+    glm::vec2 recoil{0.0f};        // out: N s, on the body at the nozzle
+};
+/// Direction angle (rad) of an aimed jet `t` s after it opened.
+float jetAimAngle(const std::vector<FluidJetAimKey>& aim, float t);
+/// Emits the jets' particles of the step [t0, t0 + dt) (one mount per jet);
+/// returns how many.
+std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>& mounts);
 
 // The passes of one step, in order (fluid_step.cpp).
 template <int D> void buildGrid(WorkerPool& pool, FluidState& f);

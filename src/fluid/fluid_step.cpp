@@ -1,5 +1,7 @@
 // One step of one constraint fluid: a named list of passes (DESIGN.md, the
 // Sprinkle recipe of slides 12-13 and 35-51).
+#include "coupling/body_world.h"
+#include "coupling/exchange.h"
 #include "effects/world_internal.h"
 #include "fluid/fluid_state.h"
 
@@ -45,9 +47,16 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
         t = Clock::now();
     }
 
-    // Contacts: particles within reach of a collider surface.
+    // Contacts: particles within reach of a collider surface, and (2D) of a
+    // rigid body's shape at the body's pose of this substep.
     {
         findContacts<D>(pool, f, w, dt);
+        if constexpr (D == 2) {
+            if (f.bodies != nullptr) {
+                coupling::beginSubstep(*f.bodies, f, f.g2, dt);
+                coupling::findBodyContacts(pool, *f.bodies, f, f.g2, dt);
+            }
+        }
         stats.contactsMs += msSince(t);
         t = Clock::now();
     }
@@ -60,8 +69,12 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
         t = Clock::now();
     }
 
-    // Positions, never through a collider.
+    // Positions, never through a collider; the bodies' local poses move on
+    // first, so no particle ends inside where a body now is.
     {
+        if constexpr (D == 2) {
+            if (f.bodies != nullptr) coupling::advanceBodies(*f.bodies, dt);
+        }
         integratePositions<D>(pool, f, w, dt, stats);
         stats.integrateMs += msSince(t);
     }
@@ -73,7 +86,11 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     FluidStepStats stats;
     stats.fluid = id;
     // Emission: the jets' particles born during this step join before binning.
-    stats.born = emitJets(f, w.time, dt);
+    // A jet on a body moves with it and gives it the recoil.
+    std::vector<JetMount> mounts;
+    for (const Jet& jet : f.jets) mounts.push_back(coupling::jetMount(w, jet.def.body));
+    stats.born = emitJets(f, w.time, dt, mounts);
+    for (std::size_t j = 0; j < f.jets.size(); ++j) coupling::applyRecoil(w, f.jets[j].def.body, mounts[j]);
     // Substeps: a particle may move at most kCourant h per substep, or it
     // would pass through its neighbours before any constraint sees them
     // (a dam break at 2 cm spacing and 60 Hz reaches 2 h per step and
@@ -88,12 +105,23 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
                          : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted)
                                                                     : kMaxSubsteps;
     const float h = dt / static_cast<float>(substeps);
+    // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as
+    // local copies during the substeps, and given their impulses at the end.
+    f.bodies = nullptr;
+    if (w.bodies && coupling::gatherBodies(*w.bodies, f, dt, w.bodies->fluidStep)) {
+        f.bodies = &w.bodies->fluidStep;
+    }
     for (int k = 0; k < substeps; ++k) {
         if (f.def.dimension == 2) {
             stepPasses<2>(w, f, h, stats);
         } else {
             stepPasses<3>(w, f, h, stats);
         }
+    }
+    if (f.bodies != nullptr) {
+        coupling::applyExchange(*w.bodies, coupling::gatherExchange(*f.bodies));
+        stats.bodyContacts = f.bodies->contactCount;
+        f.bodies = nullptr;
     }
     f.lastMaxSpeed = static_cast<float>(stats.maxSpeed);
     stats.substeps = static_cast<std::uint32_t>(substeps);

@@ -1,5 +1,6 @@
 // Fluids in the world: creation and validation, blocks and jets, read-back,
 // and stepping every fluid from stepWorld().
+#include "coupling/body_world.h"
 #include "effects/world_internal.h"
 #include "fluid/fluid_state.h"
 
@@ -56,6 +57,17 @@ void validateBlock(const FluidDef& def, const FluidBlockDef& b, std::size_t inde
 }
 
 void validateJet(const FluidDef& def, const FluidJetDef& j, std::size_t index) {
+    if (def.dimension != 2 && (!j.aim.empty() || j.body.index != 0)) {
+        throw Error(fmt::format("{}: jet {}: aim keys and a body are for 2D jets only", label(def), index));
+    }
+    for (std::size_t k = 0; k < j.aim.size(); ++k) {
+        if (!std::isfinite(j.aim[k].time) || !std::isfinite(j.aim[k].angle) || j.aim[k].time < 0.0f ||
+            (k > 0 && j.aim[k].time < j.aim[k - 1].time)) {
+            throw Error(fmt::format("{}: jet {}: aim key {}: time must be finite, >= 0 s and not before the "
+                                    "previous key's; angle finite",
+                                    label(def), index, k + 1));
+        }
+    }
     if (!finite(j.position) || !finite(j.direction) || glm::length(j.direction) <= 0.0f) {
         throw Error(fmt::format("{}: jet {}: position must be finite and direction non-zero", label(def), index));
     }
@@ -226,6 +238,10 @@ void validateFluidDef(const FluidDef& def) {
         !(def.restDensity >= 0.0f) || !std::isfinite(def.restDensity)) {
         throw Error(fmt::format("{}: friction and rest density must be finite and >= 0, gravity finite", label(def)));
     }
+    if (!(def.density > 0.0f) || !std::isfinite(def.density)) {
+        throw Error(fmt::format("{}: density must be a finite mass density > 0 (kg/m^2 in 2D), got {}", label(def),
+                                def.density));
+    }
     for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i + 1);
     for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i + 1);
     for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i + 1);
@@ -290,30 +306,73 @@ void addBlock(FluidState& f, const FluidBlockDef& b) {
     }
 }
 
-std::uint64_t emitJets(FluidState& f, double t0, float dt) {
+float jetAimAngle(const std::vector<FluidJetAimKey>& aim, float t) {
+    if (t <= aim.front().time) return aim.front().angle;
+    for (std::size_t k = 1; k < aim.size(); ++k) {
+        if (t < aim[k].time) {
+            const float span = aim[k].time - aim[k - 1].time;
+            const float u = span > 0.0f ? (t - aim[k - 1].time) / span : 1.0f;
+            return aim[k - 1].angle + (aim[k].angle - aim[k - 1].angle) * u;
+        }
+    }
+    return aim.back().angle;
+}
+
+std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>& mounts) {
     const double t1 = t0 + dt;
     std::uint64_t born = 0;
-    for (Jet& jet : f.jets) {
+    const float particleMass = f.def.density * std::pow(f.def.spacing, static_cast<float>(f.def.dimension));
+    for (std::size_t index = 0; index < f.jets.size(); ++index) {
+        Jet& jet = f.jets[index];
+        JetMount& mount = mounts[index];
         const double open = jet.openedAt + jet.def.start;
         const double close = jet.def.duration >= 0.0f ? open + jet.def.duration : t1;
         const double from = std::max(t0, open);
         const double to = std::min(t1, close);
-        if (!(to > from) || jet.def.rate <= 0.0f) continue;
+        if (!(to > from) || jet.def.rate <= 0.0f || !mount.active) continue;
         const double owed = jet.carry + jet.def.rate * (to - from);
         const auto count = static_cast<std::uint64_t>(std::floor(owed));
-        const std::vector<glm::vec3> points = nozzlePoints(f, jet.def);
-        glm::vec3 d = glm::normalize(jet.def.direction);
-        if (f.def.dimension == 2) d = glm::vec3(glm::normalize(glm::vec2(d)), 0.0f);
+        FluidJetDef aimed = jet.def;  // direction in the world at this particle's birth
+        std::vector<glm::vec3> points = nozzlePoints(f, jet.def);
+        // A 2D jet on a body: nozzle and direction turn and move with it.
+        const float c = std::cos(mount.angle), s = std::sin(mount.angle);
+        auto turn = [&](glm::vec2 v) { return glm::vec2(c * v.x - s * v.y, s * v.x + c * v.y); };
+        glm::vec3 nozzle = jet.def.position;
+        glm::vec3 carried(0.0f);  // m/s, the body's velocity at the nozzle
+        if (f.def.dimension == 2) {
+            const glm::vec2 p = mount.origin + turn(glm::vec2(jet.def.position));
+            const glm::vec2 r = p - mount.centre;
+            nozzle = glm::vec3(p, 0.0f);
+            carried = glm::vec3(mount.velocity + mount.angularVelocity * glm::vec2(-r.y, r.x), 0.0f);
+            mount.nozzle = p;
+        }
         for (std::uint64_t k = 0; k < count; ++k) {
             if (f.size() >= f.capacity) break;
             // Particle k is born when the running count crosses k + 1, and has
             // flown for the rest of the step.
             const double bornAt = from + (static_cast<double>(k) + 1.0 - jet.carry) / jet.def.rate;
             const float age = static_cast<float>(std::clamp(t1 - bornAt, 0.0, static_cast<double>(dt)));
+            glm::vec3 d = glm::normalize(jet.def.direction);
+            if (f.def.dimension == 2) {
+                glm::vec2 local = glm::normalize(glm::vec2(d));
+                if (!jet.def.aim.empty()) {
+                    const float a = jetAimAngle(jet.def.aim, static_cast<float>(bornAt - open));
+                    local = glm::vec2(std::cos(a), std::sin(a));
+                }
+                d = glm::vec3(turn(local), 0.0f);
+                if (!jet.def.aim.empty() || mount.angle != 0.0f) {
+                    aimed.direction = d;
+                    points = nozzlePoints(f, aimed);
+                }
+            }
+            const glm::vec3 v = d * jet.def.speed + carried;
             const glm::vec3 offset = points[jet.emitted % points.size()];
-            glm::vec3 x = jet.def.position + offset + d * (jet.def.speed * age);
+            glm::vec3 x = nozzle + offset + v * age;
             if (f.def.dimension == 2) x.z = 0.0f;
-            push(f, x, d * jet.def.speed);
+            push(f, x, v);
+            // Newton's third law: the nozzle pushed the particle to its speed
+            // relative to the body.
+            mount.recoil -= glm::vec2(d * jet.def.speed) * particleMass;
             jet.emitted += 1;
             born += 1;
         }
@@ -343,6 +402,7 @@ FluidId createFluid(WorldId id, const FluidDef& def) {
     // here (the kernels in src/kernels/fluid.glsl are ready for a GPU port).
     fluid::validateFluidDef(def);
     fluid::checkColliders(w);
+    for (const FluidJetDef& j : def.jets) coupling::checkJetBody(w, j);
     std::unique_ptr<fluid::FluidState, fluid::FluidStateDeleter> f(new fluid::FluidState);
     f->def = def;
     fluid::initialiseFluid(*f);
@@ -364,6 +424,7 @@ void addFluidJet(WorldId id, FluidId fluidId, const FluidJetDef& jet) {
     World& w = worldFromId(id);
     fluid::FluidState& f = fluid::fluidFromId(w, fluidId);
     fluid::validateJet(f.def, jet, f.def.jets.size() + 1);
+    coupling::checkJetBody(w, jet);
     f.jets.push_back(fluid::Jet{jet, w.time, 0.0, 0});
     f.def.jets.push_back(jet);
 }

@@ -197,5 +197,91 @@ SD_FN vec3 fluidContactVelocity(vec3 v, FluidSurface surface, float radius, floa
     return out1;
 }
 
+// --- Rigid bodies (Box2D fixtures, src/coupling/) --------------------------------
+// A fixture of a body as the 2D fluid sees it, in world coordinates at the
+// body's pose of the current substep (slide 50: a separate representation
+// for fluid collision). A convex polygon is the intersection of its edges'
+// half-planes (fluidPolygonSurface); an edge (and each segment of a chain) is
+// two-sided; a circle is a centre and radius.
+
+SD_CONST uint SD_BODY_SHAPE_CIRCLE = 0u;
+SD_CONST uint SD_BODY_SHAPE_POLYGON = 1u;
+SD_CONST uint SD_BODY_SHAPE_SEGMENT = 2u;
+
+// 304 bytes.
+struct FluidBodyShape {
+    FluidPolygon polygon;  // POLYGON: counter-clockwise vertices (m)
+    vec4 geometry;         // SEGMENT: end points a.xy, b.xy (m); CIRCLE: centre.xy, radius (m), unused
+    uint kind;             // SD_BODY_SHAPE_*
+    uint body;             // index of its body in the step's body list
+    uint pad0, pad1;
+};
+
+SD_FN FluidSurface fluidSegmentSurface(vec2 a, vec2 b, vec3 p) {
+    vec2 x = vec2(p.x, p.y);
+    vec2 edge = b - a;
+    float len2 = dot(edge, edge);
+    float t = len2 > 0.0f ? clamp(dot(x - a, edge) / len2, 0.0f, 1.0f) : 0.0f;
+    vec2 away = x - (a + edge * t);
+    float d = length(away);
+    // On the segment itself: the side is undefined; take the edge's left normal.
+    vec2 n = d > 0.0f ? away / d : (len2 > 0.0f ? vec2(-edge.y, edge.x) / sqrt(len2) : vec2(0.0f, 1.0f));
+    return makeSurface(d, vec3(n.x, n.y, 0.0f));
+}
+
+SD_FN FluidSurface fluidBodyShapeSurface(SD_IN(FluidBodyShape) s, vec3 p) {
+    if (s.kind == SD_BODY_SHAPE_CIRCLE) {
+        vec2 offset = vec2(p.x, p.y) - vec2(s.geometry.x, s.geometry.y);
+        float len = length(offset);
+        vec2 n = len > 0.0f ? offset / len : vec2(0.0f, 1.0f);
+        return makeSurface(len - s.geometry.z, vec3(n.x, n.y, 0.0f));
+    }
+    if (s.kind == SD_BODY_SHAPE_SEGMENT) {
+        return fluidSegmentSurface(vec2(s.geometry.x, s.geometry.y), vec2(s.geometry.z, s.geometry.w), p);
+    }
+    return fluidPolygonSurface(s.polygon, p);
+}
+
+// Particle-body contact (slide 51, two-way): the particle a rotationless body
+// of mass m_p, the rigid body of mass m_b and inertia I_b about its centre of
+// mass, r from that centre to the contact point. The normal mass
+// 1 / (1/m_p + 1/m_b + (r x n)^2 / I_b) is in kg; inverse masses of 0 stand
+// for a static or kinematic body.
+SD_FN float fluidBodyNormalMass(float particleInvMass, float bodyInvMass, float bodyInvInertia, vec2 r, vec2 n) {
+    float rn = r.x * n.y - r.y * n.x;
+    float k = particleInvMass + bodyInvMass + rn * rn * bodyInvInertia;
+    return k > 0.0f ? 1.0f / k : 0.0f;
+}
+
+// Velocity (m/s) of the body's material point at r: v + w x r.
+SD_FN vec2 fluidBodyPointVelocity(vec2 v, float w, vec2 r) {
+    return v + vec2(-w * r.y, w * r.x);
+}
+
+// One visit of a particle-body contact along its normal: vn the relative
+// normal velocity (particle minus body point, m/s), target the least vn the
+// contact allows (m/s, -separation / dt: close the gap, no more), normalMass
+// in kg; accumulated and delta are impulses (N s), the total clamped >= 0 so
+// the body only ever pushes.
+SD_FN FluidImpulse fluidBodyNormalImpulse(float vn, float target, float normalMass, float accumulated) {
+    float lambda = (target - vn) * normalMass;
+    float total = max(accumulated + lambda, 0.0f);
+    FluidImpulse r;
+    r.accumulated = total;
+    r.delta = total - accumulated;
+    return r;
+}
+
+// Coulomb friction along the tangent: vt the relative tangential velocity
+// (m/s), the accumulated impulse (N s) kept within +-limit (mu times the
+// normal impulse).
+SD_FN FluidImpulse fluidBodyFrictionImpulse(float vt, float tangentMass, float accumulated, float limit) {
+    float total = clamp(accumulated - vt * tangentMass, -limit, limit);
+    FluidImpulse r;
+    r.accumulated = total;
+    r.delta = total - accumulated;
+    return r;
+}
+
 SD_END
 #endif

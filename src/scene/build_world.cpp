@@ -62,7 +62,10 @@ WorldId buildWorld(const SceneDef& scene) {
               [&](const ColliderDef& d) { return createCollider(world, d); });
     createAll(scene.emitters, "emitter",
               [&](const EmitterDef& d) { return createEmitter(world, d); });
+    // Bodies before fluids: a fluid's jet may ride on a body.
+    createAll(scene.bodies, "body", [&](const BodyDef& d) { return createBody(world, d); });
     createAll(scene.fluids, "fluid", [&](const FluidDef& d) { return createFluid(world, d); });
+    createAll(scene.joints, "joint", [&](const JointDef& d) { return createJoint(world, d); });
     return guard.release();
 }
 

@@ -16,8 +16,9 @@ FluidBlockDef parseBlock(const Table& t) {
     return b;
 }
 
-FluidJetDef parseJet(const Table& t) {
-    t.allowOnly({"position", "direction", "speed", "rate", "radius", "start", "duration"}, "a [[fluid.jet]]");
+FluidJetDef parseJet(const Table& t, const NameTable& bodies) {
+    t.allowOnly({"position", "direction", "speed", "rate", "radius", "start", "duration", "aim", "body"},
+                "a [[fluid.jet]]");
     FluidJetDef j;
     j.position = t.require("position", "[x, y, z] (m), the nozzle").vec3();
     j.direction = t.direction("direction", j.direction);
@@ -26,6 +27,19 @@ FluidJetDef parseJet(const Table& t) {
     j.radius = t.real("radius", j.radius, Bounds::nonNegative());
     j.start = t.real("start", j.start, Bounds::nonNegative());
     j.duration = t.real("duration", j.duration);
+    if (auto aim = t.find("aim")) {
+        const std::size_t n = aim->array().size();
+        if (n == 0) aim->failExpected("one or more [time, angle] keys (s, rad)");
+        for (std::size_t i = 0; i < n; ++i) {
+            const Value key = aim->element(i);
+            const std::vector<float> ta = key.numbers(2);
+            if (ta[0] < 0.0f || (i > 0 && ta[0] < j.aim.back().time)) {
+                key.failExpected("a [time, angle] key with time >= 0 s and not before the previous key's");
+            }
+            j.aim.push_back({ta[0], ta[1]});
+        }
+    }
+    if (auto body = t.find("body")) j.body = {bodies.resolve(*body) + 1};
     return j;
 }
 
@@ -46,9 +60,9 @@ FluidPolygonDef parsePolygon(const Table& t) {
 
 }  // namespace
 
-FluidDef parseFluid(const Table& t, NameTable& names) {
+FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
     t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
-                 "solver", "substeps", "gravity", "friction", "capacity", "rest_density", "block", "jet", "polygon"},
+                 "solver", "substeps", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
                 "a [[fluid]]");
     FluidDef def;
     def.name = names.add(t);
@@ -72,10 +86,11 @@ FluidDef parseFluid(const Table& t, NameTable& names) {
     def.substeps = static_cast<std::uint32_t>(t.integer("substeps", def.substeps, Bounds::between(0, 16)));
     def.gravity = t.vec3("gravity", def.gravity);
     def.friction = t.real("friction", def.friction, Bounds::nonNegative());
+    def.density = t.real("density", def.density, Bounds::positive());
     def.capacity = static_cast<std::uint32_t>(t.integer("capacity", def.capacity, Bounds::between(0, 16 * 1024 * 1024)));
     def.restDensity = t.real("rest_density", def.restDensity, Bounds::nonNegative());
     for (const Table& b : tableArray(t, "block")) def.blocks.push_back(parseBlock(b));
-    for (const Table& j : tableArray(t, "jet")) def.jets.push_back(parseJet(j));
+    for (const Table& j : tableArray(t, "jet")) def.jets.push_back(parseJet(j, bodies));
     for (const Table& p : tableArray(t, "polygon")) def.polygons.push_back(parsePolygon(p));
     if (def.blocks.empty() && def.jets.empty()) {
         t.fail("a fluid needs at least one [[fluid.block]] or [[fluid.jet]]");

@@ -44,7 +44,10 @@ std::string readPngPath(const Value& value);
 FlowFieldDef parseFlowField(const Table& table, NameTable& names);
 ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
 ColliderDef parseCollider(const Table& table, NameTable& names);
-FluidDef parseFluid(const Table& table, NameTable& names);
+/// `bodies`: the names jets may ride on.
+FluidDef parseFluid(const Table& table, NameTable& names, const NameTable& bodies);
+BodyDef parseBody(const Table& table, NameTable& names);
+JointDef parseJoint(const Table& table, NameTable& names, const NameTable& bodies);
 /// [render] with its [render.background] and [render.fluid]; the camera is
 /// left at its default ([camera] is read separately).
 RenderDef parseRender(const Table& table);

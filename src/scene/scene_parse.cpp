@@ -15,7 +15,7 @@ namespace scene {
 namespace {
 
 WorldDef parseWorld(const Table& t) {
-    t.allowOnly({"backend", "threads", "seed"}, "[world]");
+    t.allowOnly({"backend", "threads", "seed", "body_gravity"}, "[world]");
     WorldDef def;
     if (auto v = t.find("backend")) {
         def.backend = v->choice<Backend>(
@@ -25,6 +25,10 @@ WorldDef parseWorld(const Table& t) {
         t.integer("threads", def.threads, Bounds::between(0, kMaxThreads)));
     def.seed =
         static_cast<std::uint32_t>(t.integer("seed", def.seed, Bounds::between(0, 4294967295.0)));
+    if (auto v = t.find("body_gravity")) {
+        const std::vector<float> g = v->numbers(2);
+        def.bodyGravity = {g[0], g[1]};
+    }
     return def;
 }
 
@@ -153,7 +157,8 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
                          "TOML syntax error: " + std::string(e.description()));
     }
     const Table root(ctx, document, "");
-    root.allowOnly({"world", "camera", "render", "run", "flow_field", "force", "collider", "emitter", "fluid"},
+    root.allowOnly({"world", "camera", "render", "run", "flow_field", "force", "collider", "emitter", "fluid", "body",
+                    "joint"},
                    "the scene");
 
     SceneDef scene;
@@ -184,9 +189,18 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     for (const Table& t : scene::tableArray(root, "emitter")) {
         scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames));
     }
+    scene::NameTable bodyNames("body");
+    for (const Table& t : scene::tableArray(root, "body")) {
+        scene.bodies.push_back(scene::parseBody(t, bodyNames));
+    }
+    // Fluids after bodies: a jet may ride on a body.
     scene::NameTable fluidNames("fluid");
     for (const Table& t : scene::tableArray(root, "fluid")) {
-        scene.fluids.push_back(scene::parseFluid(t, fluidNames));
+        scene.fluids.push_back(scene::parseFluid(t, fluidNames, bodyNames));
+    }
+    scene::NameTable jointNames("joint");
+    for (const Table& t : scene::tableArray(root, "joint")) {
+        scene.joints.push_back(scene::parseJoint(t, jointNames, bodyNames));
     }
     if (!scene.fluids.empty()) {
         // Fluids collide with planes, spheres and boxes only (src/fluid/collide.cpp).

@@ -496,7 +496,11 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         // data sources
         "generate = \"curl_noise\"", "generate = \"uniform\"", "generate = \"vortex\"",
         "file = \"data/swirl.flow\"", "generate = \"hills\"", "image = \"data/hills.png\"",
-        "heights = [", "shapes = [", "file = \"data/rock.cube\""};
+        "heights = [", "shapes = [", "file = \"data/rock.cube\"",
+        // bodies and joints
+        "type = \"static\"", "type = \"kinematic\"", "box = [", "circle = ", "polygon = [", "edge = [",
+        "chain = [", "[[body.shape]]", "kind = \"revolute\"", "kind = \"prismatic\"", "kind = \"weld\"",
+        "body_gravity", "aim = [[", "body = \"truck\""};
     for (const std::string& f : features) {
         EXPECT_NE(all.find(f), std::string::npos) << "no example shows " << f;
     }

@@ -6,7 +6,7 @@
 
 layout(local_size_x = 64) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Colliders { ColliderParams collider; FluidPolygon polygon; };
+layout(std430, set = 0, binding = 0) readonly buffer Colliders { ColliderParams collider; FluidPolygon polygon; FluidBodyShape bodyShape; };
 layout(std430, set = 0, binding = 1) buffer Velocities { vec4 velocities[]; };
 layout(std430, set = 0, binding = 2) buffer Constraints { vec4 constraints[]; };  // density, rate, 1/A, accumulated
 
@@ -26,5 +26,13 @@ void main() {
     vec3 p = vec3(velocities[i].w, 0.0f, 0.0f);
     v = fluidContactVelocity(v, fluidColliderSurface(collider, p), step.radius, step.invDt, 0.2f, 0.0f);
     v = fluidContactVelocity(v, fluidPolygonSurface(polygon, p), step.radius, step.invDt, 0.2f, 0.1f);
+    FluidSurface b = fluidBodyShapeSurface(bodyShape, p);
+    vec2 n = vec2(b.normal.x, b.normal.y);
+    vec2 rb = vec2(p.x, p.y) - n * b.distance - vec2(bodyShape.geometry.x, bodyShape.geometry.y);
+    float mass = fluidBodyNormalMass(1.0f, 0.5f, 0.25f, rb, n);
+    vec2 vb = fluidBodyPointVelocity(vec2(0.1f, 0.0f), 0.5f, rb);
+    FluidImpulse bn = fluidBodyNormalImpulse(dot(vec2(v.x, v.y) - vb, n), -b.distance * step.invDt, mass, 0.0f);
+    FluidImpulse bt = fluidBodyFrictionImpulse(0.1f, mass, 0.0f, 0.2f * bn.accumulated);
+    v += vec3(n * bn.delta + vec2(-n.y, n.x) * bt.delta, 0.0f);
     velocities[i] = vec4(v, r.delta);
 }

@@ -1,0 +1,149 @@
+// spindrift public API: 2D rigid bodies (Box2D 2.4 inside; no Box2D type in
+// this header), two-way coupled to the world's 2D fluids: water pushes and
+// lifts bodies, bodies push water. Units: metres, kilograms, seconds; angles in
+// radians, counter-clockwise. Bodies live in the xy plane of a world and are
+// stepped on the CPU once per stepWorld(), after the fluids.
+//
+// Mass in 2D: a body's density is areal (kg/m^2, as Box2D's), and a 2D fluid's
+// FluidDef::density is too (default 1000 kg/m^2: water in a slab 1 m thick),
+// so a body of density 500 floats half submerged in a default fluid.
+//
+// Each step: dynamic bodies get WorldDef::bodyGravity x dt, every 2D fluid
+// solves its particle-body contacts against local copies of the bodies
+// (their velocities answer each contact impulse at once), the summed
+// impulses go to Box2D, and Box2D steps the bodies once by dt (body contacts,
+// joints). Box2D rounds polygons by 1 cm and lets rounded shapes overlap by
+// 5 mm, so bodies resting on bodies stand 1.5 cm apart; the fluid sees the
+// exact shapes. World colliders (ColliderDef) act on particles only.
+#pragma once
+
+#include <spindrift/effects.h>
+
+#include <cstdint>
+#include <string>
+#include <vector>
+
+namespace spindrift {
+
+/// 1-based creation serial of a body in its world; 0 is no body.
+struct BodyId { std::uint32_t index = 0; };
+/// 1-based creation serial of a joint in its world; 0 is no joint.
+struct JointId { std::uint32_t index = 0; };
+
+enum class BodyType : std::uint32_t {
+    Static = 0,     ///< never moves (walls, floors, tanks)
+    Kinematic = 1,  ///< moves at the velocity it is given, pushes but is never pushed
+    Dynamic = 2,    ///< has mass; moved by gravity, water, contacts and joints
+};
+
+enum class BodyShapeKind : std::uint32_t { Box = 0, Circle = 1, Polygon = 2, Edge = 3, Chain = 4 };
+
+/// One shape (Box2D fixture) of a body, in the body's frame (m, rad).
+struct BodyShapeDef {
+    BodyShapeKind kind = BodyShapeKind::Box;
+    glm::vec2 halfExtents{0.5f};  ///< Box: half width and height (m), each > 0
+    float radius = 0.5f;          ///< Circle (m), > 0
+    glm::vec2 offset{0.0f};       ///< Box and Circle: centre in the body frame (m)
+    float angle = 0.0f;           ///< Box: rotation in the body frame (rad)
+    /// Polygon: 3 to 8 corners of a convex polygon, either winding. Edge:
+    /// exactly 2 points. Chain: 2 or more points (3 or more with `loop`).
+    std::vector<glm::vec2> vertices;
+    bool loop = false;            ///< Chain: joins the last point to the first
+};
+
+BodyShapeDef boxShape(glm::vec2 halfExtents, glm::vec2 offset = glm::vec2(0.0f), float angle = 0.0f);
+BodyShapeDef circleShape(float radius, glm::vec2 offset = glm::vec2(0.0f));
+BodyShapeDef polygonShape(std::vector<glm::vec2> vertices);
+BodyShapeDef edgeShape(glm::vec2 a, glm::vec2 b);
+BodyShapeDef chainShape(std::vector<glm::vec2> points, bool loop);
+
+struct BodyDef {
+    std::string name;
+    BodyType type = BodyType::Dynamic;
+    glm::vec2 position{0.0f};        ///< m, the body's origin
+    float angle = 0.0f;              ///< rad
+    glm::vec2 linearVelocity{0.0f};  ///< m/s
+    float angularVelocity = 0.0f;    ///< rad/s
+    /// kg/m^2, > 0 for a dynamic body (ignored for static and kinematic ones).
+    float density = 1000.0f;
+    float friction = 0.6f;           ///< Coulomb coefficient against bodies, >= 0
+    float restitution = 0.0f;        ///< bounce against bodies, in [0, 1]
+    bool fixedRotation = false;
+    /// At least one; edges and chains only on static and kinematic bodies
+    /// (they have no area, so no mass).
+    std::vector<BodyShapeDef> shapes;
+};
+
+enum class JointKind : std::uint32_t {
+    Revolute = 0,   ///< a hinge at `anchor`
+    Prismatic = 1,  ///< a slider through `anchor` along `axis`
+    Weld = 2,       ///< glued at `anchor`
+};
+
+struct JointDef {
+    std::string name;
+    JointKind kind = JointKind::Revolute;
+    BodyId bodyA;
+    BodyId bodyB;
+    glm::vec2 anchor{0.0f};        ///< m, world point at creation
+    glm::vec2 axis{1.0f, 0.0f};    ///< Prismatic: world direction of travel, non-zero
+    /// Revolute: angle range (rad) of B relative to A; Prismatic: travel (m)
+    /// along the axis from the anchor; lower <= upper.
+    bool enableLimit = false;
+    float lower = 0.0f;
+    float upper = 0.0f;
+    /// Motor: target speed (rad/s or m/s) reached with at most maxMotor
+    /// (N m of torque for Revolute, N of force for Prismatic), > 0.
+    bool enableMotor = false;
+    float motorSpeed = 0.0f;
+    float maxMotor = 0.0f;
+    bool collideConnected = false;
+};
+
+/// A shape as drawn, in world coordinates. Circle: centre and radius; Polygon:
+/// vertices counter-clockwise; Edge: 2 vertices; Chain: vertices and loop flag.
+struct BodyShapeView {
+    enum class Kind : std::uint32_t { Circle = 0, Polygon = 1, Edge = 2, Chain = 3 } kind;
+    glm::vec2 centre{0.0f};
+    float radius = 0.0f;
+    std::vector<glm::vec2> vertices;
+    bool loop = false;
+};
+
+struct BodySnapshot {
+    BodyId id;
+    std::string name;
+    bool dynamic = false;
+    glm::vec2 position{0.0f};        ///< m, origin
+    float angle = 0.0f;              ///< rad
+    glm::vec2 linearVelocity{0.0f};  ///< m/s, of the centre of mass
+    float angularVelocity = 0.0f;    ///< rad/s
+    std::vector<BodyShapeView> shapes;
+};
+
+/// Throws Error, saying what is wrong, for a body createBody would reject.
+void validateBodyDef(const BodyDef& def);
+
+/// Adds a body to the world (either backend: bodies always run on the CPU).
+BodyId createBody(WorldId world, const BodyDef& def);
+/// Removes a body and the joints attached to it.
+void destroyBody(WorldId world, BodyId body);
+/// Joins two existing bodies; throws Error for a bad definition.
+JointId createJoint(WorldId world, const JointDef& def);
+void destroyJoint(WorldId world, JointId joint);
+
+/// Moves a body now (teleport; for kinematic bodies prefer setBodyVelocity).
+void setBodyTransform(WorldId world, BodyId body, glm::vec2 position, float angle);
+/// Sets the velocity of a body's centre of mass (m/s) and its spin (rad/s).
+void setBodyVelocity(WorldId world, BodyId body, glm::vec2 linearVelocity, float angularVelocity);
+/// Applies an impulse (N s) at a world point (m) to a dynamic body.
+void applyBodyImpulse(WorldId world, BodyId body, glm::vec2 impulse, glm::vec2 point);
+/// Mass (kg) of a body: 0 for static and kinematic ones.
+float bodyMass(WorldId world, BodyId body);
+
+/// Bodies that exist now (created and not destroyed).
+std::uint32_t bodyCount(WorldId world);
+/// Every existing body, in creation order.
+std::vector<BodySnapshot> readBodies(WorldId world);
+
+}  // namespace spindrift

@@ -1,0 +1,321 @@
+// Particle-body contacts (slides 50-51): Box2D's broad phase collects the
+// bodies near the fluid once per fluid step; every substep their shapes are
+// placed at the bodies' local poses and binned into the fluid's grid cells
+// (slide 50: reuse the binning grid), each particle tests the shapes of its
+// cell, and the contacts are solved as velocity constraints after each sweep
+// of the fluid constraints, the particle a small rotationless body.
+//
+// Order and threads: contacts with static and kinematic bodies change only
+// their particle, so chunks of particles solve them in parallel. Contacts with
+// dynamic bodies also change the body's local velocity, and a body is touched
+// by particles of many chunks; they are solved on the calling thread in one
+// fixed order (chunk by chunk, particles in grid order), which is
+// Gauss-Seidel like the rest of the solver and the same for any thread count.
+// (A parallel Jacobi sweep over chunks overshoots a light body touched from
+// several chunks.) They are few: a body's surface, not its volume.
+#include "coupling/body_contacts.h"
+
+#include "coupling/body_world.h"
+#include "fluid/fluid_state.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift::coupling {
+namespace {
+
+/// As for static colliders (collide.cpp): fraction of an overlap removed per
+/// step, and the distance a put-back particle keeps from the surface (m).
+constexpr float kOverlapPush = 0.2f;
+constexpr float kSkin = 1e-5f;
+
+glm::vec2 rotate(float angle, glm::vec2 v) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+float cross(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
+
+/// World geometry of one local shape at its body's pose.
+kernels::FluidBodyShape place(const LocalShape& local, const StepBody& b, std::uint32_t bodyIndex) {
+    const glm::vec2 origin = b.centre - rotate(b.angle, b.localCentre);
+    auto toWorld = [&](glm::vec2 p) { return origin + rotate(b.angle, p); };
+    kernels::FluidBodyShape s{};
+    s.kind = local.kind;
+    s.body = bodyIndex;
+    if (local.kind == kernels::SD_BODY_SHAPE_CIRCLE) {
+        const glm::vec2 c = toWorld(local.vertices[0]);
+        s.geometry = glm::vec4(c, local.radius, 0.0f);
+    } else if (local.kind == kernels::SD_BODY_SHAPE_SEGMENT) {
+        s.geometry = glm::vec4(toWorld(local.vertices[0]), toWorld(local.vertices[1]));
+    } else {
+        s.polygon.count = static_cast<std::uint32_t>(local.vertices.size());
+        for (std::size_t i = 0; i < local.vertices.size(); ++i) {
+            s.polygon.vertices[i] = glm::vec4(toWorld(local.vertices[i]), 0.0f, 0.0f);
+        }
+    }
+    return s;
+}
+
+/// Bounding box (lo.xy, hi.xy) of a placed shape (m).
+glm::vec4 boundsOf(const kernels::FluidBodyShape& s) {
+    if (s.kind == kernels::SD_BODY_SHAPE_CIRCLE) {
+        return glm::vec4(s.geometry.x - s.geometry.z, s.geometry.y - s.geometry.z, s.geometry.x + s.geometry.z,
+                         s.geometry.y + s.geometry.z);
+    }
+    if (s.kind == kernels::SD_BODY_SHAPE_SEGMENT) {
+        return glm::vec4(std::min(s.geometry.x, s.geometry.z), std::min(s.geometry.y, s.geometry.w),
+                         std::max(s.geometry.x, s.geometry.z), std::max(s.geometry.y, s.geometry.w));
+    }
+    glm::vec2 lo(s.polygon.vertices[0]), hi(s.polygon.vertices[0]);
+    for (std::uint32_t i = 1; i < s.polygon.count; ++i) {
+        lo = glm::min(lo, glm::vec2(s.polygon.vertices[i]));
+        hi = glm::max(hi, glm::vec2(s.polygon.vertices[i]));
+    }
+    return glm::vec4(lo, hi);
+}
+
+glm::ivec2 cellCoords(const fluid::Grid<2>& g, glm::vec2 x) {
+    const float inv = 0.5f / g.h;  // cells are 2h wide
+    const glm::vec2 c = glm::floor((x - g.origin) * inv);
+    return {static_cast<int>(std::clamp(c.x, 0.0f, static_cast<float>(g.cells[0] - 1))),
+            static_cast<int>(std::clamp(c.y, 0.0f, static_cast<float>(g.cells[1] - 1)))};
+}
+
+/// Broad-phase answer: the 1-based slots of the bodies whose fixtures overlap.
+class SlotCollector : public b2QueryCallback {
+public:
+    bool ReportFixture(b2Fixture* fixture) override {
+        slots.push_back(static_cast<std::uint32_t>(fixture->GetBody()->GetUserData().pointer));
+        return true;
+    }
+    std::vector<std::uint32_t> slots;
+};
+
+/// One visit of a contact (see the file comment for who calls it how).
+template <bool Dynamic>
+void solveContact(BodyContact& c, StepBody& b, fluid::Particles<2>& p, const FluidBodyStep& s, float invDt,
+                  float radius, float fluidFriction) {
+    const bool split = !p.pseudo.empty();
+    const glm::vec2 n = c.normal;
+    glm::vec2 vp = p.velocity[c.particle];
+    const glm::vec2 vb = kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
+    // Real velocity: close the gap, no more; an overlap is pushed out by the
+    // pseudo velocity when impulses are split (kinetic energy otherwise).
+    const float target = c.separation >= 0.0f ? -c.separation * invDt
+                         : split              ? 0.0f
+                                              : -c.separation * kOverlapPush * invDt;
+    const kernels::FluidImpulse normal =
+        kernels::fluidBodyNormalImpulse(glm::dot(vp - vb, n), target, c.normalMass, c.normalImpulse);
+    c.normalImpulse = normal.accumulated;
+    glm::vec2 impulse = n * normal.delta;  // N s, on the particle
+    const float mu = std::sqrt(fluidFriction * b.friction);
+    if (mu > 0.0f) {
+        const glm::vec2 t(-n.y, n.x);
+        const glm::vec2 vAfter = vp + impulse * s.particleInvMass;
+        const glm::vec2 vbAfter = Dynamic ? kernels::fluidBodyPointVelocity(b.velocity - impulse * b.invMass,
+                                                                            b.angularVelocity -
+                                                                                cross(c.r, impulse) * b.invInertia,
+                                                                            c.r)
+                                          : vb;
+        const kernels::FluidImpulse friction = kernels::fluidBodyFrictionImpulse(
+            glm::dot(vAfter - vbAfter, t), c.tangentMass, c.tangentImpulse, mu * c.normalImpulse);
+        c.tangentImpulse = friction.accumulated;
+        impulse += t * friction.delta;
+    }
+    if (impulse.x != 0.0f || impulse.y != 0.0f) {
+        vp += impulse * s.particleInvMass;
+        p.velocity[c.particle] = vp;
+        if constexpr (Dynamic) {
+            // Newton's third law: the body takes the opposite impulse, now (its
+            // local velocity) and at the step's end (the exchange).
+            const float angular = cross(c.r, impulse);
+            b.velocity -= impulse * b.invMass;
+            b.angularVelocity -= angular * b.invInertia;
+            b.linearImpulse -= impulse;
+            b.angularImpulse -= angular;
+        }
+    }
+    if (split) {
+        // The particle's motion this substep, real plus pseudo, relative to
+        // the body may not enter it; the pseudo part pushes an overlap out.
+        // Position only: no momentum, and no reaction on the body.
+        const glm::vec2 vbNow = kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
+        const glm::vec2 rel = vp + p.pseudo[c.particle] - vbNow;
+        const glm::vec3 moved = kernels::fluidContactVelocity(
+            glm::vec3(rel, 0.0f), kernels::makeSurface(c.separation + radius, glm::vec3(n, 0.0f)), radius, invDt,
+            kOverlapPush, 0.0f);
+        p.pseudo[c.particle] += glm::vec2(moved) - rel;
+    }
+}
+
+}  // namespace
+
+std::uint32_t cellOf(const fluid::Grid<2>& g, glm::vec2 x) {
+    const glm::ivec2 c = cellCoords(g, x);
+    return static_cast<std::uint32_t>(c.y * g.cells[0] + c.x);
+}
+
+bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, FluidBodyStep& out) {
+    out.bodies.clear();
+    out.shapeBody.clear();
+    out.shapeSource.clear();
+    out.contactCount = 0;
+    const std::vector<glm::vec2>& x = f.p2.position;
+    if (f.def.dimension != 2 || world.alive == 0 || x.empty()) return false;
+    glm::vec2 lo(x[0]), hi(x[0]);
+    float fastest = 0.0f;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        lo = glm::min(lo, x[i]);
+        hi = glm::max(hi, x[i]);
+        fastest = std::max(fastest, glm::length(f.p2.velocity[i]));
+    }
+    // What a particle can travel this step (m/s): its speed plus the step's gravity.
+    out.maxParticleSpeed = fastest + glm::length(glm::vec2(f.def.gravity)) * dt;
+    const float margin = f.h + f.def.spacing + out.maxParticleSpeed * dt;
+    b2AABB box;
+    box.lowerBound = b2Vec2(lo.x - margin, lo.y - margin);
+    box.upperBound = b2Vec2(hi.x + margin, hi.y + margin);
+    SlotCollector query;
+    world.world.QueryAABB(&query, box);
+    if (query.slots.empty()) return false;
+    // Creation order, whatever order the tree answered in.
+    std::sort(query.slots.begin(), query.slots.end());
+    query.slots.erase(std::unique(query.slots.begin(), query.slots.end()), query.slots.end());
+    for (std::uint32_t slot1 : query.slots) {
+        const BodySlot& slot = world.bodies[slot1 - 1];
+        const b2Body& body = *slot.body;
+        StepBody b;
+        b.slot = slot1 - 1;
+        b.centre = glm::vec2(body.GetWorldCenter().x, body.GetWorldCenter().y);
+        b.angle = body.GetAngle();
+        b.localCentre = glm::vec2(body.GetLocalCenter().x, body.GetLocalCenter().y);
+        b.velocity = glm::vec2(body.GetLinearVelocity().x, body.GetLinearVelocity().y);
+        b.angularVelocity = body.GetAngularVelocity();
+        b.friction = slot.def.friction;
+        if (body.GetType() == b2_dynamicBody && body.GetMass() > 0.0f) {
+            b.invMass = 1.0f / body.GetMass();
+            // Box2D's inertia is about the body origin; ours about the centre of mass.
+            const float inertia = body.GetInertia() - body.GetMass() * glm::dot(b.localCentre, b.localCentre);
+            b.invInertia = inertia > 0.0f ? 1.0f / inertia : 0.0f;
+        }
+        const auto index = static_cast<std::uint32_t>(out.bodies.size());
+        out.bodies.push_back(b);
+        for (const LocalShape& s : slot.fluidShapes) {
+            out.shapeBody.push_back(index);
+            out.shapeSource.push_back(&s);
+        }
+    }
+    out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
+    out.particleInvMass = 1.0f / out.particleMass;
+    return true;
+}
+
+void beginSubstep(FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& g, float dt) {
+    const std::size_t count = s.shapeBody.size();
+    s.shapes.resize(count);
+    s.shapeBox.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        const StepBody& b = s.bodies[s.shapeBody[k]];
+        s.shapes[k] = place(*s.shapeSource[k], b, s.shapeBody[k]);
+        glm::vec4 box = boundsOf(s.shapes[k]);
+        // Reach: a particle this far from the shape can touch it within the
+        // substep (its speed and the body's, the rotation's at the box's far
+        // corner), plus a spacing for what the solve adds.
+        const float arm = glm::length(glm::max(glm::abs(glm::vec2(box.x, box.y) - b.centre),
+                                               glm::abs(glm::vec2(box.z, box.w) - b.centre)));
+        const float speed = s.maxParticleSpeed + glm::length(b.velocity) + std::abs(b.angularVelocity) * arm;
+        const float reach = f.radius + f.def.spacing + speed * dt;
+        s.shapeBox[k] = box + glm::vec4(-reach, -reach, reach, reach);
+    }
+    // Counting sort of the shapes into the cells their grown boxes cover.
+    const std::size_t cells = static_cast<std::size_t>(g.cells[0]) * static_cast<std::size_t>(g.cells[1]);
+    s.cellStart.assign(cells + 1, 0u);
+    auto forCells = [&](std::size_t k, auto&& fn) {
+        const glm::ivec2 a = cellCoords(g, glm::vec2(s.shapeBox[k].x, s.shapeBox[k].y));
+        const glm::ivec2 b = cellCoords(g, glm::vec2(s.shapeBox[k].z, s.shapeBox[k].w));
+        for (int y = a.y; y <= b.y; ++y) {
+            for (int x = a.x; x <= b.x; ++x) fn(static_cast<std::size_t>(y) * g.cells[0] + x);
+        }
+    };
+    for (std::size_t k = 0; k < count; ++k) forCells(k, [&](std::size_t c) { s.cellStart[c + 1] += 1; });
+    for (std::size_t c = 0; c < cells; ++c) s.cellStart[c + 1] += s.cellStart[c];
+    s.cellShapes.resize(s.cellStart[cells]);
+    std::vector<std::uint32_t> fill(s.cellStart.begin(), s.cellStart.end() - 1);
+    for (std::size_t k = 0; k < count; ++k) {
+        forCells(k, [&](std::size_t c) { s.cellShapes[fill[c]++] = static_cast<std::uint32_t>(k); });
+    }
+}
+
+void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& g,
+                      float dt) {
+    const fluid::Particles<2>& p = f.p2;
+    const std::size_t chunks = WorkerPool::chunkCount(p.size(), fluid::kParticleChunk);
+    s.fixedContacts.resize(chunks);
+    s.dynamicContacts.resize(chunks);
+    const float radius = f.radius;
+    pool.forChunks(p.size(), fluid::kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        std::vector<BodyContact>& fixed = s.fixedContacts[chunk];
+        std::vector<BodyContact>& dynamic = s.dynamicContacts[chunk];
+        fixed.clear();
+        dynamic.clear();
+        for (std::size_t i = begin; i < end; ++i) {
+            const std::uint32_t cell = g.key[i] >> 2;  // key = cell * 4 + quadrant
+            const glm::vec2 x = p.position[i];
+            for (std::uint32_t k = s.cellStart[cell]; k < s.cellStart[cell + 1]; ++k) {
+                const kernels::FluidBodyShape& shape = s.shapes[s.cellShapes[k]];
+                const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f));
+                const StepBody& b = s.bodies[shape.body];
+                const glm::vec2 n(surface.normal);
+                const glm::vec2 r = x - n * surface.distance - b.centre;
+                const glm::vec2 rel = p.velocity[i] - kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, r);
+                // Speculative, as for static colliders: reachable this substep.
+                if (!(surface.distance < radius + glm::length(rel) * dt + f.def.spacing)) continue;
+                BodyContact c{};
+                c.normal = n;
+                c.r = r;
+                c.separation = surface.distance - radius;
+                c.normalMass = kernels::fluidBodyNormalMass(s.particleInvMass, b.invMass, b.invInertia, r, n);
+                c.tangentMass =
+                    kernels::fluidBodyNormalMass(s.particleInvMass, b.invMass, b.invInertia, r, glm::vec2(-n.y, n.x));
+                c.particle = static_cast<std::uint32_t>(i);
+                c.body = shape.body;
+                (b.invMass > 0.0f ? dynamic : fixed).push_back(c);
+            }
+        }
+    });
+    for (std::size_t c = 0; c < chunks; ++c) s.contactCount += s.fixedContacts[c].size() + s.dynamicContacts[c].size();
+}
+
+void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, fluid::FluidState& f, float dt) {
+    fluid::Particles<2>& p = f.p2;
+    const float invDt = 1.0f / dt;
+    pool.forChunks(s.fixedContacts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
+        for (BodyContact& c : s.fixedContacts[chunk]) {
+            solveContact<false>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction);
+        }
+    });
+    for (std::vector<BodyContact>& list : s.dynamicContacts) {
+        for (BodyContact& c : list) solveContact<true>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction);
+    }
+}
+
+void advanceBodies(FluidBodyStep& s, float dt) {
+    for (StepBody& b : s.bodies) {
+        b.centre += b.velocity * dt;
+        b.angle += b.angularVelocity * dt;
+    }
+    for (std::size_t k = 0; k < s.shapes.size(); ++k) {
+        s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
+    }
+}
+
+glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, glm::vec2 x1) {
+    for (std::uint32_t k = s.cellStart[cell]; k < s.cellStart[cell + 1]; ++k) {
+        const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(s.shapes[s.cellShapes[k]], glm::vec3(x1, 0.0f));
+        if (surface.distance < 0.0f) x1 += glm::vec2(surface.normal) * (kSkin - surface.distance);
+    }
+    return x1;
+}
+
+}  // namespace spindrift::coupling

@@ -1,0 +1,95 @@
+// Particle-body contacts of one 2D fluid step (slides 50-51): the bodies near
+// the fluid, found through Box2D's broad phase on the calling thread, copied
+// into plain arrays (StepBody, kernels::FluidBodyShape) that the worker
+// threads read and the contact solver updates; Box2D is not touched again
+// until the exchange (exchange.h) at the end of the step.
+#pragma once
+
+#include "core/parallel.h"
+#include "kernels/fluid.glsl"
+
+#include <cstdint>
+#include <vector>
+
+namespace spindrift::fluid {
+struct FluidState;
+template <int D> struct Grid;
+template <int D> struct Particles;
+}  // namespace spindrift::fluid
+
+namespace spindrift::coupling {
+
+struct BodyWorld;
+struct LocalShape;
+
+/// A body's state as the fluid solver sees it during one fluid step: a local
+/// copy, its velocity updated by every contact impulse so the water feels the
+/// body respond within the step.
+struct StepBody {
+    std::uint32_t slot = 0;         // index in BodyWorld::bodies
+    glm::vec2 centre{0.0f};         // m, centre of mass at the current substep
+    float angle = 0.0f;             // rad
+    glm::vec2 localCentre{0.0f};    // m, centre of mass in the body frame
+    glm::vec2 velocity{0.0f};       // m/s
+    float angularVelocity = 0.0f;   // rad/s
+    float invMass = 0.0f;           // 1/kg; 0: static or kinematic
+    float invInertia = 0.0f;        // 1/(kg m^2) about the centre of mass
+    float friction = 0.0f;          // mixed with the fluid's
+    // Exchange: the impulses the fluid gave the body this step.
+    glm::vec2 linearImpulse{0.0f};  // N s
+    float angularImpulse = 0.0f;    // N m s, about the centre of mass
+};
+
+/// A particle touching (or about to touch) a body shape this substep. 44 bytes.
+struct BodyContact {
+    glm::vec2 normal;      // unit, out of the body
+    glm::vec2 r;           // m, centre of mass to the contact point
+    float separation;      // m, surface distance minus the particle radius
+    float normalMass;      // kg
+    float tangentMass;     // kg
+    float normalImpulse;   // N s, accumulated
+    float tangentImpulse;  // N s, accumulated
+    std::uint32_t particle;
+    std::uint32_t body;    // index in FluidBodyStep::bodies
+};
+static_assert(sizeof(BodyContact) == 44);
+
+struct FluidBodyStep {
+    std::vector<StepBody> bodies;
+    std::vector<std::uint32_t> shapeBody;              // body of each candidate shape
+    std::vector<const LocalShape*> shapeSource;        // its shape in the body frame
+    std::vector<kernels::FluidBodyShape> shapes;       // world geometry at the current substep
+    std::vector<glm::vec4> shapeBox;                   // lo.xy, hi.xy (m), grown by the reach
+    // Shapes per grid cell (2h wide) of the current substep, CSR.
+    std::vector<std::uint32_t> cellStart;
+    std::vector<std::uint32_t> cellShapes;
+    // Contacts per chunk of particles: with static or kinematic bodies (solved
+    // in parallel, they change no body) and with dynamic ones (solved in one
+    // fixed order, see body_contacts.cpp).
+    std::vector<std::vector<BodyContact>> fixedContacts;
+    std::vector<std::vector<BodyContact>> dynamicContacts;
+    float particleMass = 0.0f;     // kg
+    float particleInvMass = 0.0f;  // 1/kg
+    float maxParticleSpeed = 0.0f; // m/s, bound for the binning reach
+    std::uint64_t contactCount = 0;
+};
+
+/// Gathers the bodies whose fixtures overlap the fluid's particles (grown by
+/// what they can travel in dt) through b2World::QueryAABB. Calling thread
+/// only. False when there are none (then the fluid ignores bodies this step).
+bool gatherBodies(BodyWorld& bodies, const fluid::FluidState& f, float dt, FluidBodyStep& out);
+/// Shapes at the bodies' current poses, binned into the substep's grid cells.
+void beginSubstep(FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& grid, float dt);
+/// Contacts of every particle with the shapes of its grid cell.
+void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& grid,
+                      float dt);
+/// One sweep over the contacts (after each sweep of the fluid constraints).
+void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, fluid::FluidState& f, float dt);
+/// Moves the local poses on by dt with their velocities and updates the shapes.
+void advanceBodies(FluidBodyStep& s, float dt);
+/// Puts an end point x1 that lies inside a body shape back on its surface.
+glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, glm::vec2 x1);
+/// Grid cell (2h wide) of a point, clamped into the grid.
+std::uint32_t cellOf(const fluid::Grid<2>& grid, glm::vec2 x);
+
+}  // namespace spindrift::coupling

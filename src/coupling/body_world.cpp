@@ -1,0 +1,519 @@
+// Rigid bodies in a world: the Box2D world, creating and destroying bodies and
+// joints, reading them back, and the Box2D step at the end of stepWorld().
+#include "coupling/body_world.h"
+
+#include "effects/world_internal.h"
+#include "fluid/fluid_state.h"
+#include "kernels/fluid.glsl"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift {
+
+namespace coupling {
+namespace {
+
+/// Box2D's solver iterations per step (its recommended 8 and 3).
+constexpr int kVelocityIterations = 8;
+constexpr int kPositionIterations = 3;
+/// Box2D welds polygon corners closer than half its linear slop and
+/// asserts on chain points closer than the slop; we reject them instead.
+constexpr float kMinVertexGap = b2_linearSlop;
+
+bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
+b2Vec2 toB2(glm::vec2 v) { return b2Vec2(v.x, v.y); }
+glm::vec2 fromB2(b2Vec2 v) { return glm::vec2(v.x, v.y); }
+
+std::string label(const BodyDef& def) { return fmt::format("body '{}'", def.name); }
+
+/// Twice the signed area of a closed polygon (m^2): > 0 counter-clockwise.
+double twiceArea(const std::vector<glm::vec2>& v) {
+    double area = 0.0;
+    for (std::size_t i = 0; i < v.size(); ++i) {
+        const glm::vec2 a = v[i];
+        const glm::vec2 b = v[(i + 1) % v.size()];
+        area += static_cast<double>(a.x) * b.y - static_cast<double>(b.x) * a.y;
+    }
+    return area;
+}
+
+/// The corners counter-clockwise; throws if they are not a convex polygon
+/// Box2D accepts.
+std::vector<glm::vec2> convexPolygon(const BodyDef& def, std::size_t index, const std::vector<glm::vec2>& v) {
+    const std::size_t n = v.size();
+    if (n < 3 || n > static_cast<std::size_t>(b2_maxPolygonVertices)) {
+        throw Error(fmt::format("{}: shape {}: a polygon needs 3 to {} vertices, got {}", label(def), index,
+                                b2_maxPolygonVertices, n));
+    }
+    const double area = twiceArea(v);
+    if (!(std::abs(area) > 0.0)) {
+        throw Error(fmt::format("{}: shape {}: the polygon has no area", label(def), index));
+    }
+    std::vector<glm::vec2> ccw(v);
+    if (area < 0.0) ccw.assign(v.rbegin(), v.rend());
+    for (std::size_t i = 0; i < n; ++i) {
+        const glm::dvec2 a = ccw[i], b = ccw[(i + 1) % n], c = ccw[(i + 2) % n];
+        if (glm::length(b - a) < kMinVertexGap) {
+            throw Error(fmt::format("{}: shape {}: polygon corners {} and {} are closer than {} m", label(def), index,
+                                    i, (i + 1) % n, kMinVertexGap));
+        }
+        if ((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) <= 0.0) {
+            throw Error(fmt::format("{}: shape {}: the polygon is not strictly convex at vertex {}", label(def),
+                                    index, (i + 1) % n));
+        }
+    }
+    return ccw;
+}
+
+void validateShape(const BodyDef& def, std::size_t index, const BodyShapeDef& s) {
+    for (glm::vec2 p : s.vertices) {
+        if (!finite(p)) throw Error(fmt::format("{}: shape {}: vertices must be finite", label(def), index));
+    }
+    if (!finite(s.offset) || !std::isfinite(s.angle)) {
+        throw Error(fmt::format("{}: shape {}: offset and angle must be finite", label(def), index));
+    }
+    switch (s.kind) {
+    case BodyShapeKind::Box:
+        if (!(s.halfExtents.x >= kMinVertexGap && s.halfExtents.y >= kMinVertexGap) || !finite(s.halfExtents)) {
+            throw Error(fmt::format("{}: shape {}: box half extents must be at least {} m", label(def), index,
+                                    kMinVertexGap));
+        }
+        break;
+    case BodyShapeKind::Circle:
+        if (!(s.radius > 0.0f) || !std::isfinite(s.radius)) {
+            throw Error(fmt::format("{}: shape {}: circle radius must be > 0 m", label(def), index));
+        }
+        break;
+    case BodyShapeKind::Polygon: convexPolygon(def, index, s.vertices); break;
+    case BodyShapeKind::Edge:
+    case BodyShapeKind::Chain: {
+        const bool edge = s.kind == BodyShapeKind::Edge;
+        const std::size_t least = edge ? 2 : (s.loop ? 3 : 2);
+        if (edge ? s.vertices.size() != 2 : s.vertices.size() < least) {
+            throw Error(fmt::format("{}: shape {}: {} needs {} {} points, got {}", label(def), index,
+                                    edge ? "an edge" : (s.loop ? "a chain loop" : "a chain"),
+                                    edge ? "exactly" : "at least", least, s.vertices.size()));
+        }
+        for (std::size_t i = 1; i < s.vertices.size(); ++i) {
+            if (glm::length(s.vertices[i] - s.vertices[i - 1]) < kMinVertexGap) {
+                throw Error(fmt::format("{}: shape {}: points {} and {} are closer than {} m", label(def), index,
+                                        i - 1, i, kMinVertexGap));
+            }
+        }
+        if (def.type == BodyType::Dynamic) {
+            throw Error(fmt::format("{}: shape {}: edges and chains have no area, so a dynamic body cannot use them; "
+                                    "make the body static or kinematic",
+                                    label(def), index));
+        }
+        break;
+    }
+    default: throw Error(fmt::format("{}: shape {}: unknown kind", label(def), index));
+    }
+}
+
+glm::vec2 rotate(float angle, glm::vec2 v) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+std::vector<glm::vec2> boxCorners(const BodyShapeDef& s) {
+    const glm::vec2 h = s.halfExtents;
+    std::vector<glm::vec2> v = {{-h.x, -h.y}, {h.x, -h.y}, {h.x, h.y}, {-h.x, h.y}};
+    for (glm::vec2& p : v) p = s.offset + rotate(s.angle, p);
+    return v;
+}
+
+/// Fluid shapes of a body in its frame: boxes are polygons, chains segments.
+std::vector<LocalShape> fluidShapes(const BodyDef& def) {
+    std::vector<LocalShape> out;
+    for (std::size_t i = 0; i < def.shapes.size(); ++i) {
+        const BodyShapeDef& s = def.shapes[i];
+        switch (s.kind) {
+        case BodyShapeKind::Box: out.push_back({kernels::SD_BODY_SHAPE_POLYGON, boxCorners(s), 0.0f}); break;
+        case BodyShapeKind::Circle: out.push_back({kernels::SD_BODY_SHAPE_CIRCLE, {s.offset}, s.radius}); break;
+        case BodyShapeKind::Polygon:
+            out.push_back({kernels::SD_BODY_SHAPE_POLYGON, convexPolygon(def, i + 1, s.vertices), 0.0f});
+            break;
+        case BodyShapeKind::Edge:
+        case BodyShapeKind::Chain: {
+            const std::size_t n = s.vertices.size();
+            const std::size_t segments = s.loop && s.kind == BodyShapeKind::Chain ? n : n - 1;
+            for (std::size_t k = 0; k < segments; ++k) {
+                out.push_back({kernels::SD_BODY_SHAPE_SEGMENT, {s.vertices[k], s.vertices[(k + 1) % n]}, 0.0f});
+            }
+            break;
+        }
+        }
+    }
+    return out;
+}
+
+void addFixture(b2Body* body, const BodyDef& def, const BodyShapeDef& s, std::size_t index) {
+    b2FixtureDef fd;
+    fd.density = def.type == BodyType::Dynamic ? def.density : 0.0f;
+    fd.friction = def.friction;
+    fd.restitution = def.restitution;
+    b2PolygonShape polygon;
+    b2CircleShape circle;
+    b2EdgeShape edge;
+    b2ChainShape chain;
+    std::vector<b2Vec2> points;
+    switch (s.kind) {
+    case BodyShapeKind::Box:
+        polygon.SetAsBox(s.halfExtents.x, s.halfExtents.y, toB2(s.offset), s.angle);
+        fd.shape = &polygon;
+        break;
+    case BodyShapeKind::Circle:
+        circle.m_p = toB2(s.offset);
+        circle.m_radius = s.radius;
+        fd.shape = &circle;
+        break;
+    case BodyShapeKind::Polygon: {
+        for (glm::vec2 p : convexPolygon(def, index, s.vertices)) points.push_back(toB2(p));
+        polygon.Set(points.data(), static_cast<int32>(points.size()));
+        fd.shape = &polygon;
+        break;
+    }
+    case BodyShapeKind::Edge:
+        edge.SetTwoSided(toB2(s.vertices[0]), toB2(s.vertices[1]));
+        fd.shape = &edge;
+        break;
+    case BodyShapeKind::Chain: {
+        for (glm::vec2 p : s.vertices) points.push_back(toB2(p));
+        const auto n = static_cast<int32>(points.size());
+        if (s.loop) {
+            chain.CreateLoop(points.data(), n);
+        } else {
+            // Ghost vertices: the chain's own ends (no neighbouring chain).
+            chain.CreateChain(points.data(), n, points.front(), points.back());
+        }
+        fd.shape = &chain;
+        break;
+    }
+    }
+    body->CreateFixture(&fd);
+}
+
+BodyWorld& bodyWorld(World& w) {
+    if (!w.bodies) w.bodies.reset(new BodyWorld(w.def.bodyGravity));
+    return *w.bodies;
+}
+
+JointSlot& jointFromId(BodyWorld& b, JointId id) {
+    if (id.index == 0 || id.index > b.joints.size() || b.joints[id.index - 1].joint == nullptr) {
+        throw Error(fmt::format("joint id {} does not exist in this world", id.index));
+    }
+    return b.joints[id.index - 1];
+}
+
+BodyShapeView view(const BodyShapeDef& s, const b2Transform& xf) {
+    auto toWorld = [&](glm::vec2 p) { return fromB2(b2Mul(xf, toB2(p))); };
+    BodyShapeView v;
+    switch (s.kind) {
+    case BodyShapeKind::Circle:
+        v.kind = BodyShapeView::Kind::Circle;
+        v.centre = toWorld(s.offset);
+        v.radius = s.radius;
+        return v;
+    case BodyShapeKind::Box:
+    case BodyShapeKind::Polygon: {
+        v.kind = BodyShapeView::Kind::Polygon;
+        std::vector<glm::vec2> local = s.kind == BodyShapeKind::Box ? boxCorners(s) : s.vertices;
+        if (twiceArea(local) < 0.0) std::reverse(local.begin(), local.end());
+        for (glm::vec2 p : local) v.vertices.push_back(toWorld(p));
+        break;
+    }
+    case BodyShapeKind::Edge:
+    case BodyShapeKind::Chain:
+        v.kind = s.kind == BodyShapeKind::Edge ? BodyShapeView::Kind::Edge : BodyShapeView::Kind::Chain;
+        v.loop = s.kind == BodyShapeKind::Chain && s.loop;
+        for (glm::vec2 p : s.vertices) v.vertices.push_back(toWorld(p));
+        break;
+    }
+    glm::vec2 sum(0.0f);
+    for (glm::vec2 p : v.vertices) sum += p;
+    v.centre = v.vertices.empty() ? v.centre : sum / static_cast<float>(v.vertices.size());
+    return v;
+}
+
+}  // namespace
+
+BodyWorld::BodyWorld(glm::vec2 g) : gravity(g) {
+    // Bodies in water are rarely still, and a sleeping body would not feel the
+    // gravity added outside Box2D; the fluid wakes what it touches anyway.
+    world.SetAllowSleeping(false);
+}
+
+void BodyWorldDeleter::operator()(BodyWorld* b) const { delete b; }
+
+BodySlot& bodyFromId(BodyWorld& b, BodyId id) {
+    if (id.index == 0 || id.index > b.bodies.size() || b.bodies[id.index - 1].body == nullptr) {
+        throw Error(fmt::format("body id {} does not exist in this world", id.index));
+    }
+    return b.bodies[id.index - 1];
+}
+
+void beginBodyStep(BodyWorld& b, float dt) {
+    const b2Vec2 dv = toB2(b.gravity * dt);
+    for (BodySlot& s : b.bodies) {
+        if (s.body != nullptr && s.body->GetType() == b2_dynamicBody) {
+            s.body->SetLinearVelocity(s.body->GetLinearVelocity() + dv);
+        }
+    }
+}
+
+void stepBodies(BodyWorld& b, float dt) { b.world.Step(dt, kVelocityIterations, kPositionIterations); }
+
+fluid::JetMount jetMount(World& w, BodyId id) {
+    fluid::JetMount m;
+    if (id.index == 0) return m;
+    if (!w.bodies || id.index > w.bodies->bodies.size() || w.bodies->bodies[id.index - 1].body == nullptr) {
+        m.active = false;
+        return m;
+    }
+    const b2Body& body = *w.bodies->bodies[id.index - 1].body;
+    m.origin = fromB2(body.GetPosition());
+    m.angle = body.GetAngle();
+    m.centre = fromB2(body.GetWorldCenter());
+    m.velocity = fromB2(body.GetLinearVelocity());
+    m.angularVelocity = body.GetAngularVelocity();
+    return m;
+}
+
+void applyRecoil(World& w, BodyId id, const fluid::JetMount& m) {
+    if (id.index == 0 || !m.active || (m.recoil.x == 0.0f && m.recoil.y == 0.0f)) return;
+    b2Body* body = w.bodies->bodies[id.index - 1].body;
+    if (body->GetType() == b2_dynamicBody) body->ApplyLinearImpulse(toB2(m.recoil), toB2(m.nozzle), true);
+}
+
+void checkJetBody(World& w, const FluidJetDef& jet) {
+    if (jet.body.index == 0) return;
+    if (!w.bodies) throw Error(fmt::format("a jet rides body id {}, but the world has no bodies", jet.body.index));
+    bodyFromId(*w.bodies, jet.body);
+}
+
+}  // namespace coupling
+
+using coupling::BodyWorld;
+
+BodyShapeDef boxShape(glm::vec2 halfExtents, glm::vec2 offset, float angle) {
+    BodyShapeDef s;
+    s.kind = BodyShapeKind::Box;
+    s.halfExtents = halfExtents;
+    s.offset = offset;
+    s.angle = angle;
+    return s;
+}
+
+BodyShapeDef circleShape(float radius, glm::vec2 offset) {
+    BodyShapeDef s;
+    s.kind = BodyShapeKind::Circle;
+    s.radius = radius;
+    s.offset = offset;
+    return s;
+}
+
+BodyShapeDef polygonShape(std::vector<glm::vec2> vertices) {
+    BodyShapeDef s;
+    s.kind = BodyShapeKind::Polygon;
+    s.vertices = std::move(vertices);
+    return s;
+}
+
+BodyShapeDef edgeShape(glm::vec2 a, glm::vec2 b) {
+    BodyShapeDef s;
+    s.kind = BodyShapeKind::Edge;
+    s.vertices = {a, b};
+    return s;
+}
+
+BodyShapeDef chainShape(std::vector<glm::vec2> points, bool loop) {
+    BodyShapeDef s;
+    s.kind = BodyShapeKind::Chain;
+    s.vertices = std::move(points);
+    s.loop = loop;
+    return s;
+}
+
+void validateBodyDef(const BodyDef& def) {
+    using coupling::label;
+    if (def.type != BodyType::Static && def.type != BodyType::Kinematic && def.type != BodyType::Dynamic) {
+        throw Error(fmt::format("{}: unknown body type", label(def)));
+    }
+    if (!coupling::finite(def.position) || !std::isfinite(def.angle) || !coupling::finite(def.linearVelocity) ||
+        !std::isfinite(def.angularVelocity)) {
+        throw Error(fmt::format("{}: position, angle and velocities must be finite", label(def)));
+    }
+    if (def.type == BodyType::Dynamic && (!(def.density > 0.0f) || !std::isfinite(def.density))) {
+        throw Error(fmt::format("{}: a dynamic body needs a density > 0 kg/m^2, got {}", label(def), def.density));
+    }
+    if (!(def.friction >= 0.0f) || !std::isfinite(def.friction) ||
+        !(def.restitution >= 0.0f && def.restitution <= 1.0f)) {
+        throw Error(fmt::format("{}: friction must be >= 0 and restitution in [0, 1]", label(def)));
+    }
+    if (def.shapes.empty()) throw Error(fmt::format("{}: needs at least one shape", label(def)));
+    for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::validateShape(def, i + 1, def.shapes[i]);
+}
+
+BodyId createBody(WorldId id, const BodyDef& def) {
+    World& w = worldFromId(id);
+    validateBodyDef(def);
+    BodyWorld& b = coupling::bodyWorld(w);
+    b2BodyDef bd;
+    bd.type = def.type == BodyType::Static ? b2_staticBody : def.type == BodyType::Kinematic ? b2_kinematicBody
+                                                                                               : b2_dynamicBody;
+    bd.position = coupling::toB2(def.position);
+    bd.angle = def.angle;
+    bd.linearVelocity = coupling::toB2(def.linearVelocity);
+    bd.angularVelocity = def.angularVelocity;
+    bd.fixedRotation = def.fixedRotation;
+    // The 1-based slot, to map Box2D's broad-phase answers back to our bodies.
+    bd.userData.pointer = static_cast<uintptr_t>(b.bodies.size() + 1);
+    b2Body* body = b.world.CreateBody(&bd);
+    for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::addFixture(body, def, def.shapes[i], i + 1);
+    b.bodies.push_back({body, def, coupling::fluidShapes(def)});
+    b.alive += 1;
+    return {static_cast<std::uint32_t>(b.bodies.size())};
+}
+
+void destroyBody(WorldId id, BodyId bodyId) {
+    World& w = worldFromId(id);
+    if (!w.bodies) throw Error(fmt::format("body id {} does not exist in this world", bodyId.index));
+    coupling::BodySlot& slot = coupling::bodyFromId(*w.bodies, bodyId);
+    // Box2D destroys the body's joints with it; forget them first.
+    for (coupling::JointSlot& j : w.bodies->joints) {
+        if (j.joint != nullptr && (j.joint->GetBodyA() == slot.body || j.joint->GetBodyB() == slot.body)) {
+            j.joint = nullptr;
+        }
+    }
+    w.bodies->world.DestroyBody(slot.body);
+    slot.body = nullptr;
+    w.bodies->alive -= 1;
+}
+
+JointId createJoint(WorldId id, const JointDef& def) {
+    World& w = worldFromId(id);
+    const std::string name = fmt::format("joint '{}'", def.name);
+    if (!w.bodies) throw Error(fmt::format("{}: the world has no bodies", name));
+    if (def.bodyA.index == def.bodyB.index) throw Error(fmt::format("{}: joins a body to itself", name));
+    b2Body* a = coupling::bodyFromId(*w.bodies, def.bodyA).body;
+    b2Body* b = coupling::bodyFromId(*w.bodies, def.bodyB).body;
+    if (!coupling::finite(def.anchor) || !coupling::finite(def.axis) || !std::isfinite(def.lower) ||
+        !std::isfinite(def.upper) || !std::isfinite(def.motorSpeed) || !std::isfinite(def.maxMotor)) {
+        throw Error(fmt::format("{}: anchor, axis, limits and motor must be finite", name));
+    }
+    if (def.enableLimit && def.lower > def.upper) throw Error(fmt::format("{}: lower limit above upper", name));
+    if (def.enableMotor && !(def.maxMotor > 0.0f)) {
+        throw Error(fmt::format("{}: a motor needs a max torque or force > 0", name));
+    }
+    b2Joint* joint = nullptr;
+    switch (def.kind) {
+    case JointKind::Revolute: {
+        b2RevoluteJointDef jd;
+        jd.Initialize(a, b, coupling::toB2(def.anchor));
+        jd.enableLimit = def.enableLimit;
+        jd.lowerAngle = def.lower;
+        jd.upperAngle = def.upper;
+        jd.enableMotor = def.enableMotor;
+        jd.motorSpeed = def.motorSpeed;
+        jd.maxMotorTorque = def.maxMotor;
+        jd.collideConnected = def.collideConnected;
+        joint = w.bodies->world.CreateJoint(&jd);
+        break;
+    }
+    case JointKind::Prismatic: {
+        if (!(glm::length(def.axis) > 0.0f)) throw Error(fmt::format("{}: the axis must be non-zero", name));
+        b2PrismaticJointDef jd;
+        jd.Initialize(a, b, coupling::toB2(def.anchor), coupling::toB2(glm::normalize(def.axis)));
+        jd.enableLimit = def.enableLimit;
+        jd.lowerTranslation = def.lower;
+        jd.upperTranslation = def.upper;
+        jd.enableMotor = def.enableMotor;
+        jd.motorSpeed = def.motorSpeed;
+        jd.maxMotorForce = def.maxMotor;
+        jd.collideConnected = def.collideConnected;
+        joint = w.bodies->world.CreateJoint(&jd);
+        break;
+    }
+    case JointKind::Weld: {
+        b2WeldJointDef jd;
+        jd.Initialize(a, b, coupling::toB2(def.anchor));
+        jd.collideConnected = def.collideConnected;
+        joint = w.bodies->world.CreateJoint(&jd);
+        break;
+    }
+    default: throw Error(fmt::format("{}: unknown joint kind", name));
+    }
+    w.bodies->joints.push_back({joint, def});
+    return {static_cast<std::uint32_t>(w.bodies->joints.size())};
+}
+
+void destroyJoint(WorldId id, JointId jointId) {
+    World& w = worldFromId(id);
+    if (!w.bodies) throw Error(fmt::format("joint id {} does not exist in this world", jointId.index));
+    coupling::JointSlot& j = coupling::jointFromId(*w.bodies, jointId);
+    w.bodies->world.DestroyJoint(j.joint);
+    j.joint = nullptr;
+}
+
+namespace {
+b2Body& liveBody(WorldId id, BodyId bodyId) {
+    World& w = worldFromId(id);
+    if (!w.bodies) throw Error(fmt::format("body id {} does not exist in this world", bodyId.index));
+    return *coupling::bodyFromId(*w.bodies, bodyId).body;
+}
+}  // namespace
+
+void setBodyTransform(WorldId id, BodyId bodyId, glm::vec2 position, float angle) {
+    if (!coupling::finite(position) || !std::isfinite(angle)) throw Error("setBodyTransform: not finite");
+    liveBody(id, bodyId).SetTransform(coupling::toB2(position), angle);
+}
+
+void setBodyVelocity(WorldId id, BodyId bodyId, glm::vec2 linearVelocity, float angularVelocity) {
+    if (!coupling::finite(linearVelocity) || !std::isfinite(angularVelocity)) {
+        throw Error("setBodyVelocity: not finite");
+    }
+    b2Body& body = liveBody(id, bodyId);
+    body.SetLinearVelocity(coupling::toB2(linearVelocity));
+    body.SetAngularVelocity(angularVelocity);
+}
+
+void applyBodyImpulse(WorldId id, BodyId bodyId, glm::vec2 impulse, glm::vec2 point) {
+    if (!coupling::finite(impulse) || !coupling::finite(point)) throw Error("applyBodyImpulse: not finite");
+    liveBody(id, bodyId).ApplyLinearImpulse(coupling::toB2(impulse), coupling::toB2(point), true);
+}
+
+float bodyMass(WorldId id, BodyId bodyId) { return liveBody(id, bodyId).GetMass(); }
+
+std::uint32_t bodyCount(WorldId id) {
+    World& w = worldFromId(id);
+    return w.bodies ? w.bodies->alive : 0u;
+}
+
+std::vector<BodySnapshot> readBodies(WorldId id) {
+    World& w = worldFromId(id);
+    std::vector<BodySnapshot> out;
+    if (!w.bodies) return out;
+    for (std::size_t i = 0; i < w.bodies->bodies.size(); ++i) {
+        const coupling::BodySlot& slot = w.bodies->bodies[i];
+        if (slot.body == nullptr) continue;
+        BodySnapshot s;
+        s.id = {static_cast<std::uint32_t>(i + 1)};
+        s.name = slot.def.name;
+        s.dynamic = slot.body->GetType() == b2_dynamicBody;
+        s.position = coupling::fromB2(slot.body->GetPosition());
+        s.angle = slot.body->GetAngle();
+        s.linearVelocity = coupling::fromB2(slot.body->GetLinearVelocity());
+        s.angularVelocity = slot.body->GetAngularVelocity();
+        for (const BodyShapeDef& shape : slot.def.shapes) {
+            s.shapes.push_back(coupling::view(shape, slot.body->GetTransform()));
+        }
+        out.push_back(std::move(s));
+    }
+    return out;
+}
+
+}  // namespace spindrift

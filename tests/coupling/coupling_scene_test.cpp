@@ -1,0 +1,170 @@
+// [[body]] and [[joint]] in scene files: what they parse to, the world
+// buildWorld makes of them, and errors with file, line, column and key path
+// (positions counted from the inline TOML: line 1 is its first line).
+#include <spindrift/scene.h>
+
+#include <gtest/gtest.h>
+
+#include <filesystem>
+#include <string>
+
+namespace spindrift {
+namespace {
+
+const std::string kBodies = R"(
+[[body]]
+name = "floor"
+type = "static"
+shape = [{ box = [2.0, 0.1] }, { edge = [[0, 0], [1, 0]] }]
+
+[[body]]
+name = "crate"
+position = [0.5, 1.0]
+angle = 0.25
+density = 500.0
+fixed_rotation = true
+
+[[body.shape]]
+box = [0.1, 0.2]
+offset = [0.0, 0.1]
+angle = 0.5
+
+[[body.shape]]
+circle = 0.1
+
+[[joint]]
+name = "hinge"
+kind = "revolute"
+body_a = "floor"
+body_b = "crate"
+anchor = [0.5, 1.0]
+limits = [-0.5, 0.5]
+motor_speed = 1.0
+max_motor_torque = 10.0
+)";
+
+TEST(CouplingScene, BodiesAndJointsParseAndBuild) {
+    const SceneDef s = parseScene(kBodies, "bodies.toml");
+    ASSERT_EQ(s.bodies.size(), 2u);
+    EXPECT_EQ(s.bodies[0].type, BodyType::Static);
+    ASSERT_EQ(s.bodies[0].shapes.size(), 2u);
+    EXPECT_EQ(s.bodies[0].shapes[1].kind, BodyShapeKind::Edge);
+    const BodyDef& crate = s.bodies[1];
+    EXPECT_EQ(crate.type, BodyType::Dynamic);
+    EXPECT_EQ(crate.position, glm::vec2(0.5f, 1.0f));
+    EXPECT_FLOAT_EQ(crate.density, 500.0f);
+    EXPECT_TRUE(crate.fixedRotation);
+    ASSERT_EQ(crate.shapes.size(), 2u);
+    EXPECT_EQ(crate.shapes[0].halfExtents, glm::vec2(0.1f, 0.2f));
+    EXPECT_FLOAT_EQ(crate.shapes[0].angle, 0.5f);
+    EXPECT_FLOAT_EQ(crate.shapes[1].radius, 0.1f);
+    ASSERT_EQ(s.joints.size(), 1u);
+    EXPECT_EQ(s.joints[0].bodyA.index, 1u);
+    EXPECT_EQ(s.joints[0].bodyB.index, 2u);
+    EXPECT_TRUE(s.joints[0].enableLimit && s.joints[0].enableMotor);
+    EXPECT_FLOAT_EQ(s.joints[0].maxMotor, 10.0f);
+    const WorldId world = buildWorld(s);
+    EXPECT_EQ(bodyCount(world), 2u);
+    stepWorld(world, 1.0f / 60.0f);
+    EXPECT_EQ(readBodies(world)[1].name, "crate");
+    destroyWorld(world);
+}
+
+TEST(CouplingScene, TheFluidBoxesSceneHasFloatingAndSinkingCrates) {
+    const SceneDef s = loadScene(std::string(SPINDRIFT_SOURCE_DIR) + "/scenes/fluid_boxes.toml");
+    bool light = false, heavy = false;
+    for (const BodyDef& b : s.bodies) {
+        if (b.type != BodyType::Dynamic) continue;
+        light = light || b.density < s.fluids.at(0).density;
+        heavy = heavy || b.density > s.fluids.at(0).density;
+    }
+    EXPECT_TRUE(light && heavy);
+}
+
+struct Expected {
+    int line;
+    int column;
+    std::string keyPath;
+    std::string messagePart;
+};
+
+void expectError(const std::string& text, const Expected& e) {
+    try {
+        parseScene(text, "bad.toml");
+        ADD_FAILURE() << "accepted a bad scene:\n" << text;
+    } catch (const SceneError& err) {
+        EXPECT_EQ(err.file(), "bad.toml") << err.what();
+        EXPECT_EQ(err.line(), e.line) << err.what();
+        EXPECT_EQ(err.column(), e.column) << err.what();
+        EXPECT_EQ(err.keyPath(), e.keyPath) << err.what();
+        EXPECT_NE(err.message().find(e.messagePart), std::string::npos)
+            << "message \"" << err.message() << "\" lacks \"" << e.messagePart << "\"";
+    }
+}
+
+TEST(CouplingSceneErrors, BodyWithoutShape) {
+    expectError("[[body]]\nname = \"b\"\n", {1, 1, "body[0]", "at least one shape"});
+}
+
+TEST(CouplingSceneErrors, UnknownBodyType) {
+    expectError("[[body]]\nname = \"b\"\ntype = \"floating\"\nshape = [{ circle = 1.0 }]\n",
+                {3, 8, "body[0].type", "\"static\", \"kinematic\", \"dynamic\""});
+}
+
+TEST(CouplingSceneErrors, ShapeWithTwoKinds) {
+    expectError("[[body]]\nname = \"b\"\nshape = [{ box = [1, 1], circle = 1.0 }]\n",
+                {3, 26, "body[0].shape[0].circle", "already has \"box\""});
+}
+
+TEST(CouplingSceneErrors, NegativeBoxExtent) {
+    expectError("[[body]]\nname = \"b\"\nshape = [{ box = [1, -1] }]\n",
+                {3, 22, "body[0].shape[0].box[1]", "a number > 0"});
+}
+
+TEST(CouplingSceneErrors, ConcavePolygon) {
+    expectError("[[body]]\nname = \"b\"\n\n[[body.shape]]\npolygon = [[0, 0], [1, 0], [0.2, 0.2], [0, 1]]\n",
+                {1, 1, "body[0]", "not strictly convex"});
+}
+
+TEST(CouplingSceneErrors, DynamicEdge) {
+    expectError("[[body]]\nname = \"b\"\nshape = [{ edge = [[0, 0], [1, 0]] }]\n",
+                {1, 1, "body[0]", "dynamic body cannot use them"});
+}
+
+TEST(CouplingSceneErrors, JointToAnUnknownBody) {
+    expectError("[[body]]\nname = \"crate\"\nshape = [{ circle = 1.0 }]\n\n[[joint]]\nname = \"j\"\nkind = "
+                "\"weld\"\nbody_a = \"crate\"\nbody_b = \"crat\"\nanchor = [0, 0]\n",
+                {9, 10, "joint[0].body_b", "did you mean \"crate\""});
+}
+
+TEST(CouplingSceneErrors, JointMotorWithoutItsLimit) {
+    expectError("[[body]]\nname = \"a\"\nshape = [{ circle = 1.0 }]\n\n[[body]]\nname = \"b\"\nshape = [{ "
+                "circle = 1.0 }]\n\n[[joint]]\nname = \"j\"\nkind = \"revolute\"\nbody_a = \"a\"\nbody_b = "
+                "\"b\"\nanchor = [0, 0]\nmotor_speed = 1.0\n",
+                {9, 1, "joint[0]", "needs both motor_speed and max_motor_torque"});
+}
+
+TEST(CouplingSceneErrors, PrismaticTakesAForceNotATorque) {
+    expectError("[[body]]\nname = \"a\"\nshape = [{ circle = 1.0 }]\n\n[[body]]\nname = \"b\"\nshape = [{ "
+                "circle = 1.0 }]\n\n[[joint]]\nname = \"j\"\nkind = \"prismatic\"\nbody_a = \"a\"\nbody_b = "
+                "\"b\"\nanchor = [0, 0]\nmax_motor_torque = 1.0\n",
+                {15, 1, "joint[0].max_motor_torque", "max_motor_force"});
+}
+
+TEST(CouplingSceneErrors, JetRidesAnUnknownBody) {
+    expectError("[[body]]\nname = \"truck\"\nshape = [{ circle = 1.0 }]\n\n[[fluid]]\nname = \"f\"\n\n"
+                "[[fluid.jet]]\nposition = [0, 0, 0]\nbody = \"truk\"\n",
+                {10, 8, "fluid[0].jet[0].body", "did you mean \"truck\""});
+}
+
+TEST(CouplingSceneErrors, JetAimRunsBackwards) {
+    expectError("[[fluid]]\nname = \"f\"\n\n[[fluid.jet]]\nposition = [0, 0, 0]\naim = [[1.0, 0.0], [0.5, 1.0]]\n",
+                {6, 20, "fluid[0].jet[0].aim[1]", "not before the previous key's"});
+}
+
+TEST(CouplingSceneErrors, BodyGravityNeedsTwoNumbers) {
+    expectError("[world]\nbody_gravity = [0, -9.81, 0]\n", {2, 16, "world.body_gravity", "an array of 2 numbers"});
+}
+
+}  // namespace
+}  // namespace spindrift

@@ -7,7 +7,8 @@
 // Sprites: one recycle emitter of N particles (a fountain under gravity with
 // a ground plane, every slot alive after 1.5 s of warm-up), drawn additive or
 // alpha-blended (then sorted back to front on the device every frame).
-// Argument 0: particles; argument 1: world backend (0 cpu: one upload per
+// Argument 0: particles (1: the baseline frame with nothing to draw but the
+// background and the floor); argument 1: world backend (0 cpu: one upload per
 // frame, 1 vulkan: drawn from the world's buffers); argument 2: 1 alpha.
 // Fluid: a 2D block of 100k particles at 1 cm after one step (so neighbour
 // data exists), every splat step on, refraction included.
@@ -93,6 +94,7 @@ void BM_Sprites(benchmark::State& state) {
 }
 BENCHMARK(BM_Sprites)
     ->ArgNames({"particles", "vulkan", "alpha"})
+    ->Args({1, 0, 0})  // the frame without sprites: background, floor, read-back
     ->Args({100000, 0, 0})
     ->Args({100000, 1, 0})
     ->Args({100000, 0, 1})

@@ -1,6 +1,8 @@
 // spindrift public API: scene files (TOML) and building a world from them.
 #pragma once
 
+#include <spindrift/bodies.h>
+#include <spindrift/fires.h>
 #include <spindrift/render.h>
 #include <spindrift/world.h>
 
@@ -51,6 +53,7 @@ struct SceneDef {
     std::vector<BodyDef> bodies;
     /// Bodies referred to by id (1-based position in `bodies`).
     std::vector<JointDef> joints;
+    std::vector<FireDef> fires;
 };
 
 /// Parses and validates a scene file; throws SceneError on the first problem,
@@ -62,7 +65,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
                     const std::string& baseDir = ".");
 
 /// Creates a world with flow fields, forces, colliders, emitters, bodies,
-/// fluids (whose jets may ride on bodies) and joints in that order, so their
+/// fluids (whose jets may ride on bodies), joints and fires in that order, so their
 /// ids match the SceneDef's references.
 WorldId buildWorld(const SceneDef& scene);
 

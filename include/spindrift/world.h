@@ -74,11 +74,18 @@ enum class ParticleEventKind : std::uint32_t {
     Death = 1,      ///< the particle died: of age, or killed by a collision
 };
 
-/// One collision or death of a state-preserving particle.
+/// One collision or death of a state-preserving particle, or a fluid
+/// particle striking a rigid body (then `fluid` and `body` are set and
+/// `emitter` and `collider` are 0).
 struct ParticleEvent {
     ParticleEventKind kind = ParticleEventKind::Collision;
     std::uint64_t step = 0;  ///< step in which it happened
     EmitterId emitter;
+    /// Fluid impacts: the fluid, and the body struck faster than
+    /// kFluidImpactSpeed along its surface normal (a resting or sliding
+    /// contact is not an impact). `birth` is then the particle's id.
+    FluidId fluid;
+    BodyId body;
     /// Collision: the collider hit. Death: the first collider hit in the same
     /// step (the killer, when collisions kill), or index 0 when none was.
     ColliderId collider;
@@ -143,6 +150,13 @@ StepStats flushWorld(WorldId world);
 /// nothing changes then.
 void setEmitterRate(WorldId world, EmitterId emitter, float rate);
 void setEmitterSpeed(WorldId world, EmitterId emitter, FloatRange speed);
+/// Moves the emitter's spawn shape (its centre, m): where particles are born
+/// from now on, as setEmitterRate.
+void setEmitterPosition(WorldId world, EmitterId emitter, glm::vec3 centre);
+
+/// Approach speed (m/s) above which a fluid particle touching a body makes a
+/// collision event.
+inline constexpr float kFluidImpactSpeed = 0.5f;
 
 /// Simulated time (s) of the world.
 double worldTime(WorldId world);

@@ -15,6 +15,8 @@
 // several chunks.) They are few: a body's surface, not its volume.
 #include "coupling/body_contacts.h"
 
+#include <spindrift/world.h>
+
 #include "coupling/body_world.h"
 #include "fluid/fluid_state.h"
 
@@ -161,6 +163,7 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, FluidB
     out.shapeBody.clear();
     out.shapeSource.clear();
     out.contactCount = 0;
+    for (std::vector<BodyImpact>& chunk : out.impacts) chunk.clear();
     const std::vector<glm::vec2>& x = f.p2.position;
     if (f.def.dimension != 2 || world.alive == 0 || x.empty()) return false;
     glm::vec2 lo(x[0]), hi(x[0]);
@@ -253,6 +256,7 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidStat
     const std::size_t chunks = WorkerPool::chunkCount(p.size(), fluid::kParticleChunk);
     s.fixedContacts.resize(chunks);
     s.dynamicContacts.resize(chunks);
+    s.impacts.resize(std::max(s.impacts.size(), chunks));
     const float radius = f.radius;
     pool.forChunks(p.size(), fluid::kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<BodyContact>& fixed = s.fixedContacts[chunk];
@@ -281,6 +285,12 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidStat
                 c.particle = static_cast<std::uint32_t>(i);
                 c.body = shape.body;
                 (b.invMass > 0.0f ? dynamic : fixed).push_back(c);
+                // An impact: reaching the surface this substep, fast. The
+                // solve then removes the approach, so one strike is one event.
+                const float approach = -glm::dot(rel, n);
+                if (approach > kFluidImpactSpeed && c.separation < approach * dt) {
+                    s.impacts[chunk].push_back({p.id[i], b.slot, x, approach});
+                }
             }
         }
     });

@@ -54,6 +54,15 @@ struct BodyContact {
 };
 static_assert(sizeof(BodyContact) == 44);
 
+/// A particle that struck a body (approaching faster than kFluidImpactSpeed
+/// along the normal, touching within the substep): one collision event.
+struct BodyImpact {
+    std::uint32_t particle;  // id (creation serial)
+    std::uint32_t body;      // slot in BodyWorld::bodies
+    glm::vec2 position;      // m
+    float speed;             // m/s, approach speed along the normal
+};
+
 struct FluidBodyStep {
     std::vector<StepBody> bodies;
     std::vector<std::uint32_t> shapeBody;              // body of each candidate shape
@@ -72,6 +81,9 @@ struct FluidBodyStep {
     float particleInvMass = 0.0f;  // 1/kg
     float maxParticleSpeed = 0.0f; // m/s, bound for the binning reach
     std::uint64_t contactCount = 0;
+    /// Impacts of the whole fluid step, per chunk of particles (merged in
+    /// chunk order: the same for any thread count).
+    std::vector<std::vector<BodyImpact>> impacts;
 };
 
 /// Gathers the bodies whose fixtures overlap the fluid's particles (grown by

@@ -1,6 +1,8 @@
 // Turning kernel event records into the public ParticleEvent.
 #include "effects/event_queue.h"
 
+#include <algorithm>
+
 namespace spindrift {
 
 void EventQueue::addStep(std::uint64_t step, std::span<const kernels::EventRecord> records, std::uint64_t dropped) {
@@ -16,6 +18,12 @@ void EventQueue::addStep(std::uint64_t step, std::span<const kernels::EventRecor
         e.speed = r.positionSpeed.w;
         batch.events.push_back(e);
     }
+}
+
+void EventQueue::addEvents(std::span<const ParticleEvent> events) {
+    const std::size_t kept = std::min<std::size_t>(events.size(), capacity);
+    batch.events.insert(batch.events.end(), events.begin(), events.begin() + static_cast<std::ptrdiff_t>(kept));
+    batch.dropped += events.size() - kept;
 }
 
 }  // namespace spindrift

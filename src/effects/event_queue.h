@@ -17,6 +17,9 @@ struct EventQueue {
     /// Appends one step's records (at most `capacity`; the caller counted the
     /// rest as `dropped`).
     void addStep(std::uint64_t step, std::span<const kernels::EventRecord> records, std::uint64_t dropped);
+    /// Appends events made on the host (fluid impacts on bodies), at most
+    /// `capacity` of them; the rest are counted as dropped.
+    void addEvents(std::span<const ParticleEvent> events);
 };
 
 }  // namespace spindrift

@@ -271,6 +271,13 @@ void setEmitterSpeed(WorldId id, EmitterId emitter, FloatRange speed) {
     changeEmitter(w, emitter, def);
 }
 
+void setEmitterPosition(WorldId id, EmitterId emitter, glm::vec3 centre) {
+    World& w = worldFromId(id);
+    EmitterDef def = emitterFromId(w, emitter).def;
+    def.shape.center = centre;
+    changeEmitter(w, emitter, def);
+}
+
 StepStats stepWorld(WorldId id, float dt) {
     World& w = worldFromId(id);
     if (!(dt > 0.0f) || !std::isfinite(dt)) {
@@ -279,6 +286,7 @@ StepStats stepWorld(WorldId id, float dt) {
     auto start = std::chrono::steady_clock::now();
     StepStats stats = emptyStats(w);
     stats.step = w.stepIndex;
+    const std::size_t firstEvent = w.events.batch.events.size();
     if (w.gpu) {
         gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, w.stepIndex, stats, w.events);
     } else {
@@ -301,6 +309,7 @@ StepStats stepWorld(WorldId id, float dt) {
         coupling::stepBodies(*w.bodies, dt);
         stats.bodiesMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bodiesStart).count();
     }
+    updateFires(w, id, firstEvent, dt);
     addTotals(w, stats);
     w.time += dt;
     w.stepIndex += 1;

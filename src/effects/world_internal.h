@@ -6,6 +6,7 @@
 #include "effects/emitter_state.h"
 #include "effects/event_queue.h"
 #include "effects/fields.h"
+#include "effects/fires.h"
 
 #include <spindrift/world.h>
 
@@ -51,6 +52,8 @@ struct World {
     FieldSet fields;
     std::vector<std::unique_ptr<EmitterState>> emitters;
     EventQueue events;
+    /// Fires on bodies, updated after each step from its fluid strikes.
+    std::vector<FireState> fires;
     double time = 0.0;
     std::uint64_t stepIndex = 0;
     /// Set when the world runs on Vulkan: then the particle data lives on the

@@ -1,5 +1,6 @@
 // One step of one constraint fluid: a named list of passes (DESIGN.md, the
 // Sprinkle recipe of slides 12-13 and 35-51).
+#include "coupling/body_contacts.h"
 #include "coupling/body_world.h"
 #include "coupling/exchange.h"
 #include "effects/world_internal.h"
@@ -80,6 +81,26 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
     }
 }
 
+// The step's strikes of fluid particles on bodies, as collision events on the
+// world's queue (the fires and the application read them there).
+void addImpactEvents(World& w, const coupling::FluidBodyStep& s, FluidId fluid) {
+    std::vector<ParticleEvent> events;
+    for (const std::vector<coupling::BodyImpact>& chunk : s.impacts) {
+        for (const coupling::BodyImpact& impact : chunk) {
+            ParticleEvent e;
+            e.kind = ParticleEventKind::Collision;
+            e.step = w.stepIndex;
+            e.fluid = fluid;
+            e.body = BodyId{impact.body + 1};
+            e.birth = impact.particle;
+            e.position = glm::vec3(impact.position, 0.0f);
+            e.speed = impact.speed;
+            events.push_back(e);
+        }
+    }
+    w.events.addEvents(events);
+}
+
 }  // namespace
 
 FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
@@ -119,6 +140,7 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
         }
     }
     if (f.bodies != nullptr) {
+        addImpactEvents(w, *f.bodies, id);
         coupling::applyExchange(*w.bodies, coupling::gatherExchange(*f.bodies));
         stats.bodyContacts = f.bodies->contactCount;
         f.bodies = nullptr;

@@ -3,11 +3,13 @@
 
 #include "effects/world_internal.h"
 
+#include <spindrift/bodies.h>
 #include <spindrift/fluid.h>
 
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <utility>
 #include <cmath>
 
 namespace spindrift::render {
@@ -16,22 +18,43 @@ namespace {
 const glm::vec3 kColliderColour{0.42f, 0.40f, 0.37f};
 const glm::vec3 kTerrainColour{0.30f, 0.38f, 0.22f};
 const glm::vec3 kObstacleColour{0.50f, 0.45f, 0.40f};
+const glm::vec3 kDynamicBodyColour{0.62f, 0.42f, 0.22f};
+// Half thickness (m) of the wall drawn for an edge or chain segment.
+constexpr float kSegmentHalfWidth = 0.01f;
 // Depth (m) of 2D obstacles along z: they stand in front of the particles in
 // the xy plane, so a wall covers the water at its edge.
 constexpr float kPrismDepth = 0.5f;
 
-void triangle(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 colour) {
+// Triangles of closed shapes are wound counter-clockwise seen from outside
+// (`inside` is a point within the shape), so the pipeline culls back faces:
+// on lavapipe a collider slab's hidden faces cost as much as its visible ones.
+void triangle(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 colour,
+              glm::vec3 inside) {
     glm::vec3 n = glm::cross(b - a, c - a);
     float len = glm::length(n);
     n = len > 0.0f ? n / len : glm::vec3(0.0f, 1.0f, 0.0f);
+    if (glm::dot(n, (a + b + c) / 3.0f - inside) < 0.0f) {
+        std::swap(b, c);
+        n = -n;
+    }
     out.push_back({a, n, colour});
     out.push_back({b, n, colour});
     out.push_back({c, n, colour});
 }
 
-void quad(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 colour) {
-    triangle(out, a, b, c, colour);
-    triangle(out, a, c, d, colour);
+void quad(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d, glm::vec3 colour,
+          glm::vec3 inside) {
+    triangle(out, a, b, c, colour, inside);
+    triangle(out, a, c, d, colour, inside);
+}
+
+// An open surface (terrain): both sides, each wound toward its viewer.
+void twoSidedQuad(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d,
+                  glm::vec3 colour) {
+    const glm::vec3 n = glm::cross(b - a, c - a);
+    const glm::vec3 centre = (a + b + c + d) * 0.25f;
+    quad(out, a, b, c, d, colour, centre - n);
+    quad(out, a, b, c, d, colour, centre + n);
 }
 
 // Two unit vectors perpendicular to n and to each other.
@@ -51,9 +74,15 @@ void appendSphere(std::vector<MeshVertex>& out, glm::vec3 centre, float r, glm::
     for (int i = 0; i < kRings; ++i) {
         for (int j = 0; j < kSegments; ++j) {
             glm::vec3 n[4] = {point(i, j), point(i + 1, j), point(i + 1, j + 1), point(i, j + 1)};
+            // Counter-clockwise seen from outside (see triangle), smooth normals.
+            const bool flip = glm::dot(glm::cross(n[1] - n[0], n[2] - n[0]), n[0] + n[1] + n[2]) < 0.0f;
             int order[6] = {0, 1, 2, 0, 2, 3};
+            if (flip) {
+                std::swap(order[1], order[2]);
+                std::swap(order[4], order[5]);
+            }
             for (int k : order) {
-                out.push_back({centre + r * n[k], n[k], colour});  // smooth normals
+                out.push_back({centre + r * n[k], n[k], colour});
             }
         }
     }
@@ -74,8 +103,8 @@ void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& 
     };
     for (std::uint32_t j = 0; j + 1 < map.nz; j += stride) {
         for (std::uint32_t i = 0; i + 1 < map.nx; i += stride) {
-            quad(out, vertex(i, j), vertex(i, j + stride), vertex(i + stride, j + stride), vertex(i + stride, j),
-                 kTerrainColour);
+            twoSidedQuad(out, vertex(i, j), vertex(i, j + stride), vertex(i + stride, j + stride),
+                         vertex(i + stride, j), kTerrainColour);
         }
     }
 }
@@ -92,12 +121,12 @@ void appendBox(std::vector<MeshVertex>& out, glm::vec3 centre, const glm::mat3& 
     auto corner = [&](float sx, float sy, float sz) {
         return centre + axes[0] * (sx * h.x) + axes[1] * (sy * h.y) + axes[2] * (sz * h.z);
     };
-    quad(out, corner(1, -1, -1), corner(1, 1, -1), corner(1, 1, 1), corner(1, -1, 1), colour);       // +x
-    quad(out, corner(-1, -1, -1), corner(-1, -1, 1), corner(-1, 1, 1), corner(-1, 1, -1), colour);   // -x
-    quad(out, corner(-1, 1, -1), corner(-1, 1, 1), corner(1, 1, 1), corner(1, 1, -1), colour);       // +y
-    quad(out, corner(-1, -1, -1), corner(1, -1, -1), corner(1, -1, 1), corner(-1, -1, 1), colour);   // -y
-    quad(out, corner(-1, -1, 1), corner(1, -1, 1), corner(1, 1, 1), corner(-1, 1, 1), colour);       // +z
-    quad(out, corner(-1, -1, -1), corner(-1, 1, -1), corner(1, 1, -1), corner(1, -1, -1), colour);   // -z
+    quad(out, corner(1, -1, -1), corner(1, 1, -1), corner(1, 1, 1), corner(1, -1, 1), colour, centre);      // +x
+    quad(out, corner(-1, -1, -1), corner(-1, -1, 1), corner(-1, 1, 1), corner(-1, 1, -1), colour, centre);  // -x
+    quad(out, corner(-1, 1, -1), corner(-1, 1, 1), corner(1, 1, 1), corner(1, 1, -1), colour, centre);      // +y
+    quad(out, corner(-1, -1, -1), corner(1, -1, -1), corner(1, -1, 1), corner(-1, -1, 1), colour, centre);  // -y
+    quad(out, corner(-1, -1, 1), corner(1, -1, 1), corner(1, 1, 1), corner(-1, 1, 1), colour, centre);      // +z
+    quad(out, corner(-1, -1, -1), corner(-1, 1, -1), corner(1, 1, -1), corner(1, -1, -1), colour, centre);  // -z
 }
 
 void appendPrism(std::vector<MeshVertex>& out, const std::vector<glm::vec2>& polygon, float depth, glm::vec3 colour) {
@@ -105,13 +134,16 @@ void appendPrism(std::vector<MeshVertex>& out, const std::vector<glm::vec2>& pol
     if (n < 2) {
         return;
     }
+    glm::vec2 mean(0.0f);
+    for (glm::vec2 v : polygon) mean += v;
+    const glm::vec3 inside(mean / float(n), 0.0f);
     auto at = [&](std::size_t i, float z) { return glm::vec3(polygon[i % n], z); };
     for (std::size_t i = 1; i + 1 < n; ++i) {  // caps: fans (the polygon is convex)
-        triangle(out, at(0, depth), at(i, depth), at(i + 1, depth), colour);
-        triangle(out, at(0, -depth), at(i + 1, -depth), at(i, -depth), colour);
+        triangle(out, at(0, depth), at(i, depth), at(i + 1, depth), colour, inside);
+        triangle(out, at(0, -depth), at(i + 1, -depth), at(i, -depth), colour, inside);
     }
     for (std::size_t i = 0; i < (n == 2 ? 1 : n); ++i) {
-        quad(out, at(i, -depth), at(i + 1, -depth), at(i + 1, depth), at(i, depth), colour);
+        quad(out, at(i, -depth), at(i + 1, -depth), at(i + 1, depth), at(i, depth), colour, inside);
     }
 }
 
@@ -144,6 +176,57 @@ std::vector<MeshVertex> staticColliderMesh(WorldId id, float extent) {
     for (std::uint32_t f = 0; f < world.fluids.size(); ++f) {
         for (const FluidPolygonDef& polygon : fluidDef(id, FluidId{f + 1}).polygons) {
             appendPrism(out, polygon.vertices, kPrismDepth, kObstacleColour);
+        }
+    }
+    return out;
+}
+
+namespace {
+
+void appendSegment(std::vector<MeshVertex>& out, glm::vec2 a, glm::vec2 b, glm::vec3 colour) {
+    glm::vec2 d = b - a;
+    float len = glm::length(d);
+    if (len <= 0.0f) {
+        return;
+    }
+    glm::vec2 n = glm::vec2(-d.y, d.x) * (kSegmentHalfWidth / len);
+    appendPrism(out, {a - n, b - n, b + n, a + n}, kPrismDepth, colour);
+}
+
+void appendBodyShape(std::vector<MeshVertex>& out, const BodyShapeView& shape, glm::vec3 colour) {
+    switch (shape.kind) {
+        case BodyShapeView::Kind::Circle: {
+            constexpr int kSegments = 32;
+            std::vector<glm::vec2> polygon;
+            for (int i = 0; i < kSegments; ++i) {
+                float a = glm::two_pi<float>() * float(i) / kSegments;
+                polygon.push_back(shape.centre + shape.radius * glm::vec2(std::cos(a), std::sin(a)));
+            }
+            appendPrism(out, polygon, kPrismDepth, colour);
+            break;
+        }
+        case BodyShapeView::Kind::Polygon: appendPrism(out, shape.vertices, kPrismDepth, colour); break;
+        case BodyShapeView::Kind::Edge:
+        case BodyShapeView::Kind::Chain: {
+            const std::size_t n = shape.vertices.size();
+            for (std::size_t i = 0; i + 1 < n; ++i) {
+                appendSegment(out, shape.vertices[i], shape.vertices[i + 1], colour);
+            }
+            if (shape.loop && n > 2) {
+                appendSegment(out, shape.vertices[n - 1], shape.vertices[0], colour);
+            }
+            break;
+        }
+    }
+}
+
+}  // namespace
+
+std::vector<MeshVertex> bodyMesh(WorldId world) {
+    std::vector<MeshVertex> out;
+    for (const BodySnapshot& body : readBodies(world)) {
+        for (const BodyShapeView& shape : body.shapes) {
+            appendBodyShape(out, shape, body.dynamic ? kDynamicBodyColour : kObstacleColour);
         }
     }
     return out;

@@ -27,6 +27,11 @@ float planeExtent(const CameraDef& camera, float aspect);
 /// have no mesh (their shape is only known as depths) and are not drawn.
 std::vector<MeshVertex> staticColliderMesh(WorldId world, float extent);
 
+/// The world's Box2D bodies where they are now (readBodies): polygons and
+/// circles as prisms along z, edges and chains as thin walls; dynamic bodies
+/// in a wood colour, static and kinematic ones in the colliders' grey.
+std::vector<MeshVertex> bodyMesh(WorldId world);
+
 /// Axis-aligned box helper shared with the bodies' mesh: a box of half
 /// extents `h` with world axes `axes` at `centre`.
 void appendBox(std::vector<MeshVertex>& out, glm::vec3 centre, const glm::mat3& axes, glm::vec3 h, glm::vec3 colour);

@@ -111,7 +111,10 @@ VkPipeline createGraphicsPipeline(gpu::Device& d, const PipelineDesc& desc, VkPi
     auto raster = gpu::vkStruct<VkPipelineRasterizationStateCreateInfo>(
         VK_STRUCTURE_TYPE_PIPELINE_RASTERIZATION_STATE_CREATE_INFO);
     raster.polygonMode = VK_POLYGON_MODE_FILL;
-    raster.cullMode = VK_CULL_MODE_NONE;  // quads face the camera; meshes are lit on both sides
+    // Vulkan's signed-area formula carries a minus sign for its y-down
+    // framebuffer (spec, "Basic Polygon Rasterization"): a triangle wound
+    // counter-clockwise as the viewer sees it is front-facing.
+    raster.cullMode = desc.cullBackFaces ? VK_CULL_MODE_BACK_BIT : VK_CULL_MODE_NONE;
     raster.frontFace = VK_FRONT_FACE_COUNTER_CLOCKWISE;
     raster.lineWidth = 1.0f;
     auto multisample = gpu::vkStruct<VkPipelineMultisampleStateCreateInfo>(

@@ -22,6 +22,8 @@ struct PipelineDesc {
     Blend blend = Blend::None;
     bool depthTest = false;
     bool depthWrite = false;
+    /// Cull faces wound clockwise as seen (closed meshes wound outward).
+    bool cullBackFaces = false;
     VkRenderPass renderPass = VK_NULL_HANDLE;
 };
 

@@ -12,6 +12,8 @@
 #include "render/splat_pass.h"
 #include "render/sprite_pass.h"
 
+#include <spindrift/bodies.h>
+
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
@@ -112,6 +114,7 @@ void createPipelines(Renderer& r) {
     mesh.fragmentCode = code(s::kMeshFrag, s::kMeshFragWords);
     mesh.vertexFloat3Attributes = 3;
     mesh.depthTest = mesh.depthWrite = true;
+    mesh.cullBackFaces = true;
     r.mesh = makePipeline(d, mesh);
 
     PipelineDesc splats;
@@ -237,6 +240,37 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
     return u;
 }
 
+// The bodies' mesh of this frame, in a host-visible buffer that grows as
+// needed (the previous frame has finished: renderFrame waits for it).
+void prepareBodies(Renderer& r) {
+    r.dynamicVertices = 0;
+    if (!r.def.drawColliders || bodyCount(r.world) == 0) {
+        return;
+    }
+    std::vector<MeshVertex> vertices = bodyMesh(r.world);
+    const VkDeviceSize bytes = vertices.size() * sizeof(MeshVertex);
+    if (r.dynamicMesh.buffer == VK_NULL_HANDLE || r.dynamicMesh.size < bytes) {
+        if (r.dynamicMesh.buffer != VK_NULL_HANDLE) {
+            gpu::destroyBuffer(*r.device, r.dynamicMesh);
+        }
+        r.dynamicMesh = vertexBuffer(*r.device, vertices);
+    } else {
+        std::memcpy(r.dynamicMesh.mapped, vertices.data(), bytes);
+    }
+    r.dynamicVertices = static_cast<std::uint32_t>(vertices.size());
+}
+
+void recordMesh(Renderer& r, VkCommandBuffer cmd, const gpu::Buffer& mesh, std::uint32_t vertices) {
+    if (vertices == 0) {
+        return;
+    }
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.mesh.pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.mesh.layout, 0, 1, &r.frameSet, 0, nullptr);
+    VkDeviceSize offset = 0;
+    vkCmdBindVertexBuffers(cmd, 0, 1, &mesh.buffer, &offset);
+    vkCmdDraw(cmd, vertices, 1, 0, 0);
+}
+
 void timestamp(Renderer& r, VkCommandBuffer cmd, VkPipelineStageFlagBits stage, std::uint32_t index) {
     if (r.timestamps != VK_NULL_HANDLE) {
         vkCmdWriteTimestamp(cmd, stage, r.timestamps, index);
@@ -356,6 +390,7 @@ void prepareFrame(Renderer& r) {
     r.lastTime = w.time;
     FrameUniforms u = frameUniforms(r.def, w.time);
     std::memcpy(r.frameUniforms.mapped, &u, sizeof(u));
+    prepareBodies(r);
     prepareSplats(r, dt);
     prepareSprites(r);
 }
@@ -381,14 +416,8 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
                                 nullptr);
         vkCmdDraw(cmd, 3, 1, 0, 0);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
-        if (r.staticVertices > 0) {
-            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.mesh.pipeline);
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.mesh.layout, 0, 1, &r.frameSet, 0,
-                                    nullptr);
-            VkDeviceSize offset = 0;
-            vkCmdBindVertexBuffers(cmd, 0, 1, &r.staticMesh.buffer, &offset);
-            vkCmdDraw(cmd, r.staticVertices, 1, 0, 0);
-        }
+        recordMesh(r, cmd, r.staticMesh, r.staticVertices);
+        recordMesh(r, cmd, r.dynamicMesh, r.dynamicVertices);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 2);
     }
     if (refracts) {  // What refraction sees behind the water.

@@ -1,6 +1,7 @@
 // buildWorld(): a validated SceneDef becomes a world. References in the
 // SceneDef are 1-based creation indices, so objects are created kind by kind
 // in list order and each returned id is checked against that promise.
+#include <spindrift/fires.h>
 #include <spindrift/scene.h>
 
 #include <fmt/format.h>
@@ -66,6 +67,7 @@ WorldId buildWorld(const SceneDef& scene) {
     createAll(scene.bodies, "body", [&](const BodyDef& d) { return createBody(world, d); });
     createAll(scene.fluids, "fluid", [&](const FluidDef& d) { return createFluid(world, d); });
     createAll(scene.joints, "joint", [&](const JointDef& d) { return createJoint(world, d); });
+    createAll(scene.fires, "fire", [&](const FireDef& d) { return createFire(world, d); });
     return guard.release();
 }
 

@@ -4,6 +4,7 @@
 #include "scene/data_files.h"
 #include "scene/toml_read.h"
 
+#include <spindrift/fires.h>
 #include <spindrift/scene.h>
 
 #include <cstdint>
@@ -48,6 +49,7 @@ ColliderDef parseCollider(const Table& table, NameTable& names);
 FluidDef parseFluid(const Table& table, NameTable& names, const NameTable& bodies);
 BodyDef parseBody(const Table& table, NameTable& names);
 JointDef parseJoint(const Table& table, NameTable& names, const NameTable& bodies);
+FireDef parseFire(const Table& table, NameTable& names, const NameTable& bodies, const NameTable& emitters);
 /// [render] with its [render.background] and [render.fluid]; the camera is
 /// left at its default ([camera] is read separately).
 RenderDef parseRender(const Table& table);

@@ -158,7 +158,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     }
     const Table root(ctx, document, "");
     root.allowOnly({"world", "camera", "render", "run", "flow_field", "force", "collider", "emitter", "fluid", "body",
-                    "joint"},
+                    "joint", "fire"},
                    "the scene");
 
     SceneDef scene;
@@ -201,6 +201,10 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     scene::NameTable jointNames("joint");
     for (const Table& t : scene::tableArray(root, "joint")) {
         scene.joints.push_back(scene::parseJoint(t, jointNames, bodyNames));
+    }
+    scene::NameTable fireNames("fire");
+    for (const Table& t : scene::tableArray(root, "fire")) {
+        scene.fires.push_back(scene::parseFire(t, fireNames, bodyNames, emitterNames));
     }
     if (!scene.fluids.empty()) {
         // Fluids collide with planes, spheres and boxes only (src/fluid/collide.cpp).

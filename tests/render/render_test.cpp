@@ -4,6 +4,7 @@
 // message fails the test.
 #include "render/render_test_util.h"
 
+#include <spindrift/bodies.h>
 #include <spindrift/fluid.h>
 
 #include <filesystem>
@@ -307,6 +308,35 @@ TEST_P(RenderTest, SpriteImageAndVelocityStretchShapeTheQuad) {
         EXPECT_NEAR(maxX + 0.5, cx + halfLength * pxPerM, 1.0) << "stretch " << stretch;
         EXPECT_NEAR(maxY - minY + 1.0, 0.5 * pxPerM, 1.0) << "stretch " << stretch;
     }
+}
+
+// A Box2D body is drawn where it is now: a box rotated by 90 degrees covers
+// the pixels of its rotated outline and nothing just beyond it.
+TEST_P(RenderTest, BodyIsDrawnWhereItIsNow) {
+    WorldDef wd;
+    wd.backend = GetParam();
+    wd.bodyGravity = glm::vec2(0.0f);
+    WorldId world = createWorld(wd);
+    BodyDef box;
+    box.type = BodyType::Dynamic;
+    box.position = {0.5f, 0.0f};
+    box.angle = glm::radians(90.0f);
+    box.shapes = {boxShape({0.4f, 0.1f})};  // after the turn: 0.2 m wide, 0.8 m tall
+    createBody(world, box);
+    stepWorld(world, 1.0f / 60.0f);
+    {
+        ScopedRenderer r(world, orthoView(64, 64, 2.0f));
+        Frame f = renderFrame(r.id);
+        dumpFrame(f, "body");
+        // 32 px per m, centre (32, 32): the box spans x in [0.4, 0.6] m -> px
+        // [44.8, 51.2], y in [-0.4, 0.4] m -> px [19.2, 44.8].
+        EXPECT_GT(pixel(f, 48, 32)[0], 20);
+        EXPECT_GT(pixel(f, 48, 22)[0], 20);
+        EXPECT_EQ(pixel(f, 48, 16)[0], 0);  // 0.5 m up: beyond the top
+        EXPECT_EQ(pixel(f, 54, 32)[0], 0);  // 0.2 m right of the centre: beyond the side
+        EXPECT_EQ(pixel(f, 41, 32)[0], 0);
+    }
+    destroyWorld(world);
 }
 
 INSTANTIATE_TEST_SUITE_P(Backends, RenderTest, ::testing::Values(Backend::Cpu, Backend::Vulkan),

@@ -1,0 +1,117 @@
+// Fires put out by water: strikes of fluid on a burning body arrive as
+// collision events (fluid_step.cpp), each takes dousePerStrike of the fire's
+// strength and makes steam where it hit; flames and smoke scale with the
+// strength and ride on the body.
+#include "effects/fires.h"
+
+#include "effects/world_internal.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift {
+namespace {
+
+FireState& fireFromId(World& w, FireId id) {
+    if (id.index == 0 || id.index > w.fires.size()) {
+        throw Error(fmt::format("fire id {} does not exist in this world", id.index));
+    }
+    return w.fires[id.index - 1];
+}
+
+const BodySnapshot& bodyOf(const std::vector<BodySnapshot>& bodies, BodyId id) {
+    for (const BodySnapshot& b : bodies) {
+        if (b.id.index == id.index) return b;
+    }
+    throw Error(fmt::format("body id {} does not exist in this world", id.index));
+}
+
+glm::vec2 rotate(glm::vec2 v, float angle) {
+    const float c = std::cos(angle), s = std::sin(angle);
+    return {c * v.x - s * v.y, s * v.x + c * v.y};
+}
+
+bool hasEmitter(const World& w, EmitterId id) { return id.index >= 1 && id.index <= w.emitters.size(); }
+
+// The emitter's spawn centre carried by the body (offset in the body frame).
+void carry(WorldId id, EmitterId emitter, const BodySnapshot& body, glm::vec2 offset, float z) {
+    setEmitterPosition(id, emitter, glm::vec3(body.position + rotate(offset, body.angle), z));
+}
+
+}  // namespace
+
+FireId createFire(WorldId id, const FireDef& def) {
+    World& w = worldFromId(id);
+    if (!(def.strength > 0.0f && def.strength <= 1.0f) || !(def.dousePerStrike >= 0.0f) ||
+        !(def.steamPerStrike >= 0.0f) || !std::isfinite(def.dousePerStrike) || !std::isfinite(def.steamPerStrike)) {
+        throw Error(fmt::format("fire '{}': strength must be in (0, 1], douse and steam per strike finite and >= 0",
+                                def.name));
+    }
+    for (EmitterId e : {def.flames, def.smoke, def.steam}) {
+        if (e.index != 0 && (!hasEmitter(w, e) || w.emitters[e.index - 1]->def.stateless)) {
+            throw Error(fmt::format("fire '{}': emitter {} does not exist or is stateless", def.name, e.index));
+        }
+    }
+    const BodySnapshot& body = bodyOf(readBodies(id), def.body);
+    FireState f;
+    f.def = def;
+    f.strength = def.strength;
+    auto place = [&](EmitterId e, float& rate, glm::vec2& offset, float& z) {
+        if (e.index == 0) return;
+        const EmitterDef& ed = w.emitters[e.index - 1]->def;
+        rate = ed.rate;
+        offset = rotate(glm::vec2(ed.shape.center) - body.position, -body.angle);
+        z = ed.shape.center.z;
+    };
+    place(def.flames, f.flamesRate, f.flamesOffset, f.flamesZ);
+    place(def.smoke, f.smokeRate, f.smokeOffset, f.smokeZ);
+    w.fires.push_back(f);
+    const FireId fire{static_cast<std::uint32_t>(w.fires.size())};
+    if (def.flames.index != 0) setEmitterRate(id, def.flames, f.flamesRate * f.strength);
+    if (def.smoke.index != 0) setEmitterRate(id, def.smoke, f.smokeRate * f.strength);
+    if (def.steam.index != 0) setEmitterRate(id, def.steam, 0.0f);
+    return fire;
+}
+
+std::uint32_t fireCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).fires.size()); }
+float fireStrength(WorldId id, FireId fire) { return fireFromId(worldFromId(id), fire).strength; }
+std::uint64_t fireStrikes(WorldId id, FireId fire) { return fireFromId(worldFromId(id), fire).strikes; }
+
+void updateFires(World& w, WorldId id, std::size_t firstEvent, float dt) {
+    if (w.fires.empty()) return;
+    const std::vector<BodySnapshot> bodies = readBodies(id);
+    const std::vector<ParticleEvent>& events = w.events.batch.events;
+    for (FireState& f : w.fires) {
+        // Strikes of this step on the fire's body, and where they were.
+        std::uint64_t strikes = 0;
+        glm::vec3 sum(0.0f);
+        for (std::size_t i = std::min(firstEvent, events.size()); i < events.size(); ++i) {
+            const ParticleEvent& e = events[i];
+            if (e.fluid.index != 0 && e.body.index == f.def.body.index) {
+                ++strikes;
+                sum += e.position;
+            }
+        }
+        f.strikes += strikes;
+        f.strength = std::max(0.0f, f.strength - f.def.dousePerStrike * static_cast<float>(strikes));
+        const BodySnapshot& body = bodyOf(bodies, f.def.body);
+        if (f.def.flames.index != 0) {
+            setEmitterRate(id, f.def.flames, f.flamesRate * f.strength);
+            carry(id, f.def.flames, body, f.flamesOffset, f.flamesZ);
+        }
+        if (f.def.smoke.index != 0) {
+            setEmitterRate(id, f.def.smoke, f.smokeRate * f.strength);
+            carry(id, f.def.smoke, body, f.smokeOffset, f.smokeZ);
+        }
+        if (f.def.steam.index != 0) {
+            // Born next step at the strikes' mean position: steamPerStrike
+            // each, spread over the step (rate x dt particles).
+            setEmitterRate(id, f.def.steam, f.def.steamPerStrike * static_cast<float>(strikes) / dt);
+            if (strikes > 0) setEmitterPosition(id, f.def.steam, sum / static_cast<float>(strikes));
+        }
+    }
+}
+
+}  // namespace spindrift

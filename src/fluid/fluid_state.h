@@ -135,6 +135,10 @@ struct FluidState {
     /// The rigid bodies near this 2D fluid during its step (src/coupling);
     /// null outside stepFluid or when none are near.
     coupling::FluidBodyStep* bodies = nullptr;
+    /// (particle id << 32 | body slot) of the last step's strikes, sorted: a
+    /// drop that lands over two steps (the speculative contact slows it
+    /// first) strikes once.
+    std::vector<std::uint64_t> recentStrikes;
 
     template <int D> Particles<D>& particles() {
         if constexpr (D == 2) return p2; else return p3;

@@ -82,11 +82,19 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
 }
 
 // The step's strikes of fluid particles on bodies, as collision events on the
-// world's queue (the fires and the application read them there).
-void addImpactEvents(World& w, const coupling::FluidBodyStep& s, FluidId fluid) {
+// world's queue (the fires and the application read them there). A pair that
+// struck in the previous step or earlier in this one is not counted again.
+void addImpactEvents(World& w, FluidState& f, const coupling::FluidBodyStep& s, FluidId fluid) {
     std::vector<ParticleEvent> events;
+    std::vector<std::uint64_t> strikes;
     for (const std::vector<coupling::BodyImpact>& chunk : s.impacts) {
         for (const coupling::BodyImpact& impact : chunk) {
+            const std::uint64_t key = (std::uint64_t{impact.particle} << 32) | impact.body;
+            if (std::binary_search(f.recentStrikes.begin(), f.recentStrikes.end(), key) ||
+                std::find(strikes.begin(), strikes.end(), key) != strikes.end()) {
+                continue;
+            }
+            strikes.push_back(key);
             ParticleEvent e;
             e.kind = ParticleEventKind::Collision;
             e.step = w.stepIndex;
@@ -98,6 +106,8 @@ void addImpactEvents(World& w, const coupling::FluidBodyStep& s, FluidId fluid) 
             events.push_back(e);
         }
     }
+    std::sort(strikes.begin(), strikes.end());
+    f.recentStrikes = std::move(strikes);
     w.events.addEvents(events);
 }
 
@@ -131,6 +141,8 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     f.bodies = nullptr;
     if (w.bodies && coupling::gatherBodies(*w.bodies, f, dt, w.bodies->fluidStep)) {
         f.bodies = &w.bodies->fluidStep;
+    } else {
+        f.recentStrikes.clear();
     }
     for (int k = 0; k < substeps; ++k) {
         if (f.def.dimension == 2) {
@@ -140,7 +152,7 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
         }
     }
     if (f.bodies != nullptr) {
-        addImpactEvents(w, *f.bodies, id);
+        addImpactEvents(w, f, *f.bodies, id);
         coupling::applyExchange(*w.bodies, coupling::gatherExchange(*f.bodies));
         stats.bodyContacts = f.bodies->contactCount;
         f.bodies = nullptr;

@@ -17,6 +17,7 @@
 #include "render/render_target.h"
 #include "render/renderer.h"
 
+#include <spindrift/fires.h>
 #include <spindrift/render.h>
 #include <spindrift/scene.h>
 #include <spindrift/world.h>
@@ -524,7 +525,7 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
     ImGui::Begin("spindrift", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
     ImGui::Text("%s  t = %.3f s  frame %llu", paused ? "paused" : "running", worldTime(s.world),
                 static_cast<unsigned long long>(frames));
-    ImGui::TextDisabled("Space pause, N step, R restart, drag/scroll camera, Esc quit");
+    ImGui::TextDisabled("Space pause, N step, R restart, drag/scroll camera, right button aims the jet, Esc quit");
     if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
         const RenderStats rs = renderStats(rid);
         ImGui::Text("sim %.2f ms/step   frame %.2f ms", s.simMs, s.frameMs);
@@ -536,6 +537,15 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
             ImGui::Text("fluid %u: %llu particles, density error mean %.2f%% max %.2f%%", f.fluid.index,
                         static_cast<unsigned long long>(f.particles), 100.0 * f.meanDensityError,
                         100.0 * f.maxDensityError);
+        }
+    }
+    if (fireCount(s.world) > 0 && ImGui::CollapsingHeader("Fires", ImGuiTreeNodeFlags_DefaultOpen)) {
+        for (std::uint32_t i = 1; i <= fireCount(s.world); ++i) {
+            const float strength = fireStrength(s.world, FireId{i});
+            const std::string label = fmt::format("fire {}: {} strikes", i, fireStrikes(s.world, FireId{i}));
+            ImGui::ProgressBar(strength, ImVec2(160.0f, 0.0f), strength > 0.0f ? nullptr : "out");
+            ImGui::SameLine();
+            ImGui::TextUnformatted(label.c_str());
         }
     }
     if (!s.last.fluids.empty() && ImGui::CollapsingHeader("Fluid splats")) {
@@ -604,6 +614,45 @@ void applyCamera(Session& s, GLFWwindow* window, Drag& drag, Input& in) {
     const CameraDef now = render::rendererOf(s.renderer).def.camera;
     setRenderCamera(s.renderer, moveCamera(now, dx, dy, in.scroll, double(h)));
     in.scroll = 0.0;
+}
+
+/// Right mouse button in an orthographic view: the first 2D fluid jet aims at
+/// the cursor (its aim keys are replaced from then on; aimFluidJet).
+void aimWithMouse(Session& s, GLFWwindow* window) {
+    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) != GLFW_PRESS || ImGui::GetIO().WantCaptureMouse) return;
+    const render::Renderer& r = render::rendererOf(s.renderer);
+    const CameraDef& c = r.def.camera;
+    if (!c.orthographic) return;
+    FluidId jetFluid{};
+    for (std::uint32_t f = 1; f <= fluidCount(s.world) && jetFluid.index == 0; ++f) {
+        const FluidDef& def = fluidDef(s.world, FluidId{f});
+        if (def.dimension == 2 && !def.jets.empty()) jetFluid = FluidId{f};
+    }
+    if (jetFluid.index == 0) return;
+    // Cursor (window units) to swapchain pixels, then into the letterboxed frame.
+    double x = 0.0, y = 0.0;
+    int ww = 0, wh = 0;
+    glfwGetCursorPos(window, &x, &y);
+    glfwGetWindowSize(window, &ww, &wh);
+    const VkExtent2D extent = s.presenter.chain.extent;
+    if (ww <= 0 || wh <= 0) return;
+    x *= double(extent.width) / ww;
+    y *= double(extent.height) / wh;
+    const VkOffset3D lo = fitted(r.target.width, r.target.height, extent, false);
+    const VkOffset3D hi = fitted(r.target.width, r.target.height, extent, true);
+    if (hi.x <= lo.x || hi.y <= lo.y) return;
+    const float u = float((x - lo.x) / (hi.x - lo.x) * 2.0 - 1.0);
+    const float v = float(1.0 - (y - lo.y) / (hi.y - lo.y) * 2.0);
+    const glm::vec3 forward = glm::normalize(c.target - c.eye);
+    const glm::vec3 right = glm::normalize(glm::cross(forward, c.up));
+    const glm::vec3 up = glm::cross(right, forward);
+    const float halfHeight = 0.5f * c.orthoHeight;
+    const float aspect = float(r.target.width) / float(r.target.height);
+    const glm::vec3 point = c.target + right * (u * halfHeight * aspect) + up * (v * halfHeight);
+    const FluidJetPose pose = fluidJetPose(s.world, jetFluid, 0);
+    const glm::vec2 d = glm::vec2(point) - pose.nozzle;
+    if (glm::length(d) < 1e-4f) return;
+    aimFluidJet(s.world, jetFluid, 0, std::atan2(d.y, d.x) - pose.frameAngle);
 }
 
 /// Records and submits one frame; false when the swapchain must be
@@ -735,6 +784,7 @@ int viewCommand(const ViewOptions& o) {
             if (frames % 15 == 0 || (paused && steps > 0)) refreshAlive(s);
 
             applyCamera(s, window.handle, drag, in);
+            aimWithMouse(s, window.handle);
             ImGui_ImplVulkan_NewFrame();
             ImGui_ImplGlfw_NewFrame();
             ImGui::NewFrame();

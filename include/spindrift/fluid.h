@@ -166,6 +166,19 @@ void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockDef& block);
 /// Adds a jet; its start time is world time.
 void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
 
+/// Where a 2D jet's nozzle is now (m, world) and the angle (rad) of the frame
+/// its aim is measured in: its body's, or 0 without one.
+struct FluidJetPose {
+    glm::vec2 nozzle{0.0f};
+    float frameAngle = 0.0f;
+};
+/// Points 2D jet `jet` (0-based, in definition order) at `angle` rad in its
+/// frame, replacing its aim keys until releaseFluidJetAim (the viewer's mouse
+/// aim). Throws Error for a 3D fluid, a jet it does not have or a non-finite angle.
+void aimFluidJet(WorldId world, FluidId fluid, std::uint32_t jet, float angle);
+void releaseFluidJetAim(WorldId world, FluidId fluid, std::uint32_t jet);
+FluidJetPose fluidJetPose(WorldId world, FluidId fluid, std::uint32_t jet);
+
 std::uint32_t fluidCount(WorldId world);
 const FluidDef& fluidDef(WorldId world, FluidId fluid);
 /// Rest density (kernel-sum units) the fluid uses, derived or given.

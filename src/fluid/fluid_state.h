@@ -106,6 +106,9 @@ struct Jet {
     double openedAt = 0.0;  // s, world time when the jet was added
     double carry = 0.0;     // fraction of a particle owed from earlier steps
     std::uint64_t emitted = 0;
+    /// aimFluidJet: the angle (rad, 2D) that replaces the aim keys while set.
+    bool aimOverride = false;
+    float overrideAngle = 0.0f;
 };
 
 struct FluidState {

@@ -355,12 +355,14 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
             glm::vec3 d = glm::normalize(jet.def.direction);
             if (f.def.dimension == 2) {
                 glm::vec2 local = glm::normalize(glm::vec2(d));
-                if (!jet.def.aim.empty()) {
+                if (jet.aimOverride) {
+                    local = glm::vec2(std::cos(jet.overrideAngle), std::sin(jet.overrideAngle));
+                } else if (!jet.def.aim.empty()) {
                     const float a = jetAimAngle(jet.def.aim, static_cast<float>(bornAt - open));
                     local = glm::vec2(std::cos(a), std::sin(a));
                 }
                 d = glm::vec3(turn(local), 0.0f);
-                if (!jet.def.aim.empty() || mount.angle != 0.0f) {
+                if (jet.aimOverride || !jet.def.aim.empty() || mount.angle != 0.0f) {
                     aimed.direction = d;
                     points = nozzlePoints(f, aimed);
                 }
@@ -427,6 +429,40 @@ void addFluidJet(WorldId id, FluidId fluidId, const FluidJetDef& jet) {
     coupling::checkJetBody(w, jet);
     f.jets.push_back(fluid::Jet{jet, w.time, 0.0, 0});
     f.def.jets.push_back(jet);
+}
+
+namespace {
+
+fluid::Jet& jetFromIndex(fluid::FluidState& f, std::uint32_t jet) {
+    if (jet >= f.jets.size()) {
+        throw Error(fmt::format("fluid '{}' has no jet {} (it has {})", f.def.name, jet, f.jets.size()));
+    }
+    if (f.def.dimension != 2) {
+        throw Error(fmt::format("fluid '{}': only 2D jets aim", f.def.name));
+    }
+    return f.jets[jet];
+}
+
+}  // namespace
+
+void aimFluidJet(WorldId id, FluidId fluidId, std::uint32_t jet, float angle) {
+    if (!std::isfinite(angle)) throw Error("aimFluidJet: the angle must be finite");
+    fluid::Jet& j = jetFromIndex(fluid::fluidFromId(worldFromId(id), fluidId), jet);
+    j.aimOverride = true;
+    j.overrideAngle = angle;
+}
+
+void releaseFluidJetAim(WorldId id, FluidId fluidId, std::uint32_t jet) {
+    jetFromIndex(fluid::fluidFromId(worldFromId(id), fluidId), jet).aimOverride = false;
+}
+
+FluidJetPose fluidJetPose(WorldId id, FluidId fluidId, std::uint32_t jet) {
+    World& w = worldFromId(id);
+    const fluid::Jet& j = jetFromIndex(fluid::fluidFromId(w, fluidId), jet);
+    const fluid::JetMount mount = coupling::jetMount(w, j.def.body);
+    const float c = std::cos(mount.angle), s = std::sin(mount.angle);
+    const glm::vec2 p(j.def.position);
+    return {mount.origin + glm::vec2(c * p.x - s * p.y, s * p.x + c * p.y), mount.angle};
 }
 
 std::uint32_t fluidCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).fluids.size()); }

@@ -27,6 +27,37 @@ FluidDef lonelyJet(const FluidJetDef& jet) {
     return def;
 }
 
+// aimFluidJet replaces the keys: every particle born after the call leaves
+// at the given angle (round-off of cos and sin); releasing the aim returns
+// to the schedule. The nozzle of a jet on no body is its own position.
+TEST(CouplingJetAim, AimOverridesTheKeysUntilReleased) {
+    test::BodyTestWorld w(1, {0.0f, 0.0f});
+    FluidJetDef jet;
+    jet.position = {0.3f, 0.2f, 0.0f};
+    jet.speed = 1.0f;
+    jet.rate = 60.0f;
+    jet.aim = {{0.0f, 0.0f}};  // +x by the schedule
+    const FluidId f = createFluid(w.id, lonelyJet(jet));
+    const FluidJetPose pose = fluidJetPose(w.id, f, 0);
+    EXPECT_EQ(pose.nozzle, glm::vec2(0.3f, 0.2f));
+    EXPECT_EQ(pose.frameAngle, 0.0f);
+    for (int i = 0; i < 10; ++i) stepWorld(w.id, kDt);
+    aimFluidJet(w.id, f, 0, 1.0f);
+    for (int i = 0; i < 10; ++i) stepWorld(w.id, kDt);
+    releaseFluidJetAim(w.id, f, 0);
+    for (int i = 0; i < 10; ++i) stepWorld(w.id, kDt);
+    FluidSnapshot s = readFluid(w.id, f);
+    ASSERT_EQ(s.count(), 30u);
+    for (std::size_t k = 0; k < s.count(); ++k) {
+        const std::uint32_t serial = s.id[k];  // 0..9 keys, 10..19 aimed, 20..29 keys again
+        const float angle = serial >= 10 && serial < 20 ? 1.0f : 0.0f;
+        EXPECT_NEAR(s.velocity[k].x, std::cos(angle), 1e-6f) << "particle " << serial;
+        EXPECT_NEAR(s.velocity[k].y, std::sin(angle), 1e-6f) << "particle " << serial;
+    }
+    EXPECT_THROW(aimFluidJet(w.id, f, 1, 0.0f), Error);
+    EXPECT_THROW(aimFluidJet(w.id, f, 0, std::nanf("")), Error);
+}
+
 TEST(CouplingJetAim, SweepsOnItsSchedule) {
     test::BodyTestWorld w(1, {0.0f, 0.0f});
     FluidJetDef jet;

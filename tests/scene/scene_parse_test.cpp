@@ -500,7 +500,9 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         // bodies and joints
         "type = \"static\"", "type = \"kinematic\"", "box = [", "circle = ", "polygon = [", "edge = [",
         "chain = [", "[[body.shape]]", "kind = \"revolute\"", "kind = \"prismatic\"", "kind = \"weld\"",
-        "body_gravity", "aim = [[", "body = \"truck\""};
+        "body_gravity", "aim = [[", "body = \"truck\"",
+        // fires
+        "[[fire]]", "douse_per_strike", "steam_per_strike"};
     for (const std::string& f : features) {
         EXPECT_NE(all.find(f), std::string::npos) << "no example shows " << f;
     }

@@ -483,21 +483,6 @@ std::vector<char> texelBytes(const float* values, std::size_t count, VkFormat fo
     return bytes;
 }
 
-VkSampler createLinearSampler(Device& d) {
-    auto info = vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.minLod = 0.0f;
-    info.maxLod = 0.0f;
-    info.unnormalizedCoordinates = VK_FALSE;
-    VkSampler sampler = VK_NULL_HANDLE;
-    check(vkCreateSampler(d.device, &info, nullptr, &sampler), "vkCreateSampler");
-    return sampler;
-}
 
 VkDescriptorSetLayout createFieldLayout(Device& d) {
     std::array<VkDescriptorSetLayoutBinding, 3> bindings{};

@@ -69,6 +69,14 @@ void uploadImage(Device& d, Image& image, const ImageShape& shape, const void* t
 void clearImage(Device& d, Image& image, const ImageShape& shape);
 void destroyImage(Device& d, Image& image);
 
+/// Linear filtering, clamped at the edges (fields, sprites, backgrounds).
+VkSampler createLinearSampler(Device& d);
+
+/// Layout transition of `range` of `image` with its execution and memory dependency.
+void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,
+                  VkImageLayout to, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
+                  VkPipelineStageFlags dstStage, VkAccessFlags dstAccess);
+
 /// Waits for earlier compute writes, copies every buffer into its host range
 /// through one staging buffer and one submission. Counts the bytes.
 void download(Device& d, std::span<const Transfer> transfers);

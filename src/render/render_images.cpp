@@ -37,18 +37,5 @@ gpu::Image whiteImage(gpu::Device& d) {
     return uploadRgba(d, 1, 1, white);
 }
 
-VkSampler createLinearSampler(gpu::Device& d) {
-    auto info = gpu::vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.maxLod = 0.0f;
-    VkSampler sampler = VK_NULL_HANDLE;
-    gpu::check(vkCreateSampler(d.device, &info, nullptr, &sampler), "vkCreateSampler");
-    return sampler;
-}
 
 }  // namespace spindrift::render

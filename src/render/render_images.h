@@ -12,7 +12,5 @@ namespace spindrift::render {
 /// `what` and the path when it cannot be read.
 gpu::Image loadImage(gpu::Device& d, const std::string& path, const std::string& what);
 gpu::Image whiteImage(gpu::Device& d);
-/// Linear filtering, clamped at the edges.
-VkSampler createLinearSampler(gpu::Device& d);
 
 }  // namespace spindrift::render

@@ -189,7 +189,7 @@ void createResources(Renderer& r) {
     }
     r.passes = createRenderPasses(d);
     r.target = createRenderTarget(d, r.passes, r.def.width, r.def.height);
-    r.linearSampler = createLinearSampler(d);
+    r.linearSampler = gpu::createLinearSampler(d);
     r.placeholderImage = whiteImage(d);
     if (r.def.background.kind == BackgroundKind::Image) {
         r.backgroundImage = loadImage(d, r.def.background.image, "render background");

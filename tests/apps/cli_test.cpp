@@ -3,6 +3,8 @@
 
 #include <stb/stb_image.h>
 
+#include "apps/app_test_util.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -35,26 +37,9 @@ using spindrift_test::jsonQuery;
 const fs::path kCli = SPINDRIFT_CLI_PATH;
 const fs::path kFountain = fs::path(SPINDRIFT_SOURCE_DIR) / "scenes" / "fountain.toml";
 
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-/// Single quotes for sh; the paths used here hold no single quote.
-std::string quoted(const fs::path& path) {
-    // Appended piecewise: GCC 12 at -O3 warns falsely (-Wrestrict) on "'" + string.
-    std::string text(1, '\'');
-    text += path.string();
-    text += '\'';
-    return text;
-}
-
-struct Result {
-    int code = -1;          ///< exit status, or -1 if killed by a signal
-    std::string out, err;
-};
+using spindrift::test::quoted;
+using spindrift::test::readFile;
+using spindrift::test::Result;
 
 /// A fresh directory per test, removed afterwards.
 class CliTest : public ::testing::Test {
@@ -74,15 +59,8 @@ protected:
     /// Runs `spindrift ARGS` in dir/cwd, capturing both streams; `env` holds
     /// shell variable assignments for the command alone ("PATH=...").
     Result cli(const std::string& args, const std::string& env = "") {
-        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string command = "cd " + quoted(dir_ / "cwd") + " && " + env + " " + quoted(kCli) + " " + args +
-                                    " >" + quoted(out) + " 2>" + quoted(err);
-        const int status = std::system(command.c_str());
-        Result r;
-        if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-        r.out = readFile(out);
-        r.err = readFile(err);
-        return r;
+        return spindrift::test::runCaptured(
+            "cd " + quoted(dir_ / "cwd") + " && " + env + " " + quoted(kCli) + " " + args, dir_);
     }
 
     const fs::path& dir() const { return dir_; }

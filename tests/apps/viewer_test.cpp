@@ -1,5 +1,7 @@
 // `spindrift view` under Xvfb: the window, swapchain, blit and ImGui overlay
 // run for a few frames with Vulkan validation on and report no message.
+#include "apps/app_test_util.h"
+
 #include <gtest/gtest.h>
 
 #include <sys/wait.h>
@@ -18,24 +20,8 @@ namespace fs = std::filesystem;
 const fs::path kCli = SPINDRIFT_CLI_PATH;
 const fs::path kSource = SPINDRIFT_SOURCE_DIR;
 
-std::string readFile(const fs::path& path) {
-    std::ifstream in(path, std::ios::binary);
-    std::ostringstream text;
-    text << in.rdbuf();
-    return text.str();
-}
-
-std::string quoted(const fs::path& path) {
-    std::string text(1, '\'');
-    text += path.string();
-    text += '\'';
-    return text;
-}
-
-struct Result {
-    int code = -1;
-    std::string out, err;
-};
+using spindrift::test::quoted;
+using spindrift::test::Result;
 
 class ViewerTest : public ::testing::Test {
 protected:
@@ -58,18 +44,11 @@ protected:
     /// for the process's life) are suppressed by tests/apps/lsan_viewer.supp;
     /// our own code is not listed there.
     Result view(const std::string& args) {
-        const fs::path out = dir_ / "stdout.txt", err = dir_ / "stderr.txt";
-        const std::string command =
+        return spindrift::test::runCaptured(
             "cd " + quoted(kSource) + " && SPINDRIFT_VULKAN_VALIDATION=1 LSAN_OPTIONS=suppressions=" +
-            quoted(kSource / "tests/apps/lsan_viewer.supp") +
-            " xvfb-run -a -s '-screen 0 1024x768x24' " + quoted(kCli) + " view " + args + " >" + quoted(out) +
-            " 2>" + quoted(err);
-        const int status = std::system(command.c_str());
-        Result r;
-        if (status != -1 && WIFEXITED(status)) r.code = WEXITSTATUS(status);
-        r.out = readFile(out);
-        r.err = readFile(err);
-        return r;
+                quoted(kSource / "tests/apps/lsan_viewer.supp") + " xvfb-run -a -s '-screen 0 1024x768x24' " +
+                quoted(kCli) + " view " + args,
+            dir_);
     }
 
 private:

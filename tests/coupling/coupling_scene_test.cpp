@@ -3,6 +3,8 @@
 // (positions counted from the inline TOML: line 1 is its first line).
 #include <spindrift/scene.h>
 
+#include "scene/scene_error_expect.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -81,26 +83,7 @@ TEST(CouplingScene, TheFluidBoxesSceneHasFloatingAndSinkingCrates) {
     EXPECT_TRUE(light && heavy);
 }
 
-struct Expected {
-    int line;
-    int column;
-    std::string keyPath;
-    std::string messagePart;
-};
-
-void expectError(const std::string& text, const Expected& e) {
-    try {
-        parseScene(text, "bad.toml");
-        ADD_FAILURE() << "accepted a bad scene:\n" << text;
-    } catch (const SceneError& err) {
-        EXPECT_EQ(err.file(), "bad.toml") << err.what();
-        EXPECT_EQ(err.line(), e.line) << err.what();
-        EXPECT_EQ(err.column(), e.column) << err.what();
-        EXPECT_EQ(err.keyPath(), e.keyPath) << err.what();
-        EXPECT_NE(err.message().find(e.messagePart), std::string::npos)
-            << "message \"" << err.message() << "\" lacks \"" << e.messagePart << "\"";
-    }
-}
+using test::expectError;
 
 TEST(CouplingSceneErrors, BodyWithoutShape) {
     expectError("[[body]]\nname = \"b\"\n", {1, 1, "body[0]", "at least one shape"});

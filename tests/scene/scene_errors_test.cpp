@@ -4,6 +4,8 @@
 // line of the string; columns are 1-based).
 #include <spindrift/scene.h>
 
+#include "scene/scene_error_expect.h"
+
 #include <gtest/gtest.h>
 
 #include <filesystem>
@@ -16,26 +18,7 @@ namespace {
 
 using spindrift::SceneError;
 
-struct Expected {
-    int line;
-    int column;
-    std::string keyPath;
-    std::string messagePart;  ///< must occur in message()
-};
-
-void expectError(const std::string& text, const Expected& e, const std::string& baseDir = ".") {
-    try {
-        spindrift::parseScene(text, "bad.toml", baseDir);
-        ADD_FAILURE() << "accepted a bad scene:\n" << text;
-    } catch (const SceneError& err) {
-        EXPECT_EQ(err.file(), "bad.toml") << err.what();
-        EXPECT_EQ(err.line(), e.line) << err.what();
-        EXPECT_EQ(err.column(), e.column) << err.what();
-        EXPECT_EQ(err.keyPath(), e.keyPath) << err.what();
-        EXPECT_NE(err.message().find(e.messagePart), std::string::npos)
-            << "message \"" << err.message() << "\" lacks \"" << e.messagePart << "\"";
-    }
-}
+using spindrift::test::expectError;
 
 // A minimal valid emitter, to which tests append one bad line.
 const std::string kEmitter = "[[emitter]]\nname = \"e\"\n";

@@ -1,6 +1,8 @@
 // [render], [render.background], [render.fluid] and [emitter.sprite]: values
 // land in RenderDef and SpriteDef, PNG paths resolve against the scene's
 // folder, and every bad value is reported at its line and column.
+#include "scene/scene_error_expect.h"
+
 #include <gtest/gtest.h>
 #include <spindrift/scene.h>
 
@@ -19,24 +21,8 @@ spindrift::SceneDef parse(const std::string& text) {
     return spindrift::parseScene(text, "render.toml", kScenes.string());
 }
 
-struct Expected {
-    int line;
-    int column;
-    std::string keyPath;
-    std::string messagePart;
-};
-
-void expectError(const std::string& text, const Expected& e) {
-    try {
-        parse(text);
-        ADD_FAILURE() << "accepted a bad scene:\n" << text;
-    } catch (const SceneError& err) {
-        EXPECT_EQ(err.line(), e.line) << err.what();
-        EXPECT_EQ(err.column(), e.column) << err.what();
-        EXPECT_EQ(err.keyPath(), e.keyPath) << err.what();
-        EXPECT_NE(err.message().find(e.messagePart), std::string::npos)
-            << "message \"" << err.message() << "\" lacks \"" << e.messagePart << "\"";
-    }
+void expectError(const std::string& text, const spindrift::test::ExpectedError& e) {
+    spindrift::test::expectError(text, e, kScenes.string());
 }
 
 TEST(SceneRender, DefaultsWithoutARenderTable) {

@@ -54,7 +54,8 @@ FireId createFire(WorldId id, const FireDef& def) {
             throw Error(fmt::format("fire '{}': emitter {} does not exist or is stateless", def.name, e.index));
         }
     }
-    const BodySnapshot& body = bodyOf(readBodies(id), def.body);
+    const std::vector<BodySnapshot> bodies = readBodies(id);
+    const BodySnapshot& body = bodyOf(bodies, def.body);
     FireState f;
     f.def = def;
     f.strength = def.strength;

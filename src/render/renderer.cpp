@@ -152,7 +152,9 @@ gpu::Buffer vertexBuffer(gpu::Device& d, const std::vector<MeshVertex>& vertices
     gpu::Buffer b = gpu::createBuffer(d, std::max<std::size_t>(vertices.size(), 1) * sizeof(MeshVertex),
                                       VK_BUFFER_USAGE_VERTEX_BUFFER_BIT,
                                       VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
-    std::memcpy(b.mapped, vertices.data(), vertices.size() * sizeof(MeshVertex));
+    if (!vertices.empty()) {
+        std::memcpy(b.mapped, vertices.data(), vertices.size() * sizeof(MeshVertex));
+    }
     return b;
 }
 
@@ -254,7 +256,7 @@ void prepareBodies(Renderer& r) {
             gpu::destroyBuffer(*r.device, r.dynamicMesh);
         }
         r.dynamicMesh = vertexBuffer(*r.device, vertices);
-    } else {
+    } else if (bytes > 0) {
         std::memcpy(r.dynamicMesh.mapped, vertices.data(), bytes);
     }
     r.dynamicVertices = static_cast<std::uint32_t>(vertices.size());

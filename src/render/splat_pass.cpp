@@ -46,8 +46,10 @@ void prepareSplats(Renderer& r, float dt) {
     reserve(r, total);
     auto* out = static_cast<SplatInstance*>(r.splatBuffer.mapped);
     for (const SplatFluid& f : r.fluids) {
-        std::memcpy(out, f.instances.data(), f.instances.size() * sizeof(SplatInstance));
-        out += f.instances.size();
+        if (!f.instances.empty()) {
+            std::memcpy(out, f.instances.data(), f.instances.size() * sizeof(SplatInstance));
+            out += f.instances.size();
+        }
     }
     r.splatCount = static_cast<std::uint32_t>(total);
     r.stats.splats = total;

@@ -562,6 +562,18 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
         changed |= ImGui::ColorEdit3("colour", &fluid.colour.x);
         if (changed) setFluidRender(rid, fluid);
     }
+    for (std::uint32_t f = 1; f <= fluidCount(s.world); ++f) {
+        ImGui::PushID(int(1000 + f));
+        const FluidDef& def = fluidDef(s.world, FluidId{f});
+        if (ImGui::CollapsingHeader(fmt::format("fluid {} '{}' solver", f, def.name).c_str())) {
+            int iterations = int(def.iterations);
+            float baumgarte = def.baumgarte;
+            bool changed = ImGui::SliderInt("iterations", &iterations, 1, 16);
+            changed |= ImGui::SliderFloat("baumgarte", &baumgarte, 0.0f, 1.0f);
+            if (changed) setFluidSolver(s.world, FluidId{f}, std::uint32_t(iterations), baumgarte);
+        }
+        ImGui::PopID();
+    }
     for (std::uint32_t i = 0; i < s.emitters.size(); ++i) {
         EmitterDef& e = s.emitters[i];
         ImGui::PushID(int(i));

@@ -166,6 +166,11 @@ void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockDef& block);
 /// Adds a jet; its start time is world time.
 void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
 
+/// Changes a fluid's solver settings from the next step on (the viewer's
+/// panel): iterations (1 to 16) and baumgarte (in [0, 1]) as in FluidDef.
+/// Throws Error, changing nothing, for values FluidDef rejects.
+void setFluidSolver(WorldId world, FluidId fluid, std::uint32_t iterations, float baumgarte);
+
 /// Where a 2D jet's nozzle is now (m, world) and the angle (rad) of the frame
 /// its aim is measured in: its body's, or 0 without one.
 struct FluidJetPose {

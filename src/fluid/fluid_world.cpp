@@ -445,6 +445,16 @@ fluid::Jet& jetFromIndex(fluid::FluidState& f, std::uint32_t jet) {
 
 }  // namespace
 
+void setFluidSolver(WorldId id, FluidId fluidId, std::uint32_t iterations, float baumgarte) {
+    fluid::FluidState& f = fluid::fluidFromId(worldFromId(id), fluidId);
+    FluidDef def = f.def;
+    def.iterations = iterations;
+    def.baumgarte = baumgarte;
+    validateFluidDef(def);
+    f.def.iterations = iterations;
+    f.def.baumgarte = baumgarte;
+}
+
 void aimFluidJet(WorldId id, FluidId fluidId, std::uint32_t jet, float angle) {
     if (!std::isfinite(angle)) throw Error("aimFluidJet: the angle must be finite");
     fluid::Jet& j = jetFromIndex(fluid::fluidFromId(worldFromId(id), fluidId), jet);

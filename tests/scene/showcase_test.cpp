@@ -1,6 +1,6 @@
 // The showcase level plays by itself (scenes/showcase.toml): within the
-// render's 9 s the cannon puts out every fire, the burning crate leaves the
-// ledge and the gate swings open. These are the level's design goals, so the
+// render's 9 s the cannon puts out every fire, the burning crate and the box
+// beside it leave the ledge and the gate swings open. These are the level's design goals, so the
 // bounds are generous: any one failing means the level no longer plays.
 #include <spindrift/fires.h>
 #include <spindrift/scene.h>
@@ -35,10 +35,12 @@ TEST(Showcase, PlaysByItself) {
     for (std::uint32_t f = 1; f <= 3; ++f) {
         EXPECT_EQ(fireStrength(w, FireId{f}), 0.0f) << "fire " << f << " still burns";
     }
-    // The ledge spans x 5.0..6.2 with its top at y 1.1: the crate is off it.
-    const BodySnapshot crate = named(readBodies(w), "crate");
-    EXPECT_TRUE(crate.position.x > 6.3f || crate.position.y < 0.9f)
-        << "crate at " << crate.position.x << ", " << crate.position.y;
+    // The ledge spans x 5.0..6.2 with its top at y 1.1: both crates are off it.
+    for (const char* name : {"crate", "box"}) {
+        const BodySnapshot crate = named(readBodies(w), name);
+        EXPECT_TRUE(crate.position.x > 6.3f || crate.position.y < 0.9f)
+            << name << " at " << crate.position.x << ", " << crate.position.y;
+    }
     EXPECT_GT(gateOpen, 0.5f) << "the gate never opened (rad)";
     destroyWorld(w);
 }

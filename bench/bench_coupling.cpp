@@ -16,6 +16,8 @@
 // solve_ms (fluid passes, which include the body contacts), substeps.
 #include <spindrift/world.h>
 
+#include "bench_util.h"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -30,13 +32,7 @@ constexpr float kSpacing = 0.02f;
 constexpr int kSteps = 60;
 constexpr std::uint32_t kParticles = 30000;
 
-ColliderDef wall(glm::vec3 point, glm::vec3 normal) {
-    ColliderDef c;
-    c.kind = ColliderKind::Plane;
-    c.position = point;
-    c.normal = normal;
-    return c;
-}
+using bench::wall;
 
 /// crates < 0: no bodies at all, the tank of plane colliders (bench_fluid's).
 WorldId makeWorld(int crates, std::uint32_t threads) {

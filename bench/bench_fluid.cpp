@@ -16,6 +16,8 @@
 // integrate_ms).
 #include <spindrift/world.h>
 
+#include "bench_util.h"
+
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -30,13 +32,7 @@ using namespace spindrift;
 constexpr float kSpacing = 0.02f;
 constexpr int kSteps = 30;
 
-ColliderDef wall(glm::vec3 point, glm::vec3 normal) {
-    ColliderDef c;
-    c.kind = ColliderKind::Plane;
-    c.position = point;
-    c.normal = normal;
-    return c;
-}
+using bench::wall;
 
 WorldId makeWorld(std::uint32_t dimension, std::uint32_t particles, std::uint32_t threads) {
     WorldDef wd;

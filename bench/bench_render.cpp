@@ -52,6 +52,19 @@ void report(benchmark::State& state, RendererId r) {
     state.counters["splats"] = static_cast<double>(s.splats);
 }
 
+// The measured loop: renderFrame of `world` drawn as `def`, then the last
+// frame's per-pass times as counters.
+void measureFrames(benchmark::State& state, WorldId world, const RenderDef& def) {
+    RendererId r = createRenderer(world, def);
+    renderFrame(r);  // warm-up: first-use costs
+    for (auto _ : state) {
+        Frame f = renderFrame(r);
+        benchmark::DoNotOptimize(f.rgba.data());
+    }
+    report(state, r);
+    destroyRenderer(r);
+}
+
 void BM_Sprites(benchmark::State& state) {
     try {
         const auto n = static_cast<std::uint32_t>(state.range(0));
@@ -79,14 +92,7 @@ void BM_Sprites(benchmark::State& state) {
         for (int i = 0; i < 90; ++i) {
             stepWorld(w, 1.0f / 60.0f);
         }
-        RendererId r = createRenderer(w, fullHd(false));
-        renderFrame(r);  // warm-up: first-use costs
-        for (auto _ : state) {
-            Frame f = renderFrame(r);
-            benchmark::DoNotOptimize(f.rgba.data());
-        }
-        report(state, r);
-        destroyRenderer(r);
+        measureFrames(state, w, fullHd(false));
         destroyWorld(w);
     } catch (const std::exception& e) {
         state.SkipWithError(e.what());
@@ -118,14 +124,7 @@ void BM_FluidSplats(benchmark::State& state) {
         def.camera.target = {0.0f, 0.5f, 0.0f};
         def.camera.eye = {0.0f, 0.5f, 5.0f};
         def.fluid = FluidRenderDef::upTo(static_cast<int>(state.range(0)));
-        RendererId r = createRenderer(w, def);
-        renderFrame(r);
-        for (auto _ : state) {
-            Frame f = renderFrame(r);
-            benchmark::DoNotOptimize(f.rgba.data());
-        }
-        report(state, r);
-        destroyRenderer(r);
+        measureFrames(state, w, def);
         destroyWorld(w);
     } catch (const std::exception& e) {
         state.SkipWithError(e.what());

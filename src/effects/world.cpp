@@ -248,7 +248,12 @@ void changeEmitter(World& w, EmitterId id, const EmitterDef& def) {
     const std::uint32_t index = id.index - 1;
     const kernels::EmitterParams params =
         makeEmitterParams(def, w.def.seed, index, e.params.forceMask, e.params.colliderMask);
-    if (w.gpu) {
+    // The device copy is rewritten (after waiting for the steps in flight)
+    // only when the kernel parameters change: a rate lives in the host's
+    // birth schedule, and fires set rates and positions every step.
+    // EmitterParams is 4-byte fields without padding (std430, checked in
+    // kernel_layout.cpp), so bytes compare as values.
+    if (w.gpu && std::memcmp(&params, &e.params, sizeof(params)) != 0) {
         gpu::setEmitterParams(*w.gpu, index, params);
     }
     e.def = def;

@@ -1,9 +1,8 @@
-// Rigid bodies in a world: the Box2D world, creating and destroying bodies and
-// joints, reading them back, and the Box2D step at the end of stepWorld().
+// Rigid bodies on the Box2D side: the Box2D world, creating and destroying
+// bodies and joints, reading them back, the Box2D step, and the jets' mounts.
+// The public API by world id over these is src/world/body_api.cpp.
 #include "coupling/body_world.h"
 
-#include "effects/world_internal.h"
-#include "fluid/fluid_state.h"
 #include "kernels/fluid.glsl"
 
 #include <fmt/format.h>
@@ -197,11 +196,6 @@ void addFixture(b2Body* body, const BodyDef& def, const BodyShapeDef& s, std::si
     body->CreateFixture(&fd);
 }
 
-BodyWorld& bodyWorld(World& w) {
-    if (!w.bodies) w.bodies.reset(new BodyWorld(w.def.bodyGravity));
-    return *w.bodies;
-}
-
 JointSlot& jointFromId(BodyWorld& b, JointId id) {
     if (id.index == 0 || id.index > b.joints.size() || b.joints[id.index - 1].joint == nullptr) {
         throw Error(fmt::format("joint id {} does not exist in this world", id.index));
@@ -247,8 +241,6 @@ BodyWorld::BodyWorld(glm::vec2 g) : gravity(g) {
     world.SetAllowSleeping(false);
 }
 
-void BodyWorldDeleter::operator()(BodyWorld* b) const { delete b; }
-
 BodySlot& bodyFromId(BodyWorld& b, BodyId id) {
     if (id.index == 0 || id.index > b.bodies.size() || b.bodies[id.index - 1].body == nullptr) {
         throw Error(fmt::format("body id {} does not exist in this world", id.index));
@@ -267,14 +259,14 @@ void beginBodyStep(BodyWorld& b, float dt) {
 
 void stepBodies(BodyWorld& b, float dt) { b.world.Step(dt, kVelocityIterations, kPositionIterations); }
 
-fluid::JetMount jetMount(World& w, BodyId id) {
+fluid::JetMount jetMount(const BodyWorld* bodies, BodyId id) {
     fluid::JetMount m;
     if (id.index == 0) return m;
-    if (!w.bodies || id.index > w.bodies->bodies.size() || w.bodies->bodies[id.index - 1].body == nullptr) {
+    if (bodies == nullptr || id.index > bodies->bodies.size() || bodies->bodies[id.index - 1].body == nullptr) {
         m.active = false;
         return m;
     }
-    const b2Body& body = *w.bodies->bodies[id.index - 1].body;
+    const b2Body& body = *bodies->bodies[id.index - 1].body;
     m.origin = fromB2(body.GetPosition());
     m.angle = body.GetAngle();
     m.centre = fromB2(body.GetWorldCenter());
@@ -283,21 +275,22 @@ fluid::JetMount jetMount(World& w, BodyId id) {
     return m;
 }
 
-void applyRecoil(World& w, BodyId id, const fluid::JetMount& m) {
+void applyRecoil(BodyWorld* bodies, BodyId id, const fluid::JetMount& m) {
     if (id.index == 0 || !m.active || (m.recoil.x == 0.0f && m.recoil.y == 0.0f)) return;
-    b2Body* body = w.bodies->bodies[id.index - 1].body;
+    b2Body* body = bodies->bodies[id.index - 1].body;
     if (body->GetType() == b2_dynamicBody) body->ApplyLinearImpulse(toB2(m.recoil), toB2(m.nozzle), true);
 }
 
-void checkJetBody(World& w, const FluidJetDef& jet) {
+void checkJetBody(BodyWorld* bodies, const FluidJetDef& jet) {
     if (jet.body.index == 0) return;
-    if (!w.bodies) throw Error(fmt::format("a jet rides body id {}, but the world has no bodies", jet.body.index));
-    bodyFromId(*w.bodies, jet.body);
+    if (bodies == nullptr) {
+        throw Error(fmt::format("a jet rides body id {}, but the world has no bodies", jet.body.index));
+    }
+    bodyFromId(*bodies, jet.body);
 }
 
 }  // namespace coupling
 
-using coupling::BodyWorld;
 
 BodyShapeDef boxShape(glm::vec2 halfExtents, glm::vec2 offset, float angle) {
     BodyShapeDef s;
@@ -358,10 +351,9 @@ void validateBodyDef(const BodyDef& def) {
     for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::validateShape(def, i + 1, def.shapes[i]);
 }
 
-BodyId createBody(WorldId id, const BodyDef& def) {
-    World& w = worldFromId(id);
-    validateBodyDef(def);
-    BodyWorld& b = coupling::bodyWorld(w);
+namespace coupling {
+
+BodyId createBody(BodyWorld& b, const BodyDef& def) {
     b2BodyDef bd;
     bd.type = def.type == BodyType::Static ? b2_staticBody : def.type == BodyType::Kinematic ? b2_kinematicBody
                                                                                                : b2_dynamicBody;
@@ -379,28 +371,26 @@ BodyId createBody(WorldId id, const BodyDef& def) {
     return {static_cast<std::uint32_t>(b.bodies.size())};
 }
 
-void destroyBody(WorldId id, BodyId bodyId) {
-    World& w = worldFromId(id);
-    if (!w.bodies) throw Error(fmt::format("body id {} does not exist in this world", bodyId.index));
-    coupling::BodySlot& slot = coupling::bodyFromId(*w.bodies, bodyId);
+void destroyBody(BodyWorld* bodies, BodyId bodyId) {
+    if (!bodies) throw Error(fmt::format("body id {} does not exist in this world", bodyId.index));
+    coupling::BodySlot& slot = coupling::bodyFromId(*bodies, bodyId);
     // Box2D destroys the body's joints with it; forget them first.
-    for (coupling::JointSlot& j : w.bodies->joints) {
+    for (coupling::JointSlot& j : bodies->joints) {
         if (j.joint != nullptr && (j.joint->GetBodyA() == slot.body || j.joint->GetBodyB() == slot.body)) {
             j.joint = nullptr;
         }
     }
-    w.bodies->world.DestroyBody(slot.body);
+    bodies->world.DestroyBody(slot.body);
     slot.body = nullptr;
-    w.bodies->alive -= 1;
+    bodies->alive -= 1;
 }
 
-JointId createJoint(WorldId id, const JointDef& def) {
-    World& w = worldFromId(id);
+JointId createJoint(BodyWorld* bodies, const JointDef& def) {
     const std::string name = fmt::format("joint '{}'", def.name);
-    if (!w.bodies) throw Error(fmt::format("{}: the world has no bodies", name));
+    if (!bodies) throw Error(fmt::format("{}: the world has no bodies", name));
     if (def.bodyA.index == def.bodyB.index) throw Error(fmt::format("{}: joins a body to itself", name));
-    b2Body* a = coupling::bodyFromId(*w.bodies, def.bodyA).body;
-    b2Body* b = coupling::bodyFromId(*w.bodies, def.bodyB).body;
+    b2Body* a = coupling::bodyFromId(*bodies, def.bodyA).body;
+    b2Body* b = coupling::bodyFromId(*bodies, def.bodyB).body;
     if (!coupling::finite(def.anchor) || !coupling::finite(def.axis) || !std::isfinite(def.lower) ||
         !std::isfinite(def.upper) || !std::isfinite(def.motorSpeed) || !std::isfinite(def.maxMotor)) {
         throw Error(fmt::format("{}: anchor, axis, limits and motor must be finite", name));
@@ -421,7 +411,7 @@ JointId createJoint(WorldId id, const JointDef& def) {
         jd.motorSpeed = def.motorSpeed;
         jd.maxMotorTorque = def.maxMotor;
         jd.collideConnected = def.collideConnected;
-        joint = w.bodies->world.CreateJoint(&jd);
+        joint = bodies->world.CreateJoint(&jd);
         break;
     }
     case JointKind::Prismatic: {
@@ -435,70 +425,66 @@ JointId createJoint(WorldId id, const JointDef& def) {
         jd.motorSpeed = def.motorSpeed;
         jd.maxMotorForce = def.maxMotor;
         jd.collideConnected = def.collideConnected;
-        joint = w.bodies->world.CreateJoint(&jd);
+        joint = bodies->world.CreateJoint(&jd);
         break;
     }
     case JointKind::Weld: {
         b2WeldJointDef jd;
         jd.Initialize(a, b, coupling::toB2(def.anchor));
         jd.collideConnected = def.collideConnected;
-        joint = w.bodies->world.CreateJoint(&jd);
+        joint = bodies->world.CreateJoint(&jd);
         break;
     }
     default: throw Error(fmt::format("{}: unknown joint kind", name));
     }
-    w.bodies->joints.push_back({joint, def});
-    return {static_cast<std::uint32_t>(w.bodies->joints.size())};
+    bodies->joints.push_back({joint, def});
+    return {static_cast<std::uint32_t>(bodies->joints.size())};
 }
 
-void destroyJoint(WorldId id, JointId jointId) {
-    World& w = worldFromId(id);
-    if (!w.bodies) throw Error(fmt::format("joint id {} does not exist in this world", jointId.index));
-    coupling::JointSlot& j = coupling::jointFromId(*w.bodies, jointId);
-    w.bodies->world.DestroyJoint(j.joint);
+void destroyJoint(BodyWorld* bodies, JointId jointId) {
+    if (!bodies) throw Error(fmt::format("joint id {} does not exist in this world", jointId.index));
+    coupling::JointSlot& j = coupling::jointFromId(*bodies, jointId);
+    bodies->world.DestroyJoint(j.joint);
     j.joint = nullptr;
 }
 
 namespace {
-b2Body& liveBody(WorldId id, BodyId bodyId) {
-    World& w = worldFromId(id);
-    if (!w.bodies) throw Error(fmt::format("body id {} does not exist in this world", bodyId.index));
-    return *coupling::bodyFromId(*w.bodies, bodyId).body;
+b2Body& liveBody(BodyWorld* bodies, BodyId bodyId) {
+    if (!bodies) throw Error(fmt::format("body id {} does not exist in this world", bodyId.index));
+    return *coupling::bodyFromId(*bodies, bodyId).body;
 }
 }  // namespace
 
-void setBodyTransform(WorldId id, BodyId bodyId, glm::vec2 position, float angle) {
+void setBodyTransform(BodyWorld* bodies, BodyId bodyId, glm::vec2 position, float angle) {
     if (!coupling::finite(position) || !std::isfinite(angle)) throw Error("setBodyTransform: not finite");
-    liveBody(id, bodyId).SetTransform(coupling::toB2(position), angle);
+    liveBody(bodies, bodyId).SetTransform(coupling::toB2(position), angle);
 }
 
-void setBodyVelocity(WorldId id, BodyId bodyId, glm::vec2 linearVelocity, float angularVelocity) {
+void setBodyVelocity(BodyWorld* bodies, BodyId bodyId, glm::vec2 linearVelocity, float angularVelocity) {
     if (!coupling::finite(linearVelocity) || !std::isfinite(angularVelocity)) {
         throw Error("setBodyVelocity: not finite");
     }
-    b2Body& body = liveBody(id, bodyId);
+    b2Body& body = liveBody(bodies, bodyId);
     body.SetLinearVelocity(coupling::toB2(linearVelocity));
     body.SetAngularVelocity(angularVelocity);
 }
 
-void applyBodyImpulse(WorldId id, BodyId bodyId, glm::vec2 impulse, glm::vec2 point) {
+void applyBodyImpulse(BodyWorld* bodies, BodyId bodyId, glm::vec2 impulse, glm::vec2 point) {
     if (!coupling::finite(impulse) || !coupling::finite(point)) throw Error("applyBodyImpulse: not finite");
-    liveBody(id, bodyId).ApplyLinearImpulse(coupling::toB2(impulse), coupling::toB2(point), true);
+    liveBody(bodies, bodyId).ApplyLinearImpulse(coupling::toB2(impulse), coupling::toB2(point), true);
 }
 
-float bodyMass(WorldId id, BodyId bodyId) { return liveBody(id, bodyId).GetMass(); }
+float bodyMass(BodyWorld* bodies, BodyId bodyId) { return liveBody(bodies, bodyId).GetMass(); }
 
-std::uint32_t bodyCount(WorldId id) {
-    World& w = worldFromId(id);
-    return w.bodies ? w.bodies->alive : 0u;
+std::uint32_t bodyCount(const BodyWorld* bodies) {
+    return bodies ? bodies->alive : 0u;
 }
 
-std::vector<BodySnapshot> readBodies(WorldId id) {
-    World& w = worldFromId(id);
+std::vector<BodySnapshot> readBodies(const BodyWorld* bodies) {
     std::vector<BodySnapshot> out;
-    if (!w.bodies) return out;
-    for (std::size_t i = 0; i < w.bodies->bodies.size(); ++i) {
-        const coupling::BodySlot& slot = w.bodies->bodies[i];
+    if (!bodies) return out;
+    for (std::size_t i = 0; i < bodies->bodies.size(); ++i) {
+        const coupling::BodySlot& slot = bodies->bodies[i];
         if (slot.body == nullptr) continue;
         BodySnapshot s;
         s.id = {static_cast<std::uint32_t>(i + 1)};
@@ -515,5 +501,7 @@ std::vector<BodySnapshot> readBodies(WorldId id) {
     }
     return out;
 }
+
+}  // namespace coupling
 
 }  // namespace spindrift

@@ -1,11 +1,12 @@
 // The world's rigid bodies: a Box2D 2.4 world, our slots for bodies and
 // joints (ids are 1-based creation serials, never reused), and each body's
-// shapes as the fluid sees them. Box2D is only ever called from the thread
-// that calls the public API (DESIGN.md: coupling only at step boundaries).
+// shapes as the fluid sees them (fluid::LocalShape). Box2D is only ever called
+// from the thread that calls the public API (docs/design.md: coupling only at
+// step boundaries). A null BodyWorld* is a world that has no bodies yet.
 #pragma once
 
-#include "coupling/body_contacts.h"
-#include "effects/world_internal.h"
+#include "fluid/body_contacts.h"
+#include "fluid/fluid_state.h"
 
 #include <spindrift/bodies.h>
 
@@ -15,22 +16,9 @@
 #include <memory>
 #include <vector>
 
-namespace spindrift {
-struct World;
-namespace fluid {
-struct JetMount;
-}
-}  // namespace spindrift
-
 namespace spindrift::coupling {
 
-/// One shape of a body in its frame relative to the body's origin (m):
-/// boxes become polygons and chains their segments.
-struct LocalShape {
-    std::uint32_t kind = 0;  // kernels::SD_BODY_SHAPE_*
-    std::vector<glm::vec2> vertices;  // polygon: counter-clockwise; segment: 2 points; circle: the centre
-    float radius = 0.0f;              // circle (m)
-};
+using fluid::LocalShape;
 
 struct BodySlot {
     b2Body* body = nullptr;  // null once destroyed
@@ -54,7 +42,7 @@ struct BodyWorld {
     std::vector<JointSlot> joints;
     std::uint32_t alive = 0;
     /// Scratch of the fluid step being solved (one fluid at a time).
-    FluidBodyStep fluidStep;
+    fluid::FluidBodyStep fluidStep;
 };
 
 /// The body of `id`, or throws Error for one that does not exist.
@@ -68,10 +56,25 @@ void stepBodies(BodyWorld& bodies, float dt);
 
 /// Where a jet riding `body` is this step (index 0: fixed in the world; a
 /// destroyed body: inactive).
-fluid::JetMount jetMount(World& world, BodyId body);
+fluid::JetMount jetMount(const BodyWorld* bodies, BodyId body);
 /// Gives a jet's body the recoil of the particles it emitted.
-void applyRecoil(World& world, BodyId body, const fluid::JetMount& mount);
+void applyRecoil(BodyWorld* bodies, BodyId body, const fluid::JetMount& mount);
 /// Throws Error if a jet names a body the world does not have.
-void checkJetBody(World& world, const FluidJetDef& jet);
+void checkJetBody(BodyWorld* bodies, const FluidJetDef& jet);
+
+// The public API of include/spindrift/bodies.h on one world's bodies (the
+// wrappers by world id are src/world/body_api.cpp). Those taking a pointer
+// throw Error naming the id when it is null (no bodies yet).
+/// Adds a body from a validated definition (validateBodyDef).
+BodyId createBody(BodyWorld& bodies, const BodyDef& def);
+void destroyBody(BodyWorld* bodies, BodyId body);
+JointId createJoint(BodyWorld* bodies, const JointDef& def);
+void destroyJoint(BodyWorld* bodies, JointId joint);
+void setBodyTransform(BodyWorld* bodies, BodyId body, glm::vec2 position, float angle);
+void setBodyVelocity(BodyWorld* bodies, BodyId body, glm::vec2 linearVelocity, float angularVelocity);
+void applyBodyImpulse(BodyWorld* bodies, BodyId body, glm::vec2 impulse, glm::vec2 point);
+float bodyMass(BodyWorld* bodies, BodyId body);
+std::uint32_t bodyCount(const BodyWorld* bodies);
+std::vector<BodySnapshot> readBodies(const BodyWorld* bodies);
 
 }  // namespace spindrift::coupling

@@ -9,9 +9,9 @@
 
 namespace spindrift::coupling {
 
-std::vector<ExchangeRecord> gatherExchange(const FluidBodyStep& step) {
+std::vector<ExchangeRecord> gatherExchange(const fluid::FluidBodyStep& step) {
     std::vector<ExchangeRecord> records;
-    for (const StepBody& b : step.bodies) {
+    for (const fluid::StepBody& b : step.bodies) {
         if (b.invMass > 0.0f && (b.linearImpulse != glm::vec2(0.0f) || b.angularImpulse != 0.0f)) {
             records.push_back({b.slot, b.linearImpulse, b.angularImpulse});
         }

@@ -1,5 +1,5 @@
 // The exchange of impulses between a fluid and the rigid bodies at the end of
-// a fluid step (DESIGN.md: coupling only at step boundaries, through explicit
+// a fluid step (docs/design.md: coupling only at step boundaries, through explicit
 // records): what the particles gave each body, applied with Box2D's public
 // API on the calling thread.
 #pragma once
@@ -9,10 +9,13 @@
 #include <cstdint>
 #include <vector>
 
+namespace spindrift::fluid {
+struct FluidBodyStep;
+}
+
 namespace spindrift::coupling {
 
 struct BodyWorld;
-struct FluidBodyStep;
 
 /// The total impulse one fluid step gave one body. 16 bytes.
 struct ExchangeRecord {
@@ -23,7 +26,7 @@ struct ExchangeRecord {
 static_assert(sizeof(ExchangeRecord) == 16);
 
 /// One record per dynamic body the step touched, in creation order.
-std::vector<ExchangeRecord> gatherExchange(const FluidBodyStep& step);
+std::vector<ExchangeRecord> gatherExchange(const fluid::FluidBodyStep& step);
 /// Applies the records to the Box2D bodies.
 void applyExchange(BodyWorld& bodies, const std::vector<ExchangeRecord>& records);
 

@@ -1,6 +1,7 @@
 // One step of one state-preserving emitter on the CPU: a named list of passes.
-#include "effects/cpu_kernels.h"
-#include "effects/world_internal.h"
+#include "effects/emitter_step.h"
+
+#include "particles/birth_schedule.h"
 
 #include <bit>
 #include <cmath>
@@ -83,63 +84,9 @@ void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& s
 
 }  // namespace
 
-// Bursts whose time falls in [t0, t1) in definition order, then the rate's
-// particles, each born at the moment the running count crosses an integer (so
-// emission does not band into one sheet per frame).
-BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt) {
-    BirthSchedule s;
-    s.t0 = t0;
-    s.t1 = t0 + dt;
-    s.dt = dt;
-    s.rate = e.def.rate;
-    s.carry = e.emissionCarry;
-    for (const BurstDef& b : e.def.bursts) {
-        if (b.time >= s.t0 && b.time < s.t1) {
-            s.bursts.push_back({b.count, static_cast<float>(s.t1 - b.time)});
-        }
-    }
-    double activeEnd = e.def.duration >= 0.0f ? std::min<double>(s.t1, e.def.duration) : s.t1;
-    double activeDt = std::max(0.0, activeEnd - t0);
-    if (e.def.rate > 0.0f && activeDt > 0.0) {
-        double owed = e.emissionCarry + e.def.rate * activeDt;
-        auto count = static_cast<std::uint64_t>(std::floor(owed));
-        s.rateCount = count;
-        e.emissionCarry = owed - static_cast<double>(count);
-    }
-    return s;
-}
-
-std::uint64_t BirthSchedule::total() const {
-    std::uint64_t n = rateCount;
-    for (const BurstRun& b : bursts) {
-        n += b.count;
-    }
-    return n;
-}
-
-float BirthSchedule::rateAge(std::uint64_t j) const {
-    double bornAfterStart = (static_cast<double>(j) + 1.0 - carry) / rate;
-    return static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, dt));
-}
-
-std::vector<float> BirthSchedule::ages() const {
-    std::vector<float> out;
-    out.reserve(total());
-    for (const BurstRun& b : bursts) {
-        out.insert(out.end(), b.count, b.age);
-    }
-    for (std::uint64_t j = 0; j < rateCount; ++j) {
-        out.push_back(rateAge(j));
-    }
-    return out;
-}
-
-void stepEmitter(World& w, std::uint32_t index, float dt, StepStats& stats, StepEvents& events) {
-    EmitterState& e = *w.emitters[index];
+void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterState& e, std::uint32_t index,
+                 double time, float dt, StepStats& stats, StepEvents& events) {
     const bool recordEvents = events.capacity > 0;
-    const kernels::KernelContext ctx{w.forces.data(), static_cast<std::uint32_t>(w.forces.size()),
-                                     w.colliders.data(), static_cast<std::uint32_t>(w.colliders.size()),
-                                     &w.fields};
     const kernels::EmitterParams& params = e.params;
     const bool spawnMode = e.def.lifecycle == Lifecycle::Spawn;
     ParticleArrays& a = e.particles;
@@ -148,7 +95,7 @@ void stepEmitter(World& w, std::uint32_t index, float dt, StepStats& stats, Step
     // Update: age, forces, integration, collisions and over-life values of
     // every slot; recycle slots are born and re-born here.
     {
-        w.pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
+        pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
             for (std::size_t i = begin; i < end; ++i) {
                 if (spawnMode && a.age[i] < 0.0f) {
@@ -172,14 +119,14 @@ void stepEmitter(World& w, std::uint32_t index, float dt, StepStats& stats, Step
     // Emission (spawn mode): births owed this step take free slots; beyond
     // capacity they are dropped and counted, never overwriting live particles.
     if (spawnMode) {
-        std::vector<float> ages = scheduleBirths(e, w.time, dt).ages();
+        std::vector<float> ages = scheduleBirths(e, time, dt).ages();
         std::size_t count = std::min(ages.size(), e.freeSlots.size());
         stats.clamped += ages.size() - count;
         std::vector<std::uint32_t> slots(e.freeSlots.end() - static_cast<std::ptrdiff_t>(count), e.freeSlots.end());
         e.freeSlots.resize(e.freeSlots.size() - count);
         const std::uint32_t firstSerial = e.nextSerial;
         std::vector<ChunkResult> birthChunks(WorkerPool::chunkCount(count, kChunk));
-        w.pool.forChunks(count, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
+        pool.forChunks(count, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             for (std::size_t k = begin; k < end; ++k) {
                 // The slot at the back of the free list is used first.
                 std::uint32_t slot = slots[count - 1 - k];

@@ -1,7 +1,7 @@
 // Stateless emitters: the live particles at time t from the closed form, with
 // nothing stored (GPU particle talk, "Stateless").
-#include "effects/cpu_kernels.h"
-#include "effects/params.h"
+#include "particles/cpu_kernels.h"
+#include "particles/params.h"
 #include "effects/stateless.h"
 
 #include <spindrift/world.h>

@@ -2,10 +2,10 @@
 // constraints solved after the fluid's, the particle a small rotationless body
 // of radius spacing / 2; then position integration, which puts back any
 // particle whose path still crossed a collider, so none ever passes through.
-#include "coupling/body_contacts.h"
-#include "effects/cpu_kernels.h"
-#include "effects/world_internal.h"
+#include "fluid/body_contacts.h"
+#include "fluid/body_link.h"
 #include "fluid/fluid_state.h"
+#include "particles/cpu_kernels.h"
 
 #include <algorithm>
 #include <cmath>
@@ -49,7 +49,7 @@ kernels::FluidSurface flatten(kernels::FluidSurface s) {
 
 /// Calls fn(surface) for every collider surface at x.
 template <int D, class Fn>
-void forEachSurface(const World& world, const FluidState& f, glm::vec3 x, Fn&& fn) {
+void forEachSurface(const StepContext& world, const FluidState& f, glm::vec3 x, Fn&& fn) {
     for (const kernels::ColliderParams& c : world.colliders) {
         if (isFluidCollider(c)) fn(flatten<D>(kernels::fluidColliderSurface(c, x)));
     }
@@ -61,7 +61,7 @@ void forEachSurface(const World& world, const FluidState& f, glm::vec3 x, Fn&& f
 }  // namespace
 
 template <int D>
-void findContacts(WorkerPool& pool, FluidState& f, const World& world, float dt) {
+void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, float dt) {
     Particles<D>& p = f.particles<D>();
     f.contacts.resize(WorkerPool::chunkCount(p.size(), kParticleChunk));
     for (auto& list : f.contacts) list.clear();
@@ -107,12 +107,12 @@ void solveContacts(WorkerPool& pool, FluidState& f, float dt) {
         }
     });
     if constexpr (D == 2) {
-        if (f.bodies != nullptr) coupling::solveBodyContacts(pool, *f.bodies, f, dt);
+        if (f.bodies != nullptr) solveBodyContacts(pool, *f.bodies, f, dt);
     }
 }
 
 template <int D>
-void integratePositions(WorkerPool& pool, FluidState& f, const World& world, float dt, FluidStepStats& stats) {
+void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt, FluidStepStats& stats) {
     Particles<D>& p = f.particles<D>();
     std::vector<float> maxSpeed(WorkerPool::chunkCount(p.size(), kParticleChunk), 0.0f);
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
@@ -148,7 +148,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const World& world, flo
                 // point inside goes out through the nearest surface. Position
                 // only, so momentum stays with the contact impulses.
                 if (f.bodies != nullptr) {
-                    const glm::vec2 x = coupling::pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, glm::vec2(x1));
+                    const glm::vec2 x = pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, glm::vec2(x1));
                     x1 = glm::vec3(x, 0.0f);
                 }
             }
@@ -163,11 +163,11 @@ void integratePositions(WorkerPool& pool, FluidState& f, const World& world, flo
     stats.maxSpeed = fastest;
 }
 
-template void findContacts<2>(WorkerPool&, FluidState&, const World&, float);
-template void findContacts<3>(WorkerPool&, FluidState&, const World&, float);
+template void findContacts<2>(WorkerPool&, FluidState&, const StepContext&, float);
+template void findContacts<3>(WorkerPool&, FluidState&, const StepContext&, float);
 template void solveContacts<2>(WorkerPool&, FluidState&, float);
 template void solveContacts<3>(WorkerPool&, FluidState&, float);
-template void integratePositions<2>(WorkerPool&, FluidState&, const World&, float, FluidStepStats&);
-template void integratePositions<3>(WorkerPool&, FluidState&, const World&, float, FluidStepStats&);
+template void integratePositions<2>(WorkerPool&, FluidState&, const StepContext&, float, FluidStepStats&);
+template void integratePositions<3>(WorkerPool&, FluidState&, const StepContext&, float, FluidStepStats&);
 
 }  // namespace spindrift::fluid

@@ -12,11 +12,9 @@
 #include <cstdint>
 #include <vector>
 
-namespace spindrift {
-struct World;
-namespace coupling {
+namespace spindrift::fluid {
 struct FluidBodyStep;
-}
+struct StepContext;
 }
 
 namespace spindrift::fluid {
@@ -135,9 +133,9 @@ struct FluidState {
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
     float lastSubstep = 0.0f;   // s, the substep the pressure was solved for
-    /// The rigid bodies near this 2D fluid during its step (src/coupling);
-    /// null outside stepFluid or when none are near.
-    coupling::FluidBodyStep* bodies = nullptr;
+    /// The rigid bodies near this 2D fluid during its step (body_contacts.h,
+    /// filled by src/coupling); null outside stepFluid or when none are near.
+    FluidBodyStep* bodies = nullptr;
     /// (particle id << 32 | body slot) of the last step's strikes, sorted: a
     /// drop that lands over two steps (the speculative contact slows it
     /// first) strikes once.
@@ -186,15 +184,15 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
 // The passes of one step, in order (fluid_step.cpp).
 template <int D> void buildGrid(WorkerPool& pool, FluidState& f);
 template <int D> void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats& stats);
-template <int D> void findContacts(WorkerPool& pool, FluidState& f, const World& world, float dt);
+template <int D> void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, float dt);
 /// Warm start and iterations; each sweep over the fluid constraints is
 /// followed by one over the contacts (slide 51: contacts after the fluid), so
 /// the walls' reactions reach the fluid within the step.
 template <int D> void solveConstraints(WorkerPool& pool, FluidState& f, float dt);
 template <int D> void solveContacts(WorkerPool& pool, FluidState& f, float dt);
-template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const World& world, float dt,
+template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt,
                                          FluidStepStats& stats);
 
-FluidStepStats stepFluid(World& world, FluidState& f, FluidId id, float dt);
+FluidStepStats stepFluid(const StepContext& world, FluidState& f, FluidId id, float dt);
 
 }  // namespace spindrift::fluid

@@ -1,9 +1,7 @@
-// One step of one constraint fluid: a named list of passes (DESIGN.md, the
+// One step of one constraint fluid: a named list of passes (docs/design.md, the
 // Sprinkle recipe of slides 12-13 and 35-51).
-#include "coupling/body_contacts.h"
-#include "coupling/body_world.h"
-#include "coupling/exchange.h"
-#include "effects/world_internal.h"
+#include "fluid/body_contacts.h"
+#include "fluid/body_link.h"
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
@@ -20,7 +18,7 @@ double msSince(Clock::time_point start) {
 }
 
 template <int D>
-void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
+void stepPasses(const StepContext& w, FluidState& f, float dt, FluidStepStats& stats) {
     WorkerPool& pool = w.pool;
     Particles<D>& p = f.particles<D>();
     auto t = Clock::now();
@@ -54,8 +52,8 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
         findContacts<D>(pool, f, w, dt);
         if constexpr (D == 2) {
             if (f.bodies != nullptr) {
-                coupling::beginSubstep(*f.bodies, f, f.g2, dt);
-                coupling::findBodyContacts(pool, *f.bodies, f, f.g2, dt);
+                beginSubstep(*f.bodies, f, f.g2, dt);
+                findBodyContacts(pool, *f.bodies, f, f.g2, dt);
             }
         }
         stats.contactsMs += msSince(t);
@@ -74,7 +72,7 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
     // first, so no particle ends inside where a body now is.
     {
         if constexpr (D == 2) {
-            if (f.bodies != nullptr) coupling::advanceBodies(*f.bodies, dt);
+            if (f.bodies != nullptr) advanceBodies(*f.bodies, dt);
         }
         integratePositions<D>(pool, f, w, dt, stats);
         stats.integrateMs += msSince(t);
@@ -84,11 +82,11 @@ void stepPasses(World& w, FluidState& f, float dt, FluidStepStats& stats) {
 // The step's strikes of fluid particles on bodies, as collision events on the
 // world's queue (the fires and the application read them there). A pair that
 // struck in the previous step or earlier in this one is not counted again.
-void addImpactEvents(World& w, FluidState& f, const coupling::FluidBodyStep& s, FluidId fluid) {
+void addImpactEvents(const StepContext& w, FluidState& f, const FluidBodyStep& s, FluidId fluid) {
     std::vector<ParticleEvent> events;
     std::vector<std::uint64_t> strikes;
-    for (const std::vector<coupling::BodyImpact>& chunk : s.impacts) {
-        for (const coupling::BodyImpact& impact : chunk) {
+    for (const std::vector<BodyImpact>& chunk : s.impacts) {
+        for (const BodyImpact& impact : chunk) {
             const std::uint64_t key = (std::uint64_t{impact.particle} << 32) | impact.body;
             if (std::binary_search(f.recentStrikes.begin(), f.recentStrikes.end(), key) ||
                 std::find(strikes.begin(), strikes.end(), key) != strikes.end()) {
@@ -113,15 +111,15 @@ void addImpactEvents(World& w, FluidState& f, const coupling::FluidBodyStep& s, 
 
 }  // namespace
 
-FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
+FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
     FluidStepStats stats;
     stats.fluid = id;
     // Emission: the jets' particles born during this step join before binning.
     // A jet on a body moves with it and gives it the recoil.
     std::vector<JetMount> mounts;
-    for (const Jet& jet : f.jets) mounts.push_back(coupling::jetMount(w, jet.def.body));
+    for (const Jet& jet : f.jets) mounts.push_back(w.bodies.jetMount(jet.def.body));
     stats.born = emitJets(f, w.time, dt, mounts);
-    for (std::size_t j = 0; j < f.jets.size(); ++j) coupling::applyRecoil(w, f.jets[j].def.body, mounts[j]);
+    for (std::size_t j = 0; j < f.jets.size(); ++j) w.bodies.applyRecoil(f.jets[j].def.body, mounts[j]);
     // Substeps: a particle may move at most kCourant h per substep, or it
     // would pass through its neighbours before any constraint sees them
     // (a dam break at 2 cm spacing and 60 Hz reaches 2 h per step and
@@ -138,10 +136,8 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as
     // local copies during the substeps, and given their impulses at the end.
-    f.bodies = nullptr;
-    if (w.bodies && coupling::gatherBodies(*w.bodies, f, dt, w.bodies->fluidStep)) {
-        f.bodies = &w.bodies->fluidStep;
-    } else {
+    f.bodies = w.bodies.gather(f, dt);
+    if (f.bodies == nullptr) {
         f.recentStrikes.clear();
     }
     for (int k = 0; k < substeps; ++k) {
@@ -153,7 +149,7 @@ FluidStepStats stepFluid(World& w, FluidState& f, FluidId id, float dt) {
     }
     if (f.bodies != nullptr) {
         addImpactEvents(w, f, *f.bodies, id);
-        coupling::applyExchange(*w.bodies, coupling::gatherExchange(*f.bodies));
+        w.bodies.exchange(*f.bodies);
         stats.bodyContacts = f.bodies->contactCount;
         f.bodies = nullptr;
     }

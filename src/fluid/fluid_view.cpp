@@ -1,10 +1,7 @@
 // Read-only access to a fluid for the renderer (see fluid_view.h).
 #include "fluid/fluid_view.h"
 
-#include "effects/cpu_kernels.h"
-#include "effects/world_internal.h"
-
-#include <fmt/format.h>
+#include "particles/cpu_kernels.h"
 
 namespace spindrift::fluid {
 
@@ -41,15 +38,9 @@ FluidView<D> viewFluid(const FluidState& f) {
 template FluidView<2> viewFluid<2>(const FluidState&);
 template FluidView<3> viewFluid<3>(const FluidState&);
 
-const FluidState& fluidStateFromId(const World& world, FluidId fluid) {
-    if (fluid.index == 0 || fluid.index > world.fluids.size()) {
-        throw Error(fmt::format("fluid id {} does not exist in this world", fluid.index));
-    }
-    return *world.fluids[fluid.index - 1];
-}
-
-bool pathMeetsObstacle(const World& world, const FluidState& f, glm::vec3 x0, glm::vec3 x1) {
-    for (const kernels::ColliderParams& c : world.colliders) {
+bool pathMeetsObstacle(std::span<const kernels::ColliderParams> colliders, const FluidState& f, glm::vec3 x0,
+                       glm::vec3 x1) {
+    for (const kernels::ColliderParams& c : colliders) {
         kernels::Hit hit = kernels::noHit();
         if (c.kind == kernels::SD_COLLIDER_PLANE) hit = kernels::intersectPlane(c, x0, x1);
         else if (c.kind == kernels::SD_COLLIDER_SPHERE) hit = kernels::intersectSphere(c, x0, x1);

@@ -29,13 +29,12 @@ struct FluidView {
 template <int D>
 FluidView<D> viewFluid(const FluidState& f);
 
-/// The fluid `fluid` of `world`; throws Error for an unknown id.
-const FluidState& fluidStateFromId(const World& world, FluidId fluid);
-
 /// True when the straight path x0 -> x1 of a point meets one of the fluid's
-/// obstacles: a world plane, sphere or box collider (the solver's own path
-/// tests from src/kernels/collide.glsl), or one of the fluid's polygons (end
-/// point inside, as integratePositions tests them). In 2D pass z = 0.
-bool pathMeetsObstacle(const World& world, const FluidState& f, glm::vec3 x0, glm::vec3 x1);
+/// obstacles: a plane, sphere or box among the world's `colliders` (the
+/// solver's own path tests from src/kernels/collide.glsl), or one of the
+/// fluid's polygons (end point inside, as integratePositions tests them). In
+/// 2D pass z = 0.
+bool pathMeetsObstacle(std::span<const kernels::ColliderParams> colliders, const FluidState& f, glm::vec3 x0,
+                       glm::vec3 x1);
 
 }  // namespace spindrift::fluid

@@ -1,17 +1,13 @@
-// Fluids in the world: creation and validation, blocks and jets, read-back,
-// and stepping every fluid from stepWorld().
-#include "coupling/body_world.h"
-#include "effects/world_internal.h"
-#include "fluid/fluid_state.h"
+// One fluid's creation and validation, blocks and jets, and read-back (the
+// public API over them, by world and fluid id, is src/world/fluid_api.cpp).
+#include "fluid/fluid_world.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 
-namespace spindrift {
-
-namespace fluid {
+namespace spindrift::fluid {
 namespace {
 
 constexpr std::uint32_t kMaxNeighboursLimit = 1024;
@@ -44,6 +40,8 @@ std::uint64_t blockParticles(const FluidDef& def, const FluidBlockDef& b) {
     const auto n = blockCounts(def, b);
     return static_cast<std::uint64_t>(n[0]) * n[1] * n[2];
 }
+
+}  // namespace
 
 void validateBlock(const FluidDef& def, const FluidBlockDef& b, std::size_t index) {
     if (!finite(b.min) || !finite(b.max) || !finite(b.velocity)) {
@@ -82,6 +80,8 @@ void validateJet(const FluidDef& def, const FluidJetDef& j, std::size_t index) {
     }
 }
 
+namespace {
+
 /// Counter-clockwise copy of a convex polygon; throws if it is not convex.
 kernels::FluidPolygon makePolygon(const FluidDef& def, const FluidPolygonDef& poly, std::size_t index) {
     const std::size_t n = poly.vertices.size();
@@ -119,23 +119,6 @@ kernels::FluidPolygon makePolygon(const FluidDef& def, const FluidPolygonDef& po
         out.vertices[i] = glm::vec4(v, 0.0f, 0.0f);
     }
     return out;
-}
-
-void checkColliders(const World& w) {
-    for (const ColliderDef& c : w.colliderDefs) {
-        if (c.kind == ColliderKind::Terrain || c.kind == ColliderKind::CubeMap) {
-            throw Error(fmt::format("collider '{}': fluids collide with plane, sphere and box colliders and "
-                                    "their own polygons only; terrain and cube maps are not supported for fluids",
-                                    c.name));
-        }
-    }
-}
-
-FluidState& fluidFromId(World& w, FluidId id) {
-    if (id.index == 0 || id.index > w.fluids.size()) {
-        throw Error(fmt::format("fluid id {} does not exist in this world", id.index));
-    }
-    return *w.fluids[id.index - 1];
 }
 
 /// Orthonormal pair across a unit direction (3D jets).
@@ -204,6 +187,12 @@ void copyOut(const Particles<D>& p, FluidSnapshot& s) {
 }
 
 }  // namespace
+
+FluidSnapshot snapshotOf(const FluidState& f) {
+    FluidSnapshot s;
+    if (f.def.dimension == 2) copyOut<2>(f.p2, s); else copyOut<3>(f.p3, s);
+    return s;
+}
 
 void validateFluidDef(const FluidDef& def) {
     if (def.dimension != 2 && def.dimension != 3) {
@@ -383,113 +372,4 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
     return born;
 }
 
-void FluidStateDeleter::operator()(FluidState* f) const { delete f; }
-
-}  // namespace fluid
-
-void stepFluids(World& w, float dt, StepStats& stats) {
-    if (w.fluids.empty()) return;
-    fluid::checkColliders(w);
-    for (std::size_t i = 0; i < w.fluids.size(); ++i) {
-        stats.fluids.push_back(fluid::stepFluid(w, *w.fluids[i], FluidId{static_cast<std::uint32_t>(i + 1)}, dt));
-    }
-}
-
-void validateFluidDef(const FluidDef& def) { fluid::validateFluidDef(def); }
-
-FluidId createFluid(WorldId id, const FluidDef& def) {
-    World& w = worldFromId(id);
-    // The fluid has one solver, on the CPU, whichever backend runs the world's
-    // emitters: a Vulkan world keeps its effects on the device and its fluids
-    // here (the kernels in src/kernels/fluid.glsl are ready for a GPU port).
-    fluid::validateFluidDef(def);
-    fluid::checkColliders(w);
-    for (const FluidJetDef& j : def.jets) coupling::checkJetBody(w, j);
-    std::unique_ptr<fluid::FluidState, fluid::FluidStateDeleter> f(new fluid::FluidState);
-    f->def = def;
-    fluid::initialiseFluid(*f);
-    for (const FluidBlockDef& b : def.blocks) fluid::addBlock(*f, b);
-    for (const FluidJetDef& j : def.jets) f->jets.push_back(fluid::Jet{j, w.time, 0.0, 0});
-    w.fluids.push_back(std::move(f));
-    return {static_cast<std::uint32_t>(w.fluids.size())};
-}
-
-void addFluidBlock(WorldId id, FluidId fluidId, const FluidBlockDef& block) {
-    World& w = worldFromId(id);
-    fluid::FluidState& f = fluid::fluidFromId(w, fluidId);
-    fluid::validateBlock(f.def, block, f.def.blocks.size() + 1);
-    fluid::addBlock(f, block);
-    f.def.blocks.push_back(block);
-}
-
-void addFluidJet(WorldId id, FluidId fluidId, const FluidJetDef& jet) {
-    World& w = worldFromId(id);
-    fluid::FluidState& f = fluid::fluidFromId(w, fluidId);
-    fluid::validateJet(f.def, jet, f.def.jets.size() + 1);
-    coupling::checkJetBody(w, jet);
-    f.jets.push_back(fluid::Jet{jet, w.time, 0.0, 0});
-    f.def.jets.push_back(jet);
-}
-
-namespace {
-
-fluid::Jet& jetFromIndex(fluid::FluidState& f, std::uint32_t jet) {
-    if (jet >= f.jets.size()) {
-        throw Error(fmt::format("fluid '{}' has no jet {} (it has {})", f.def.name, jet, f.jets.size()));
-    }
-    if (f.def.dimension != 2) {
-        throw Error(fmt::format("fluid '{}': only 2D jets aim", f.def.name));
-    }
-    return f.jets[jet];
-}
-
-}  // namespace
-
-void setFluidSolver(WorldId id, FluidId fluidId, std::uint32_t iterations, float baumgarte) {
-    fluid::FluidState& f = fluid::fluidFromId(worldFromId(id), fluidId);
-    FluidDef def = f.def;
-    def.iterations = iterations;
-    def.baumgarte = baumgarte;
-    validateFluidDef(def);
-    f.def.iterations = iterations;
-    f.def.baumgarte = baumgarte;
-}
-
-void aimFluidJet(WorldId id, FluidId fluidId, std::uint32_t jet, float angle) {
-    if (!std::isfinite(angle)) throw Error("aimFluidJet: the angle must be finite");
-    fluid::Jet& j = jetFromIndex(fluid::fluidFromId(worldFromId(id), fluidId), jet);
-    j.aimOverride = true;
-    j.overrideAngle = angle;
-}
-
-void releaseFluidJetAim(WorldId id, FluidId fluidId, std::uint32_t jet) {
-    jetFromIndex(fluid::fluidFromId(worldFromId(id), fluidId), jet).aimOverride = false;
-}
-
-FluidJetPose fluidJetPose(WorldId id, FluidId fluidId, std::uint32_t jet) {
-    World& w = worldFromId(id);
-    const fluid::Jet& j = jetFromIndex(fluid::fluidFromId(w, fluidId), jet);
-    const fluid::JetMount mount = coupling::jetMount(w, j.def.body);
-    const float c = std::cos(mount.angle), s = std::sin(mount.angle);
-    const glm::vec2 p(j.def.position);
-    return {mount.origin + glm::vec2(c * p.x - s * p.y, s * p.x + c * p.y), mount.angle};
-}
-
-std::uint32_t fluidCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).fluids.size()); }
-
-const FluidDef& fluidDef(WorldId id, FluidId fluidId) {
-    return fluid::fluidFromId(worldFromId(id), fluidId).def;
-}
-
-float fluidRestDensity(WorldId id, FluidId fluidId) {
-    return fluid::fluidFromId(worldFromId(id), fluidId).restDensity;
-}
-
-FluidSnapshot readFluid(WorldId id, FluidId fluidId) {
-    const fluid::FluidState& f = fluid::fluidFromId(worldFromId(id), fluidId);
-    FluidSnapshot s;
-    if (f.def.dimension == 2) fluid::copyOut<2>(f.p2, s); else fluid::copyOut<3>(f.p3, s);
-    return s;
-}
-
-}  // namespace spindrift
+}  // namespace spindrift::fluid

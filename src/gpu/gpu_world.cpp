@@ -1,9 +1,9 @@
 // The Vulkan backend's world: pipeline, parameter buffers and emitter slots.
 #include "gpu/gpu_world.h"
 
-#include "effects/cpu_kernels.h"
-#include "effects/params.h"
-#include "effects/world_internal.h"
+#include "particles/cpu_kernels.h"
+#include "particles/params.h"
+#include "particles/birth_schedule.h"
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"
 
@@ -978,16 +978,5 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterP
 }
 
 TransferStats transferStats(const GpuWorld& w) { return {w.device->bytesUploaded, w.device->bytesDownloaded}; }
-
-}  // namespace spindrift::gpu
-
-namespace spindrift::gpu {
-
-void GpuWorldDeleter::operator()(GpuWorld* w) const {
-    if (w != nullptr) {
-        destroyGpuWorld(*w);
-        delete w;
-    }
-}
 
 }  // namespace spindrift::gpu

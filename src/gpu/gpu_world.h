@@ -7,10 +7,10 @@
 // filter (set 2 of effects_update.comp), uploaded once.
 #pragma once
 
-#include "effects/emitter_state.h"
-#include "effects/fields.h"
+#include "particles/emitter_state.h"
+#include "particles/fields.h"
 #include "gpu/gpu_sort.h"
-#include "effects/event_queue.h"
+#include "particles/event_queue.h"
 #include "gpu/vulkan_buffer.h"
 
 #include <spindrift/world.h>

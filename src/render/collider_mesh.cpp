@@ -1,7 +1,7 @@
 // Meshes of colliders and obstacles (see collider_mesh.h).
 #include "render/collider_mesh.h"
 
-#include "effects/world_internal.h"
+#include "world/world.h"
 
 #include <spindrift/bodies.h>
 #include <spindrift/fluid.h>

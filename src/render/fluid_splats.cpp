@@ -3,7 +3,7 @@
 // docs/rendering.md ("Fluid splats") for the constants.
 #include "render/fluid_splats.h"
 
-#include "effects/world_internal.h"
+#include "world/world.h"
 #include "fluid/fluid_view.h"
 #include "kernels/random.glsl"
 
@@ -199,7 +199,7 @@ void advanceSplashes(FluidSplatState& state, const FrameContext& c) {
         const glm::vec3 x0 = splashPosition(s, c.gravity, s.age);
         s.age += c.dt;
         const glm::vec3 x1 = splashPosition(s, c.gravity, s.age);
-        return s.age > kSplashMaxAge || fluid::pathMeetsObstacle(*c.world, *c.fluid, x0, x1);
+        return s.age > kSplashMaxAge || fluid::pathMeetsObstacle(c.world->colliders, *c.fluid, x0, x1);
     });
 }
 
@@ -279,7 +279,7 @@ void updateFluidSplats(FluidSplatState& state, WorldId worldId, FluidId fluidId,
                        float dt, std::vector<SplatInstance>& out) {
     out.clear();
     const World& world = worldFromId(worldId);
-    const fluid::FluidState& f = fluid::fluidStateFromId(world, fluidId);
+    const fluid::FluidState& f = fluidStateFromId(world, fluidId);
     const std::uint32_t dimension = f.def.dimension;
     const glm::vec3 gravity = flatIf2D(f.def.gravity, dimension);
     const FrameContext c{&world, &f, &settings, std::max(dt, 0.0f),

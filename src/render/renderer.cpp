@@ -2,7 +2,7 @@
 // renderer.h for the order).
 #include "render/renderer.h"
 
-#include "effects/world_internal.h"
+#include "world/world.h"
 #include "gpu/gpu_world.h"
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"

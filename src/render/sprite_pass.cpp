@@ -5,7 +5,7 @@
 #include "render/sprite_pass.h"
 
 #include "effects/stateless.h"
-#include "effects/world_internal.h"
+#include "world/world.h"
 #include "gpu/gpu_world.h"
 #include "gpu/vulkan_pipeline.h"
 #include "render/render_images.h"

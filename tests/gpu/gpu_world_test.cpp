@@ -1,8 +1,8 @@
 // The Vulkan backend against the CPU backend on the same scenes, and the rule
 // that a step moves no particle data between host and device.
-#include "effects/cpu_kernels.h"
-#include "effects/emitter_state.h"
-#include "effects/world_internal.h"
+#include "particles/cpu_kernels.h"
+#include "particles/emitter_state.h"
+#include "world/world.h"
 #include "gpu_test_util.h"
 
 #include <algorithm>

@@ -1,5 +1,5 @@
 // Piecewise-linear curves: values at keys, linear between, constant outside.
-#include "effects/params.h"
+#include "particles/params.h"
 #include "kernels/curves.glsl"
 
 #include <gtest/gtest.h>

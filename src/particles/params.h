@@ -3,7 +3,7 @@
 // object and the field.
 #pragma once
 
-#include "effects/fields.h"
+#include "particles/fields.h"
 #include "kernels/types.glsl"
 
 #include <spindrift/effects.h>

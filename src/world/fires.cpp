@@ -2,9 +2,9 @@
 // collision events (fluid_step.cpp), each takes dousePerStrike of the fire's
 // strength and makes steam where it hit; flames and smoke scale with the
 // strength and ride on the body.
-#include "effects/fires.h"
+#include "world/fires.h"
 
-#include "effects/world_internal.h"
+#include "world/world.h"
 
 #include <fmt/format.h>
 

@@ -1,8 +1,9 @@
-// Particle-body contacts of one 2D fluid step (slides 50-51): the bodies near
-// the fluid, found through Box2D's broad phase on the calling thread, copied
-// into plain arrays (StepBody, kernels::FluidBodyShape) that the worker
-// threads read and the contact solver updates; Box2D is not touched again
-// until the exchange (exchange.h) at the end of the step.
+// The body proxy: rigid bodies as the fluid solver sees them during one 2D
+// fluid step (slides 50-51), as plain structs. src/coupling fills it from
+// Box2D's broad phase on the calling thread (StepBody, LocalShape) and hands
+// the impulses back at the end of the step (BodyLink in body_link.h); in
+// between the worker threads read it and the contact solver here updates it,
+// and nothing in src/fluid knows Box2D.
 #pragma once
 
 #include "core/parallel.h"
@@ -12,15 +13,18 @@
 #include <vector>
 
 namespace spindrift::fluid {
+
 struct FluidState;
 template <int D> struct Grid;
 template <int D> struct Particles;
-}  // namespace spindrift::fluid
 
-namespace spindrift::coupling {
-
-struct BodyWorld;
-struct LocalShape;
+/// One shape of a body in its frame relative to the body's origin (m):
+/// boxes become polygons and chains their segments.
+struct LocalShape {
+    std::uint32_t kind = 0;  // kernels::SD_BODY_SHAPE_*
+    std::vector<glm::vec2> vertices;  // polygon: counter-clockwise; segment: 2 points; circle: the centre
+    float radius = 0.0f;              // circle (m)
+};
 
 /// A body's state as the fluid solver sees it during one fluid step: a local
 /// copy, its velocity updated by every contact impulse so the water feels the
@@ -86,22 +90,18 @@ struct FluidBodyStep {
     std::vector<std::vector<BodyImpact>> impacts;
 };
 
-/// Gathers the bodies whose fixtures overlap the fluid's particles (grown by
-/// what they can travel in dt) through b2World::QueryAABB. Calling thread
-/// only. False when there are none (then the fluid ignores bodies this step).
-bool gatherBodies(BodyWorld& bodies, const fluid::FluidState& f, float dt, FluidBodyStep& out);
 /// Shapes at the bodies' current poses, binned into the substep's grid cells.
-void beginSubstep(FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& grid, float dt);
+void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& grid, float dt);
 /// Contacts of every particle with the shapes of its grid cell.
-void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& grid,
+void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const FluidState& f, const Grid<2>& grid,
                       float dt);
 /// One sweep over the contacts (after each sweep of the fluid constraints).
-void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, fluid::FluidState& f, float dt);
+void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float dt);
 /// Moves the local poses on by dt with their velocities and updates the shapes.
 void advanceBodies(FluidBodyStep& s, float dt);
 /// Puts an end point x1 that lies inside a body shape back on its surface.
 glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, glm::vec2 x1);
 /// Grid cell (2h wide) of a point, clamped into the grid.
-std::uint32_t cellOf(const fluid::Grid<2>& grid, glm::vec2 x);
+std::uint32_t cellOf(const Grid<2>& grid, glm::vec2 x);
 
-}  // namespace spindrift::coupling
+}  // namespace spindrift::fluid

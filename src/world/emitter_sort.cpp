@@ -2,7 +2,7 @@
 // order, on the backend that holds them (world.h). Its own file, so that the
 // world and the sort stay apart.
 #include "effects/sort.h"
-#include "effects/world_internal.h"
+#include "world/world.h"
 #include "gpu/gpu_sort.h"
 #include "gpu/gpu_world.h"
 

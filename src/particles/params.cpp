@@ -1,4 +1,4 @@
-#include "effects/params.h"
+#include "particles/params.h"
 
 #include "kernels/random.glsl"
 

@@ -1,4 +1,4 @@
-#include "effects/fields.h"
+#include "particles/fields.h"
 
 #include "core/cube_map.h"
 

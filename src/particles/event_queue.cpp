@@ -1,5 +1,5 @@
 // Turning kernel event records into the public ParticleEvent.
-#include "effects/event_queue.h"
+#include "particles/event_queue.h"
 
 #include <algorithm>
 

@@ -1,6 +1,6 @@
-// Particle-body contacts (slides 50-51): Box2D's broad phase collects the
-// bodies near the fluid once per fluid step; every substep their shapes are
-// placed at the bodies' local poses and binned into the fluid's grid cells
+// Particle-body contacts (slides 50-51): src/coupling gathers the bodies near
+// the fluid once per fluid step (BodyLink::gather, through Box2D's broad
+// phase); every substep their shapes are placed at the bodies' local poses and binned into the fluid's grid cells
 // (slide 50: reuse the binning grid), each particle tests the shapes of its
 // cell, and the contacts are solved as velocity constraints after each sweep
 // of the fluid constraints, the particle a small rotationless body.
@@ -13,17 +13,16 @@
 // Gauss-Seidel like the rest of the solver and the same for any thread count.
 // (A parallel Jacobi sweep over chunks overshoots a light body touched from
 // several chunks.) They are few: a body's surface, not its volume.
-#include "coupling/body_contacts.h"
+#include "fluid/body_contacts.h"
+
+#include "fluid/fluid_state.h"
 
 #include <spindrift/world.h>
-
-#include "coupling/body_world.h"
-#include "fluid/fluid_state.h"
 
 #include <algorithm>
 #include <cmath>
 
-namespace spindrift::coupling {
+namespace spindrift::fluid {
 namespace {
 
 /// As for static colliders (collide.cpp): fraction of an overlap removed per
@@ -77,26 +76,16 @@ glm::vec4 boundsOf(const kernels::FluidBodyShape& s) {
     return glm::vec4(lo, hi);
 }
 
-glm::ivec2 cellCoords(const fluid::Grid<2>& g, glm::vec2 x) {
+glm::ivec2 cellCoords(const Grid<2>& g, glm::vec2 x) {
     const float inv = 0.5f / g.h;  // cells are 2h wide
     const glm::vec2 c = glm::floor((x - g.origin) * inv);
     return {static_cast<int>(std::clamp(c.x, 0.0f, static_cast<float>(g.cells[0] - 1))),
             static_cast<int>(std::clamp(c.y, 0.0f, static_cast<float>(g.cells[1] - 1)))};
 }
 
-/// Broad-phase answer: the 1-based slots of the bodies whose fixtures overlap.
-class SlotCollector : public b2QueryCallback {
-public:
-    bool ReportFixture(b2Fixture* fixture) override {
-        slots.push_back(static_cast<std::uint32_t>(fixture->GetBody()->GetUserData().pointer));
-        return true;
-    }
-    std::vector<std::uint32_t> slots;
-};
-
 /// One visit of a contact (see the file comment for who calls it how).
 template <bool Dynamic>
-void solveContact(BodyContact& c, StepBody& b, fluid::Particles<2>& p, const FluidBodyStep& s, float invDt,
+void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyStep& s, float invDt,
                   float radius, float fluidFriction) {
     const bool split = !p.pseudo.empty();
     const glm::vec2 n = c.normal;
@@ -153,68 +142,12 @@ void solveContact(BodyContact& c, StepBody& b, fluid::Particles<2>& p, const Flu
 
 }  // namespace
 
-std::uint32_t cellOf(const fluid::Grid<2>& g, glm::vec2 x) {
+std::uint32_t cellOf(const Grid<2>& g, glm::vec2 x) {
     const glm::ivec2 c = cellCoords(g, x);
     return static_cast<std::uint32_t>(c.y * g.cells[0] + c.x);
 }
 
-bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, FluidBodyStep& out) {
-    out.bodies.clear();
-    out.shapeBody.clear();
-    out.shapeSource.clear();
-    out.contactCount = 0;
-    for (std::vector<BodyImpact>& chunk : out.impacts) chunk.clear();
-    const std::vector<glm::vec2>& x = f.p2.position;
-    if (f.def.dimension != 2 || world.alive == 0 || x.empty()) return false;
-    glm::vec2 lo(x[0]), hi(x[0]);
-    float fastest = 0.0f;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        lo = glm::min(lo, x[i]);
-        hi = glm::max(hi, x[i]);
-        fastest = std::max(fastest, glm::length(f.p2.velocity[i]));
-    }
-    // What a particle can travel this step (m/s): its speed plus the step's gravity.
-    out.maxParticleSpeed = fastest + glm::length(glm::vec2(f.def.gravity)) * dt;
-    const float margin = f.h + f.def.spacing + out.maxParticleSpeed * dt;
-    b2AABB box;
-    box.lowerBound = b2Vec2(lo.x - margin, lo.y - margin);
-    box.upperBound = b2Vec2(hi.x + margin, hi.y + margin);
-    SlotCollector query;
-    world.world.QueryAABB(&query, box);
-    if (query.slots.empty()) return false;
-    // Creation order, whatever order the tree answered in.
-    std::sort(query.slots.begin(), query.slots.end());
-    query.slots.erase(std::unique(query.slots.begin(), query.slots.end()), query.slots.end());
-    for (std::uint32_t slot1 : query.slots) {
-        const BodySlot& slot = world.bodies[slot1 - 1];
-        const b2Body& body = *slot.body;
-        StepBody b;
-        b.slot = slot1 - 1;
-        b.centre = glm::vec2(body.GetWorldCenter().x, body.GetWorldCenter().y);
-        b.angle = body.GetAngle();
-        b.localCentre = glm::vec2(body.GetLocalCenter().x, body.GetLocalCenter().y);
-        b.velocity = glm::vec2(body.GetLinearVelocity().x, body.GetLinearVelocity().y);
-        b.angularVelocity = body.GetAngularVelocity();
-        b.friction = slot.def.friction;
-        if (body.GetType() == b2_dynamicBody && body.GetMass() > 0.0f) {
-            b.invMass = 1.0f / body.GetMass();
-            // Box2D's inertia is about the body origin; ours about the centre of mass.
-            const float inertia = body.GetInertia() - body.GetMass() * glm::dot(b.localCentre, b.localCentre);
-            b.invInertia = inertia > 0.0f ? 1.0f / inertia : 0.0f;
-        }
-        const auto index = static_cast<std::uint32_t>(out.bodies.size());
-        out.bodies.push_back(b);
-        for (const LocalShape& s : slot.fluidShapes) {
-            out.shapeBody.push_back(index);
-            out.shapeSource.push_back(&s);
-        }
-    }
-    out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
-    out.particleInvMass = 1.0f / out.particleMass;
-    return true;
-}
-
-void beginSubstep(FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& g, float dt) {
+void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float dt) {
     const std::size_t count = s.shapeBody.size();
     s.shapes.resize(count);
     s.shapeBox.resize(count);
@@ -250,15 +183,15 @@ void beginSubstep(FluidBodyStep& s, const fluid::FluidState& f, const fluid::Gri
     }
 }
 
-void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidState& f, const fluid::Grid<2>& g,
+void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const FluidState& f, const Grid<2>& g,
                       float dt) {
-    const fluid::Particles<2>& p = f.p2;
-    const std::size_t chunks = WorkerPool::chunkCount(p.size(), fluid::kParticleChunk);
+    const Particles<2>& p = f.p2;
+    const std::size_t chunks = WorkerPool::chunkCount(p.size(), kParticleChunk);
     s.fixedContacts.resize(chunks);
     s.dynamicContacts.resize(chunks);
     s.impacts.resize(std::max(s.impacts.size(), chunks));
     const float radius = f.radius;
-    pool.forChunks(p.size(), fluid::kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         std::vector<BodyContact>& fixed = s.fixedContacts[chunk];
         std::vector<BodyContact>& dynamic = s.dynamicContacts[chunk];
         fixed.clear();
@@ -297,8 +230,8 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const fluid::FluidStat
     for (std::size_t c = 0; c < chunks; ++c) s.contactCount += s.fixedContacts[c].size() + s.dynamicContacts[c].size();
 }
 
-void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, fluid::FluidState& f, float dt) {
-    fluid::Particles<2>& p = f.p2;
+void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float dt) {
+    Particles<2>& p = f.p2;
     const float invDt = 1.0f / dt;
     pool.forChunks(s.fixedContacts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
         for (BodyContact& c : s.fixedContacts[chunk]) {
@@ -328,4 +261,4 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, glm::vec2 
     return x1;
 }
 
-}  // namespace spindrift::coupling
+}  // namespace spindrift::fluid

@@ -3,7 +3,7 @@
 // compiled as C++.
 #pragma once
 
-#include "effects/fields.h"
+#include "particles/fields.h"
 #include "kernels/types.glsl"
 
 namespace spindrift::kernels {

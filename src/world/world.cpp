@@ -1,9 +1,13 @@
-// World lifetime and object creation (Box2D v3 style: Def structs in, small ids
-// out). Ids index 1-based arrays in creation order.
+// The hub: world lifetime, object creation (Box2D v3 style: Def structs in,
+// small ids out; ids index 1-based arrays in creation order) and stepWorld, a
+// named list of stages (docs/design.md, "A step of the world").
+#include "world/world.h"
+
 #include "coupling/body_world.h"
-#include "effects/params.h"
-#include "effects/world_internal.h"
+#include "effects/emitter_step.h"
+#include "fluid/fluid_state.h"
 #include "gpu/gpu_world.h"
+#include "particles/params.h"
 
 #include <fmt/format.h>
 
@@ -62,6 +66,17 @@ std::uint32_t maskOf(const auto& ids, std::size_t total, const char* what, const
 }
 
 }  // namespace
+
+void GpuWorldDeleter::operator()(gpu::GpuWorld* w) const {
+    if (w != nullptr) {
+        gpu::destroyGpuWorld(*w);
+        delete w;
+    }
+}
+
+void FluidStateDeleter::operator()(fluid::FluidState* f) const { delete f; }
+
+void BodyWorldDeleter::operator()(coupling::BodyWorld* b) const { delete b; }
 
 void ParticleArrays::resize(std::size_t n) {
     position.resize(n);
@@ -283,6 +298,31 @@ void setEmitterPosition(WorldId id, EmitterId emitter, glm::vec3 centre) {
     changeEmitter(w, emitter, def);
 }
 
+namespace {
+
+// Stage "emitters": every state-preserving emitter's step, on the device
+// (one submission) or on the CPU backend, emitter by emitter.
+void stepEmitters(World& w, float dt, StepStats& stats) {
+    if (w.gpu) {
+        gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, w.stepIndex, stats, w.events);
+        return;
+    }
+    const kernels::KernelContext ctx{w.forces.data(), static_cast<std::uint32_t>(w.forces.size()),
+                                     w.colliders.data(), static_cast<std::uint32_t>(w.colliders.size()),
+                                     &w.fields};
+    StepEvents events{w.events.capacity, {}, 0};
+    for (std::uint32_t i = 0; i < w.emitters.size(); ++i) {
+        if (!w.emitters[i]->def.stateless) {
+            stepEmitter(w.pool, ctx, *w.emitters[i], i, w.time, dt, stats, events);
+        }
+    }
+    w.events.addStep(w.stepIndex, events.records, events.dropped);
+    stats.countedSteps = 1;
+    stats.lastCountedStep = w.stepIndex;
+}
+
+}  // namespace
+
 StepStats stepWorld(WorldId id, float dt) {
     World& w = worldFromId(id);
     if (!(dt > 0.0f) || !std::isfinite(dt)) {
@@ -292,29 +332,29 @@ StepStats stepWorld(WorldId id, float dt) {
     StepStats stats = emptyStats(w);
     stats.step = w.stepIndex;
     const std::size_t firstEvent = w.events.batch.events.size();
-    if (w.gpu) {
-        gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, w.stepIndex, stats, w.events);
-    } else {
-        StepEvents events{w.events.capacity, {}, 0};
-        for (std::uint32_t i = 0; i < w.emitters.size(); ++i) {
-            if (!w.emitters[i]->def.stateless) {
-                stepEmitter(w, i, dt, stats, events);
-            }
-        }
-        w.events.addStep(w.stepIndex, events.records, events.dropped);
-        stats.countedSteps = 1;
-        stats.lastCountedStep = w.stepIndex;
-    }
-    // Rigid bodies: gravity before the fluids (which exchange impulses with
-    // them during their solve), then Box2D steps them once by dt.
+
+    // 1. Emitters: births, forces, integration, collisions, deaths, events.
+    stepEmitters(w, dt, stats);
+
+    // 2. Body gravity: dynamic bodies get this step's gravity before the
+    // fluids, which exchange impulses with them during their solve, so the
+    // water's pressure answers this step's weight.
     if (w.bodies) coupling::beginBodyStep(*w.bodies, dt);
+
+    // 3. Fluids: each constraint fluid's step (src/fluid), bodies reached
+    // through coupling's link; strikes on bodies become collision events.
     stepFluids(w, dt, stats);
+
+    // 4. Bodies: Box2D steps them once by dt with what the water left them.
     if (w.bodies) {
         const auto bodiesStart = std::chrono::steady_clock::now();
         coupling::stepBodies(*w.bodies, dt);
         stats.bodiesMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bodiesStart).count();
     }
+
+    // 5. Fires: this step's strikes douse them; their emitters follow.
     updateFires(w, id, firstEvent, dt);
+
     addTotals(w, stats);
     w.time += dt;
     w.stepIndex += 1;

@@ -1,0 +1,21 @@
+// What fluid_world.cpp offers the hub beyond fluid_state.h: the checks of a
+// block or jet added to an existing fluid, and the read-back in creation order.
+#pragma once
+
+#include "fluid/fluid_state.h"
+
+#include <spindrift/fluid.h>
+
+#include <cstddef>
+
+namespace spindrift::fluid {
+
+/// Throws Error for block number `index` (1-based, for the message) that
+/// `def`'s fluid cannot hold.
+void validateBlock(const FluidDef& def, const FluidBlockDef& block, std::size_t index);
+/// Throws Error for jet number `index` (1-based) that `def`'s fluid cannot run.
+void validateJet(const FluidDef& def, const FluidJetDef& jet, std::size_t index);
+/// The fluid's particles in creation order (readFluid).
+FluidSnapshot snapshotOf(const FluidState& f);
+
+}  // namespace spindrift::fluid

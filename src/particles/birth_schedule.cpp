@@ -1,0 +1,60 @@
+// The one host-side birth-age rule (see birth_schedule.h).
+#include "particles/birth_schedule.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace spindrift {
+
+// Bursts whose time falls in [t0, t1) in definition order, then the rate's
+// particles, each born at the moment the running count crosses an integer (so
+// emission does not band into one sheet per frame).
+BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt) {
+    BirthSchedule s;
+    s.t0 = t0;
+    s.t1 = t0 + dt;
+    s.dt = dt;
+    s.rate = e.def.rate;
+    s.carry = e.emissionCarry;
+    for (const BurstDef& b : e.def.bursts) {
+        if (b.time >= s.t0 && b.time < s.t1) {
+            s.bursts.push_back({b.count, static_cast<float>(s.t1 - b.time)});
+        }
+    }
+    double activeEnd = e.def.duration >= 0.0f ? std::min<double>(s.t1, e.def.duration) : s.t1;
+    double activeDt = std::max(0.0, activeEnd - t0);
+    if (e.def.rate > 0.0f && activeDt > 0.0) {
+        double owed = e.emissionCarry + e.def.rate * activeDt;
+        auto count = static_cast<std::uint64_t>(std::floor(owed));
+        s.rateCount = count;
+        e.emissionCarry = owed - static_cast<double>(count);
+    }
+    return s;
+}
+
+std::uint64_t BirthSchedule::total() const {
+    std::uint64_t n = rateCount;
+    for (const BurstRun& b : bursts) {
+        n += b.count;
+    }
+    return n;
+}
+
+float BirthSchedule::rateAge(std::uint64_t j) const {
+    double bornAfterStart = (static_cast<double>(j) + 1.0 - carry) / rate;
+    return static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, dt));
+}
+
+std::vector<float> BirthSchedule::ages() const {
+    std::vector<float> out;
+    out.reserve(total());
+    for (const BurstRun& b : bursts) {
+        out.insert(out.end(), b.count, b.age);
+    }
+    for (std::uint64_t j = 0; j < rateCount; ++j) {
+        out.push_back(rateAge(j));
+    }
+    return out;
+}
+
+}  // namespace spindrift

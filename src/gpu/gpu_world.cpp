@@ -1,11 +1,12 @@
 // The Vulkan backend's world: pipeline, parameter buffers and emitter slots.
 #include "gpu/gpu_world.h"
 
-#include "particles/cpu_kernels.h"
-#include "particles/params.h"
-#include "particles/birth_schedule.h"
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
+#include "particles/birth_schedule.h"
+#include "particles/cpu_kernels.h"
+#include "particles/params.h"
 
 #include <fmt/format.h>
 #include <glm/gtc/packing.hpp>
@@ -21,67 +22,26 @@
 namespace spindrift::gpu {
 namespace {
 
-// Bindings of effects_update.comp, set 0 in order: emitter parameters,
-// forces, colliders, the five slot arrays (see GpuEmitter), the step's
-// counters and the world's events buffer of the frame.
-constexpr std::uint32_t kBindingCount = 10;
-// Set 1 (spawn mode): dead stack, current alive list, next alive list, schedule.
-constexpr std::uint32_t kListBindingCount = 4;
-constexpr std::uint32_t kWorkgroupSize = 64;  // local_size_x of effects_update.comp
+// Binding numbers, buffer headers, push constants and limits of
+// effects_update.comp are those of src/kernels/layout.glsl, which the shader
+// includes too.
+using kernels::DeadHeader;
+using kernels::EventsHeader;
+using kernels::ScheduleHeader;
+using kernels::StepCounters;
+using kernels::StepPush;
+using kernels::TableHeader;
+constexpr std::uint32_t kBindingCount = kernels::SD_EMITTER_BINDINGS;
+constexpr std::uint32_t kListBindingCount = kernels::SD_LIST_BINDINGS;
+constexpr std::uint32_t kWorkgroupSize = kernels::SD_UPDATE_WORKGROUP;
 
 // The PASS specialization constant of effects_update.comp.
-enum class Pass : std::uint32_t { RecycleUpdate = 0, SpawnUpdate = 1, SpawnEmit = 2, SpawnFinish = 3 };
-
-// Headers of the spawn-mode buffers (see effects_update.comp).
-struct DeadHeader {
-    std::uint32_t dispatch[3];  // VkDispatchIndirectCommand of the next update pass
-    std::uint32_t deadCount;
-    std::uint32_t popped;
-    std::uint32_t nextSerial;
-    std::uint32_t pad[2];
+enum class Pass : std::uint32_t {
+    RecycleUpdate = kernels::SD_PASS_RECYCLE_UPDATE,
+    SpawnUpdate = kernels::SD_PASS_SPAWN_UPDATE,
+    SpawnEmit = kernels::SD_PASS_SPAWN_EMIT,
+    SpawnFinish = kernels::SD_PASS_SPAWN_FINISH,
 };
-static_assert(sizeof(DeadHeader) == 32);
-constexpr VkDeviceSize kAliveHeaderBytes = 16;
-
-struct ScheduleHeader {
-    std::uint32_t burstRuns;
-    std::uint32_t rateFirst;
-    std::uint32_t pad[2];
-    float rateSpan;
-    float rateCarry;
-    float rate;
-    float maxAge;
-};
-static_assert(sizeof(ScheduleHeader) == 32);
-
-struct PushConstants {
-    float dt;
-    std::uint32_t count;
-    std::uint32_t emitterIndex;
-    std::uint32_t pad;
-};
-
-// Header of a frame's events buffer (effects_update.comp, binding 12).
-struct EventsHeader {
-    std::uint32_t count;     // events the step produced, beyond the capacity too
-    std::uint32_t capacity;  // records the buffer holds
-    std::uint32_t pad[2];
-};
-static_assert(sizeof(EventsHeader) == 16);
-
-// Event counters written by the shader: born, died, two pads, hits[32].
-struct Counters {
-    std::uint32_t born;
-    std::uint32_t died;
-    std::uint32_t clamped;
-    std::uint32_t pad;
-    std::uint32_t hits[32];
-};
-static_assert(sizeof(Counters) == 144);
-
-// Header of the forces and colliders buffers: count and three pads, so the
-// array starts 16-byte aligned as std430 requires for its vec4 members.
-constexpr VkDeviceSize kHeaderBytes = 16;
 
 bool validationFromEnvironment() {
     const char* v = std::getenv("SPINDRIFT_VULKAN_VALIDATION");
@@ -111,7 +71,7 @@ VkDescriptorSetLayout createSetLayout(Device& d, std::uint32_t count) {
 
 VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout, VkDescriptorSetLayout listLayout,
                                       VkDescriptorSetLayout fieldLayout) {
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(PushConstants)};
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(StepPush)};
     std::array<VkDescriptorSetLayout, 3> layouts{setLayout, listLayout, fieldLayout};
     auto info = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
     info.setLayoutCount = 3;
@@ -124,7 +84,7 @@ VkPipelineLayout createPipelineLayout(Device& d, VkDescriptorSetLayout setLayout
 }
 
 // INTEGRATOR of effects_update.comp: the emitter's, read from its parameters.
-constexpr std::uint32_t kAnyIntegrator = 0xFFFFFFFFu;
+constexpr std::uint32_t kAnyIntegrator = kernels::SD_ANY_INTEGRATOR;
 
 // The specialization constants of effects_update.comp, in constant_id order
 // (the key of GpuWorld::pipelines).
@@ -132,8 +92,14 @@ struct Specialization {
     Pass pass;
     std::uint32_t flowFields, heightMaps, cubeMaps;  // counts in the world
     std::uint32_t integrator;                        // SD_INTEGRATE_*
-    std::array<std::uint32_t, 5> key() const {
-        return {static_cast<std::uint32_t>(pass), flowFields, heightMaps, cubeMaps, integrator};
+    std::array<std::uint32_t, kernels::SD_SPEC_COUNT> key() const {
+        std::array<std::uint32_t, kernels::SD_SPEC_COUNT> k{};
+        k[kernels::SD_SPEC_PASS] = static_cast<std::uint32_t>(pass);
+        k[kernels::SD_SPEC_FLOW_FIELDS] = flowFields;
+        k[kernels::SD_SPEC_HEIGHT_MAPS] = heightMaps;
+        k[kernels::SD_SPEC_CUBE_MAPS] = cubeMaps;
+        k[kernels::SD_SPEC_INTEGRATOR] = integrator;
+        return k;
     }
 };
 
@@ -154,7 +120,7 @@ VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
     auto [it, inserted] = w.pipelines.try_emplace(spec.key(), VK_NULL_HANDLE);
     if (inserted) {
         try {
-            const std::array<std::uint32_t, 5> constants = spec.key();
+            const std::array<std::uint32_t, kernels::SD_SPEC_COUNT> constants = spec.key();
             it->second = createComputePipeline(*w.device, w.pipelineLayout,
                                                std::span(shaders::kEffectsUpdate, shaders::kEffectsUpdateWords),
                                                constants, "effects_update");
@@ -169,19 +135,39 @@ VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
 // A count header and the parameter array, uploaded in one submission.
 template <class T>
 void uploadTable(Device& d, Buffer& buffer, std::span<const T> items) {
-    std::vector<char> bytes(kHeaderBytes + items.size_bytes(), 0);
-    auto count = static_cast<std::uint32_t>(items.size());
-    std::memcpy(bytes.data(), &count, sizeof(count));
+    std::vector<char> bytes(sizeof(TableHeader) + items.size_bytes(), 0);
+    const TableHeader header{static_cast<std::uint32_t>(items.size()), 0, 0, 0};
+    std::memcpy(bytes.data(), &header, sizeof(header));
     if (!items.empty()) {
-        std::memcpy(bytes.data() + kHeaderBytes, items.data(), items.size_bytes());
+        std::memcpy(bytes.data() + sizeof(TableHeader), items.data(), items.size_bytes());
     }
     Transfer t{&buffer, bytes.data(), bytes.size()};
     upload(d, std::span(&t, 1));
 }
 
 std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e, std::uint32_t frame) {
-    return {&e.params, &w.forces,  &w.colliders, &e.positions,       &e.velocities,
-            &e.ages,   &e.births,  &e.rotations, &e.counters[frame], &w.frames[frame].events};
+    std::array<Buffer*, kBindingCount> b{};
+    b[kernels::SD_BINDING_EMITTER] = &e.params;
+    b[kernels::SD_BINDING_FORCES] = &w.forces;
+    b[kernels::SD_BINDING_COLLIDERS] = &w.colliders;
+    b[kernels::SD_BINDING_POSITIONS] = &e.positions;
+    b[kernels::SD_BINDING_VELOCITIES] = &e.velocities;
+    b[kernels::SD_BINDING_AGES] = &e.ages;
+    b[kernels::SD_BINDING_BIRTHS] = &e.births;
+    b[kernels::SD_BINDING_ROTATIONS] = &e.rotations;
+    b[kernels::SD_BINDING_COUNTERS] = &e.counters[frame];
+    b[kernels::SD_BINDING_EVENTS] = &w.frames[frame].events;
+    return b;
+}
+
+// Set 1 of a spawn emitter: alive[p] is the current list, alive[1 - p] the next.
+std::array<Buffer*, kListBindingCount> listBuffers(GpuEmitter& e, std::uint32_t p, std::uint32_t frame) {
+    std::array<Buffer*, kListBindingCount> b{};
+    b[kernels::SD_BINDING_DEAD] = &e.dead;
+    b[kernels::SD_BINDING_ALIVE_IN] = &e.alive[p];
+    b[kernels::SD_BINDING_ALIVE_OUT] = &e.alive[1 - p];
+    b[kernels::SD_BINDING_SCHEDULE] = &e.schedules[frame];
+    return b;
 }
 
 VkDescriptorPool createDescriptorPool(Device& d, std::uint32_t sets, std::uint32_t buffers) {
@@ -232,7 +218,7 @@ void createDescriptorSets(GpuWorld& w, GpuEmitter& e) {
         e.descriptorSets[f] = writeSet(d, e.descriptorPool, w.setLayout, buffers);
         if (e.spawn) {
             for (std::uint32_t p = 0; p < 2; ++p) {
-                std::array<Buffer*, kListBindingCount> lists{&e.dead, &e.alive[p], &e.alive[1 - p], &e.schedules[f]};
+                std::array<Buffer*, kListBindingCount> lists = listBuffers(e, p, f);
                 e.listSets[p][f] = writeSet(d, e.descriptorPool, w.listLayout, lists);
             }
         }
@@ -263,8 +249,8 @@ void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
     e.births = createStorageBuffer(d, n * 4);
     e.rotations = createStorageBuffer(d, n * 4);
     for (std::uint32_t f = 0; f < frames; ++f) {
-        e.counters[f] = createHostStorageBuffer(d, sizeof(Counters));
-        std::memset(e.counters[f].mapped, 0, sizeof(Counters));
+        e.counters[f] = createHostStorageBuffer(d, sizeof(StepCounters));
+        std::memset(e.counters[f].mapped, 0, sizeof(StepCounters));
     }
     if (e.spawn) {
         // The dead buffer's header is also the update pass's indirect dispatch.
@@ -272,8 +258,8 @@ void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
                               VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_INDIRECT_BUFFER_BIT |
                                   VK_BUFFER_USAGE_TRANSFER_SRC_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                               VK_MEMORY_PROPERTY_DEVICE_LOCAL_BIT);
-        e.alive[0] = createStorageBuffer(d, kAliveHeaderBytes + n * 4);
-        e.alive[1] = createStorageBuffer(d, kAliveHeaderBytes + n * 4);
+        e.alive[0] = createStorageBuffer(d, sizeof(TableHeader) + n * 4);
+        e.alive[1] = createStorageBuffer(d, sizeof(TableHeader) + n * 4);
         for (std::uint32_t f = 0; f < frames; ++f) {
             e.schedules[f] =
                 createHostStorageBuffer(d, sizeof(ScheduleHeader) + std::max<VkDeviceSize>(e.scheduleRuns, 1) * 8);
@@ -305,13 +291,13 @@ void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
     if (e.spawn) {
         // Every slot dead, stacked as the CPU's free list: slot 0 on top.
         std::vector<std::uint32_t> dead(sizeof(DeadHeader) / 4 + s.freeSlots.size(), 0);
-        DeadHeader header{{0, 1, 1}, static_cast<std::uint32_t>(s.freeSlots.size()), 0, s.nextSerial, {0, 0}};
+        DeadHeader header{0, 1, 1, static_cast<std::uint32_t>(s.freeSlots.size()), 0, s.nextSerial, 0, 0};
         std::memcpy(dead.data(), &header, sizeof(header));
         std::copy(s.freeSlots.begin(), s.freeSlots.end(), dead.begin() + sizeof(DeadHeader) / 4);
-        std::array<std::uint32_t, 4> empty{};
+        const TableHeader empty{0, 0, 0, 0};
         const std::array<Transfer, 3> lists{{{&e.dead, dead.data(), dead.size() * 4},
-                                             {&e.alive[0], empty.data(), kAliveHeaderBytes},
-                                             {&e.alive[1], empty.data(), kAliveHeaderBytes}}};
+                                             {&e.alive[0], &empty, sizeof(empty)},
+                                             {&e.alive[1], &empty, sizeof(empty)}}};
         upload(d, lists);
     }
 }
@@ -349,7 +335,7 @@ void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, std::uint32_t frame, std::siz
     std::array<VkDescriptorSet, 3> sets{e.descriptorSets[frame],
                                         e.spawn ? e.listSets[e.parity][frame] : w.placeholderSet, w.fields.set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 3, sets.data(), 0, nullptr);
-    PushConstants push{dt, count, static_cast<std::uint32_t>(index), 0};
+    StepPush push{dt, count, static_cast<std::uint32_t>(index), 0};
     vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
@@ -358,10 +344,10 @@ std::uint32_t groupsFor(std::uint32_t threads) { return (threads + kWorkgroupSiz
 // Takes a finished step's counts out of the mapped counters and zeroes them
 // for the step that reuses the frame.
 void collectCounters(GpuEmitter& e, std::uint32_t frame, EmitterState& s, StepStats& stats) {
-    Counters c;
+    StepCounters c;
     std::memcpy(&c, e.counters[frame].mapped, sizeof(c));
     std::memset(e.counters[frame].mapped, 0, sizeof(c));
-    for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
+    for (std::size_t k = 0; k < stats.colliderHits.size() && k < kernels::SD_MAX_COLLIDERS; ++k) {
         stats.colliderHits[k].hits += c.hits[k];
     }
     s.alive = s.alive + c.born - c.died;
@@ -451,8 +437,10 @@ void collectFrame(GpuWorld& w, std::uint32_t frame, std::span<const std::unique_
 
 // --- Sampled fields (set 2) ---------------------------------------------------
 // Bindings of set 2 of effects_update.comp, one array of combined image
-// samplers each: flowFields (sampler3D), heightMaps (sampler2D), cubeMaps
-// (samplerCube).
+// samplers each, indexed by binding number: flowFields (sampler3D),
+// heightMaps (sampler2D), cubeMaps (samplerCube).
+static_assert(kernels::SD_BINDING_FLOW_FIELDS == 0 && kernels::SD_BINDING_HEIGHT_MAPS == 1 &&
+              kernels::SD_BINDING_CUBE_MAPS == 2 && kernels::SD_FIELD_BINDINGS == 3);
 constexpr std::array<std::uint32_t, 3> kFieldArraySizes{kMaxGpuFlowFields, kMaxGpuHeightMaps, kMaxGpuCubeMaps};
 constexpr std::uint32_t kFieldDescriptors = kMaxGpuFlowFields + kMaxGpuHeightMaps + kMaxGpuCubeMaps;
 
@@ -663,8 +651,8 @@ std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight, std::uint
         std::array<Buffer*, kListBindingCount> placeholders{&w->placeholder, &w->placeholder, &w->placeholder,
                                                              &w->placeholder};
         w->placeholderSet = writeSet(d, w->placeholderPool, w->listLayout, placeholders);
-        w->forces = createStorageBuffer(d, kHeaderBytes + kMaxForces * sizeof(kernels::ForceParams));
-        w->colliders = createStorageBuffer(d, kHeaderBytes + kMaxColliders * sizeof(kernels::ColliderParams));
+        w->forces = createStorageBuffer(d, sizeof(TableHeader) + kernels::SD_MAX_FORCES * sizeof(kernels::ForceParams));
+        w->colliders = createStorageBuffer(d, sizeof(TableHeader) + kernels::SD_MAX_COLLIDERS * sizeof(kernels::ColliderParams));
         uploadForces(*w, {});
         uploadColliders(*w, {});
         createTimestamps(*w);
@@ -675,7 +663,7 @@ std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight, std::uint
             frame.events = createHostStorageBuffer(d, sizeof(EventsHeader) +
                                                           std::max<VkDeviceSize>(eventCapacity, 1) *
                                                               sizeof(kernels::EventRecord));
-            EventsHeader header{0, eventCapacity, {0, 0}};
+            EventsHeader header{0, eventCapacity, 0, 0};
             std::memcpy(frame.events.mapped, &header, sizeof(header));
         }
     } catch (...) {

@@ -7,11 +7,12 @@
 // filter (set 2 of effects_update.comp), uploaded once.
 #pragma once
 
-#include "particles/emitter_state.h"
-#include "particles/fields.h"
 #include "gpu/gpu_sort.h"
-#include "particles/event_queue.h"
 #include "gpu/vulkan_buffer.h"
+#include "kernels/layout.glsl"
+#include "particles/emitter_state.h"
+#include "particles/event_queue.h"
+#include "particles/fields.h"
 
 #include <spindrift/world.h>
 
@@ -25,11 +26,11 @@
 namespace spindrift::gpu {
 
 /// Most sampled fields of each kind one Vulkan world holds: the sizes of the
-/// sampler arrays of effects_update.comp (set 2; keep the two in step).
+/// sampler arrays of effects_update.comp (set 2), from src/kernels/layout.glsl.
 /// Creating one more throws Error.
-inline constexpr std::uint32_t kMaxGpuFlowFields = 8;
-inline constexpr std::uint32_t kMaxGpuHeightMaps = 8;
-inline constexpr std::uint32_t kMaxGpuCubeMaps = 8;
+inline constexpr std::uint32_t kMaxGpuFlowFields = kernels::SD_MAX_FLOW_FIELDS;
+inline constexpr std::uint32_t kMaxGpuHeightMaps = kernels::SD_MAX_HEIGHT_MAPS;
+inline constexpr std::uint32_t kMaxGpuCubeMaps = kernels::SD_MAX_CUBE_MAPS;
 
 /// The sampled fields of a world: one image per field, one linear
 /// clamp-to-edge sampler, one descriptor set (set 2) whose unused array
@@ -64,15 +65,15 @@ inline constexpr std::uint32_t kMaxFramesInFlight = 3;
 struct GpuEmitter {
     std::uint32_t capacity = 0;
     Buffer params, positions, velocities, ages, births, rotations;
-    Buffer counters[kMaxFramesInFlight];  // host-visible: born, died, clamped, pad, hits[32]
+    Buffer counters[kMaxFramesInFlight];  // host-visible: kernels::StepCounters
     VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
     VkDescriptorSet descriptorSets[kMaxFramesInFlight] = {};  // set 0, per frame
 
     // Spawn mode only (set 1 of effects_update.comp).
     bool spawn = false;
-    Buffer dead;      // indirect dispatch args, dead count, popped, next serial, dead slot stack
-    Buffer alive[2];  // count, 3 pads, slot indices
-    Buffer schedules[kMaxFramesInFlight];  // host-visible: the step's births (see effects_update.comp)
+    Buffer dead;      // kernels::DeadHeader, dead slot stack
+    Buffer alive[2];  // kernels::TableHeader, slot indices
+    Buffer schedules[kMaxFramesInFlight];  // host-visible: kernels::ScheduleHeader, burst runs
     std::uint32_t scheduleRuns = 0;  // burst runs a schedule buffer holds
     /// listSets[p][f]: alive[p] is the current list, alive[1 - p] the next,
     /// with frame f's schedule.
@@ -86,7 +87,7 @@ struct GpuFrame {
     VkFence fence = VK_NULL_HANDLE;
     VkCommandBuffer cmd = VK_NULL_HANDLE;  // null when no step is pending
     std::uint64_t step = 0;
-    Buffer events;  // host-visible: count, capacity, 2 pads, EventRecord[capacity]
+    Buffer events;  // host-visible: kernels::EventsHeader, EventRecord[capacity]
 };
 
 struct GpuWorld {
@@ -103,8 +104,8 @@ struct GpuWorld {
     Buffer placeholder;
     VkDescriptorPool placeholderPool = VK_NULL_HANDLE;
     VkDescriptorSet placeholderSet = VK_NULL_HANDLE;
-    Buffer forces;     // uint count, 3 pads, ForceParams[kMaxForces]
-    Buffer colliders;  // uint count, 3 pads, ColliderParams[kMaxColliders]
+    Buffer forces;     // kernels::TableHeader, ForceParams[SD_MAX_FORCES]
+    Buffer colliders;  // kernels::TableHeader, ColliderParams[SD_MAX_COLLIDERS]
     GpuFields fields;
     /// Indexed like World::emitters; null for stateless emitters.
     std::vector<std::unique_ptr<GpuEmitter>> emitters;

@@ -1,7 +1,7 @@
 // GPU-visible parameter structs, defined once for both languages. Every struct is
 // laid out for std430 with vec4 members first and scalars in groups of four, so
-// the C++ layout (glm::vec4 is 16 bytes, 4-aligned) matches; src/effects/
-// kernel_layout.cpp static_asserts sizes and offsets.
+// the C++ layout (glm::vec4 is 16 bytes, 4-aligned) matches; the end of this
+// file static_asserts sizes and offsets on the C++ side.
 #ifndef SPINDRIFT_KERNELS_TYPES
 #define SPINDRIFT_KERNELS_TYPES
 #include "prelude.glsl"
@@ -107,7 +107,7 @@ struct ColliderParams {
 
 // One collision or death event, as both backends hand them to the application
 // (ParticleEvent in include/spindrift/world.h); made by updateEvent in
-// update.glsl. 32 bytes in std430 and in C++ (kernel_layout.cpp).
+// update.glsl. 32 bytes in std430 and in C++ (asserted below).
 SD_CONST uint SD_EVENT_KIND_COLLISION = 0u;
 SD_CONST uint SD_EVENT_KIND_DEATH = 1u;
 struct EventRecord {
@@ -116,4 +116,35 @@ struct EventRecord {
 };
 
 SD_END
+
+// The C++ side must have the std430 sizes and offsets too, or the GPU would
+// read garbage: a drift fails the build of every file that includes this.
+#ifdef __cplusplus
+#include <cstddef>
+namespace spindrift::kernels {
+
+static_assert(sizeof(EventRecord) == 32);
+static_assert(offsetof(EventRecord, header) == 16);
+static_assert(sizeof(CurveParams) == 176);
+static_assert(offsetof(CurveParams, times) == 128);
+static_assert(offsetof(CurveParams, count) == 160);
+
+static_assert(sizeof(EmitterParams) == 528);
+static_assert(offsetof(EmitterParams, speedMin) == 96);
+static_assert(offsetof(EmitterParams, shapeKind) == 144);
+static_assert(offsetof(EmitterParams, emitterIndex) == 160);
+static_assert(offsetof(EmitterParams, colorOverLife) == 176);
+static_assert(offsetof(EmitterParams, sizeOverLife) == 352);
+
+static_assert(sizeof(ForceParams) == 112);
+static_assert(offsetof(ForceParams, kind) == 80);
+static_assert(offsetof(ForceParams, falloff) == 96);
+
+static_assert(sizeof(ColliderParams) == 144);
+static_assert(offsetof(ColliderParams, kind) == 112);
+static_assert(offsetof(ColliderParams, marchStep) == 132);
+
+}  // namespace spindrift::kernels
+#endif
+
 #endif

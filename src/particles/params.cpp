@@ -30,6 +30,12 @@ std::string label(const char* kind, const std::string& name) {
     return name.empty() ? std::string(kind) : fmt::format("{} '{}'", kind, name);
 }
 
+// The public limit (include/spindrift/effects.h) is the kernel's array size
+// (src/kernels/types.glsl); the public header cannot include the kernel.
+static_assert(kMaxCurveKeys == static_cast<int>(kernels::SD_MAX_CURVE_KEYS));
+static_assert(sizeof(kernels::CurveParams::values) / sizeof(kernels::CurveParams::values[0]) ==
+              kernels::SD_MAX_CURVE_KEYS);
+
 }  // namespace
 
 kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what) {

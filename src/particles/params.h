@@ -4,7 +4,7 @@
 #pragma once
 
 #include "particles/fields.h"
-#include "kernels/types.glsl"
+#include "kernels/layout.glsl"
 
 #include <spindrift/effects.h>
 
@@ -12,10 +12,10 @@
 
 namespace spindrift {
 
-/// Most forces and colliders a world can hold: an emitter selects them with a
-/// 32-bit mask in its kernel parameters.
-inline constexpr std::uint32_t kMaxForces = 32;
-inline constexpr std::uint32_t kMaxColliders = 32;
+/// Most forces and colliders a world can hold (src/kernels/layout.glsl): an
+/// emitter selects them with a 32-bit mask in its kernel parameters.
+inline constexpr std::uint32_t kMaxForces = kernels::SD_MAX_FORCES;
+inline constexpr std::uint32_t kMaxColliders = kernels::SD_MAX_COLLIDERS;
 
 kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what);
 /// forceMask and colliderMask select the emitter's forces and colliders.

@@ -10,6 +10,7 @@
 
 #include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
+#include "kernels/layout.glsl"
 #include "render/fluid_splats.h"
 #include "render/render_target.h"
 
@@ -22,13 +23,9 @@
 
 namespace spindrift::render {
 
-/// std140 mirror of `Frame` in src/render/shaders/frame.glsl.
-struct FrameUniforms {
-    glm::mat4 viewProj;
-    glm::vec4 eye, right, up, forward, sun;
-    glm::vec4 backgroundTop, backgroundBottom;
-    glm::vec4 waterColour, waterFlags;
-};
+/// `Frame` of src/render/shaders/frame.glsl (std140), defined once in
+/// src/kernels/layout.glsl.
+using FrameUniforms = kernels::FrameUniforms;
 
 /// A graphics pipeline with its layout.
 struct Pipeline {

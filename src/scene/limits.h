@@ -1,14 +1,18 @@
 // Limits of what a scene may ask for, checked before anything is built.
 #pragma once
 
+#include "kernels/layout.glsl"
+
+#include <cstddef>
 #include <cstdint>
 
 namespace spindrift::scene {
 
 inline constexpr std::int64_t kMaxCapacity = 16 * 1024 * 1024;  ///< particles per emitter
-/// Emitters select colliders and forces with 32-bit masks on the GPU.
-inline constexpr std::size_t kMaxColliders = 32;
-inline constexpr std::size_t kMaxForces = 32;
+/// Emitters select colliders and forces with 32-bit masks on the GPU
+/// (src/kernels/layout.glsl).
+inline constexpr std::size_t kMaxColliders = kernels::SD_MAX_COLLIDERS;
+inline constexpr std::size_t kMaxForces = kernels::SD_MAX_FORCES;
 inline constexpr std::int64_t kMaxFlowAxis = 512;                 ///< samples along one axis
 inline constexpr std::int64_t kMaxFlowSamples = 4 * 1024 * 1024;  ///< 48 MiB of vec3
 inline constexpr std::int64_t kMaxTerrainAxis = 4096;

@@ -267,7 +267,7 @@ void changeEmitter(World& w, EmitterId id, const EmitterDef& def) {
     // only when the kernel parameters change: a rate lives in the host's
     // birth schedule, and fires set rates and positions every step.
     // EmitterParams is 4-byte fields without padding (std430, checked in
-    // kernel_layout.cpp), so bytes compare as values.
+    // src/kernels/types.glsl), so bytes compare as values.
     if (w.gpu && std::memcmp(&params, &e.params, sizeof(params)) != 0) {
         gpu::setEmitterParams(*w.gpu, index, params);
     }

@@ -9,85 +9,76 @@
 //     the dead stack, survivors on the next alive list;
 //   2 spawn emit: birth k of the step's schedule pops a dead slot, or is clamped;
 //   3 spawn finish: one thread writes the next step's indirect dispatch.
-#include "types.glsl"
+#include "layout.glsl"
 
-layout(constant_id = 0) const uint PASS = 0u;
-const uint PASS_RECYCLE_UPDATE = 0u;
-const uint PASS_SPAWN_UPDATE = 1u;
-const uint PASS_SPAWN_EMIT = 2u;
-const uint PASS_SPAWN_FINISH = 3u;
+layout(constant_id = SD_SPEC_PASS) const uint PASS = 0u;
 
-layout(local_size_x = 64) in;
+layout(local_size_x = SD_UPDATE_WORKGROUP) in;
 
-layout(std430, set = 0, binding = 0) readonly buffer Emitter { EmitterParams emitter; };
-layout(std430, set = 0, binding = 1) readonly buffer Forces { uint forceTotal; uint pad0, pad1, pad2; ForceParams forces[]; };
-layout(std430, set = 0, binding = 2) readonly buffer Colliders { uint colliderTotal; uint pad3, pad4, pad5; ColliderParams colliders[]; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_EMITTER) readonly buffer Emitter { EmitterParams emitter; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_FORCES) readonly buffer Forces {
+    TableHeader forceTable;
+    ForceParams forces[];
+};
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_COLLIDERS) readonly buffer Colliders {
+    TableHeader colliderTable;
+    ColliderParams colliders[];
+};
 // vec3 arrays have a 16-byte stride in std430: positions and velocities are
 // tightly packed floats instead, matching the CPU's glm::vec3 arrays. Only
 // what changes after birth is stored (restoreDerived of update.glsl recomputes
 // lifetime, angular velocity, colour and size): 20 B read and written per
 // particle-step plus the 4 B birth serial read (written at birth only); see
 // docs/performance.md.
-layout(std430, set = 0, binding = 3) buffer Positions { float positions[]; };
-layout(std430, set = 0, binding = 4) buffer Velocities { float velocities[]; };
-layout(std430, set = 0, binding = 5) buffer Ages { float ages[]; };
-layout(std430, set = 0, binding = 6) buffer Births { uint births[]; };
-layout(std430, set = 0, binding = 7) buffer Rotations { float rotations[]; };
-// Counts of the step, read by the CPU through a host-visible mapping once the
-// step's fence has signalled (one copy per frame in flight).
-layout(std430, set = 0, binding = 8) buffer Counters { uint born; uint died; uint clamped, pad7; uint hits[32]; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_POSITIONS) buffer Positions { float positions[]; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_VELOCITIES) buffer Velocities { float velocities[]; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_AGES) buffer Ages { float ages[]; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_BIRTHS) buffer Births { uint births[]; };
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_ROTATIONS) buffer Rotations { float rotations[]; };
+// Counts of the step (one copy per frame in flight; StepCounters in layout.glsl).
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_COUNTERS) buffer Counters { StepCounters counters; };
 // Collision and death events of the step, shared by every emitter of the world
-// (one copy per frame in flight): at most eventCapacity are written; eventCount
-// keeps counting beyond it, so the CPU knows how many were dropped.
-layout(std430, set = 0, binding = 9) buffer Events {
-    uint eventCount;
-    uint eventCapacity;
-    uint pad18, pad19;
+// (one copy per frame in flight; EventsHeader in layout.glsl).
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_EVENTS) buffer Events {
+    EventsHeader eventHeader;
     EventRecord events[];
 };
 
 // Spawn mode (set 1; recycle emitters bind a placeholder that is never read).
-// The dead stack, its top at deadSlots[deadCount - 1], starts as the CPU's free
-// list (slot 0 on top); the header's first three words are the indirect
-// dispatch of the next update pass. popped: slots taken by the emit pass.
-// nextSerial: serial of the emitter's next birth, kept here so that the CPU
-// need not wait for a step's birth count before scheduling the next.
-layout(std430, set = 1, binding = 0) buffer Dead {
-    uint dispatchX, dispatchY, dispatchZ, deadCount;
-    uint popped, nextSerial, pad9, pad10;
+// The dead stack (DeadHeader in layout.glsl) starts as the CPU's free list
+// (slot 0 on top).
+layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_DEAD) buffer Dead {
+    DeadHeader dead;
     uint deadSlots[];
 };
 // Slots alive at the start of the step, and those alive at its end; the CPU
 // swaps the two between steps by binding the other descriptor set.
-layout(std430, set = 1, binding = 1) buffer AliveIn { uint aliveInCount; uint pad11, pad12, pad13; uint aliveIn[]; };
-layout(std430, set = 1, binding = 2) buffer AliveOut { uint aliveOutCount; uint pad14, pad15, pad16; uint aliveOut[]; };
-// The step's births (BirthSchedule of src/effects/world_internal.h, written by
-// the CPU): burst runs (end index, age) first, then the rate's births.
-layout(std430, set = 1, binding = 3) readonly buffer Schedule {
-    uint burstRuns;
-    uint rateFirst;    // index of the rate's first birth
-    uint pad17, pad20;
-    float rateSpan;    // t1 - t0 (s)
-    float rateCarry;
-    float rate;        // 1/s
-    float maxAge;      // dt (s)
-    uvec2 runs[];      // x: end index (exclusive), y: floatBitsToUint(age)
+layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_ALIVE_IN) buffer AliveIn {
+    TableHeader aliveInTable;
+    uint aliveIn[];
+};
+layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_ALIVE_OUT) buffer AliveOut {
+    TableHeader aliveOutTable;
+    uint aliveOut[];
+};
+// The step's births (ScheduleHeader in layout.glsl, written by the CPU).
+layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_SCHEDULE) readonly buffer Schedule {
+    ScheduleHeader schedule;
+    uvec2 runs[];  // x: end index (exclusive), y: floatBitsToUint(age)
 };
 
-// count: slots (recycle update), births owed (spawn emit and finish).
-layout(push_constant) uniform Step { float dt; uint count; uint emitterIndex; uint pad; } step;
+layout(push_constant) uniform Step { StepPush step; };
 
-// Sampled fields of the world (set 2), bound by gpu_world.cpp: one linear,
+// Sampled fields of the world (set 2), bound by src/gpu: one linear,
 // clamp-to-edge sampler, normalised coordinates, level 0, so texel i of n has
-// its centre at (i + 0.5) / n as context_hooks.glsl requires. Array sizes are
-// kMaxGpuFlowFields, kMaxGpuHeightMaps and kMaxGpuCubeMaps of gpu_world.h;
-// unused elements show a placeholder.
-layout(set = 2, binding = 0) uniform sampler3D flowFields[8];   // xyz velocity (m/s)
-layout(set = 2, binding = 1) uniform sampler2D heightMaps[8];   // height (m)
-layout(set = 2, binding = 2) uniform samplerCube cubeMaps[8];   // outward normal xyz, depth w (m)
+// its centre at (i + 0.5) / n as context_hooks.glsl requires. Unused elements
+// show a placeholder.
+layout(set = SD_SET_FIELDS, binding = SD_BINDING_FLOW_FIELDS) uniform sampler3D flowFields[SD_MAX_FLOW_FIELDS];
+layout(set = SD_SET_FIELDS, binding = SD_BINDING_HEIGHT_MAPS) uniform sampler2D heightMaps[SD_MAX_HEIGHT_MAPS];
+layout(set = SD_SET_FIELDS, binding = SD_BINDING_CUBE_MAPS) uniform samplerCube cubeMaps[SD_MAX_CUBE_MAPS];
 
 // Field counts and the integrator are specialization constants of the
-// pipeline (gpu_world.cpp keeps one pipeline per combination a world uses), for
+// pipeline (src/gpu keeps one pipeline per combination a world uses), for
 // two reasons. lavapipe (Mesa 22.3) lacks shaderSampledImageArrayDynamicIndexing,
 // so a sampler array may only be indexed by constants: the hooks below switch
 // over literal indices. And llvmpipe compiles every inlined sample site of the
@@ -95,17 +86,17 @@ layout(set = 2, binding = 2) uniform samplerCube cubeMaps[8];   // outward norma
 // march, bisection and normals): with all 8 elements of all 3 arrays live that
 // took minutes per pipeline. The constants let the driver drop the elements a
 // world does not use and the integrators an emitter does not run.
-layout(constant_id = 1) const uint FLOW_FIELDS = 0u;   // flow fields of the world, 0..8
-layout(constant_id = 2) const uint HEIGHT_MAPS = 0u;   // terrain height maps, 0..8
-layout(constant_id = 3) const uint CUBE_MAPS = 0u;     // depth cube maps, 0..8
-layout(constant_id = 4) const uint INTEGRATOR = 0xFFFFFFFFu;  // SD_INTEGRATE_*; all ones: the emitter's
+layout(constant_id = SD_SPEC_FLOW_FIELDS) const uint FLOW_FIELDS = 0u;
+layout(constant_id = SD_SPEC_HEIGHT_MAPS) const uint HEIGHT_MAPS = 0u;
+layout(constant_id = SD_SPEC_CUBE_MAPS) const uint CUBE_MAPS = 0u;
+layout(constant_id = SD_SPEC_INTEGRATOR) const uint INTEGRATOR = SD_ANY_INTEGRATOR;
 
 struct KernelContext { uint unused; };
-uint forceCount(KernelContext ctx) { return forceTotal; }
+uint forceCount(KernelContext ctx) { return forceTable.count; }
 ForceParams forceAt(KernelContext ctx, uint i) { return forces[i]; }
-uint colliderCount(KernelContext ctx) { return colliderTotal; }
+uint colliderCount(KernelContext ctx) { return colliderTable.count; }
 ColliderParams colliderAt(KernelContext ctx, uint i) { return colliders[i]; }
-uint integratorOf(EmitterParams e) { return INTEGRATOR == 0xFFFFFFFFu ? e.integrator : INTEGRATOR; }
+uint integratorOf(EmitterParams e) { return INTEGRATOR == SD_ANY_INTEGRATOR ? e.integrator : INTEGRATOR; }
 
 // One case per element, each live only below the world's count.
 #define SD_SAMPLE_CASE(array, count, i, coord) \
@@ -168,18 +159,18 @@ void storeParticle(uint i, Particle q, uint events) {
 // event. speed: m/s at the start of the step (EventRecord).
 void countEvents(Particle before, ParticleUpdate r, float speed) {
     if ((r.events & SD_EVENT_BORN) != 0u) {
-        atomicAdd(born, 1u);
+        atomicAdd(counters.born, 1u);
     }
     if ((r.events & SD_EVENT_DIED) != 0u) {
-        atomicAdd(died, 1u);
+        atomicAdd(counters.died, 1u);
     }
     for (uint mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
-        atomicAdd(hits[findLSB(mask)], 1u);
+        atomicAdd(counters.hits[findLSB(mask)], 1u);
     }
-    uint n = eventCapacity > 0u ? eventCountOf(r) : 0u;
+    uint n = eventHeader.capacity > 0u ? eventCountOf(r) : 0u;
     if (n > 0u) {
-        uint first = atomicAdd(eventCount, n);
-        for (uint k = 0u; k < n && first + k < eventCapacity; ++k) {
+        uint first = atomicAdd(eventHeader.count, n);
+        for (uint k = 0u; k < n && first + k < eventHeader.capacity; ++k) {
             events[first + k] = updateEvent(k, before, r, step.emitterIndex, speed);
         }
     }
@@ -196,7 +187,7 @@ void recycleUpdate(KernelContext ctx, uint i) {
 }
 
 void spawnUpdate(KernelContext ctx, uint i) {
-    if (i >= aliveInCount) {
+    if (i >= aliveInTable.count) {
         return;
     }
     uint slot = aliveIn[i];
@@ -205,22 +196,22 @@ void spawnUpdate(KernelContext ctx, uint i) {
     storeParticle(slot, r.particle, r.events);
     countEvents(p, r, length(p.velocity));
     if ((r.events & SD_EVENT_DIED) != 0u) {
-        deadSlots[atomicAdd(deadCount, 1u)] = slot;
+        deadSlots[atomicAdd(dead.deadCount, 1u)] = slot;
     } else {
-        aliveOut[atomicAdd(aliveOutCount, 1u)] = slot;
+        aliveOut[atomicAdd(aliveOutTable.count, 1u)] = slot;
     }
 }
 
 // Age of birth k at the end of the step: BirthSchedule::ages() in float (the
 // CPU works in double; the two agree to a few ulp).
 float birthAge(uint k) {
-    for (uint b = 0u; b < burstRuns; ++b) {
+    for (uint b = 0u; b < schedule.burstRuns; ++b) {
         if (k < runs[b].x) {
             return uintBitsToFloat(runs[b].y);
         }
     }
-    float bornAfterStart = (float(k - rateFirst) + 1.0f - rateCarry) / rate;
-    return clamp(rateSpan - bornAfterStart, 0.0f, maxAge);
+    float bornAfterStart = (float(k - schedule.rateFirst) + 1.0f - schedule.rateCarry) / schedule.rate;
+    return clamp(schedule.rateSpan - bornAfterStart, 0.0f, schedule.maxAge);
 }
 
 // step.count births are owed; the dispatch covers at most the capacity of
@@ -228,16 +219,16 @@ float birthAge(uint k) {
 void spawnEmit(KernelContext ctx, uint k) {
     uint dispatched = min(step.count, emitter.capacity);
     if (k == 0u && step.count > dispatched) {
-        atomicAdd(clamped, step.count - dispatched);
+        atomicAdd(counters.clamped, step.count - dispatched);
     }
     if (k >= dispatched) {
         return;
     }
-    if (k >= deadCount) {
-        atomicAdd(clamped, 1u);  // no free slot: dropped, never over a live one
+    if (k >= dead.deadCount) {
+        atomicAdd(counters.clamped, 1u);  // no free slot: dropped, never over a live one
         return;
     }
-    ParticleUpdate r = bornParticle(ctx, emitter, nextSerial + k, birthAge(k));
+    ParticleUpdate r = bornParticle(ctx, emitter, dead.nextSerial + k, birthAge(k));
     float speed = length(r.particle.velocity);
     if (r.particle.age >= r.particle.lifetime) {
         // Killed at once by a collision: born and dead, its slot stays free.
@@ -245,33 +236,33 @@ void spawnEmit(KernelContext ctx, uint k) {
         countEvents(r.particle, r, speed);
         return;
     }
-    uint slot = deadSlots[deadCount - 1u - atomicAdd(popped, 1u)];
+    uint slot = deadSlots[dead.deadCount - 1u - atomicAdd(dead.popped, 1u)];
     storeParticle(slot, r.particle, r.events);
-    aliveOut[atomicAdd(aliveOutCount, 1u)] = slot;
+    aliveOut[atomicAdd(aliveOutTable.count, 1u)] = slot;
     countEvents(r.particle, r, speed);
 }
 
 // Births numbered this step: every one that found a free slot (as on the CPU,
 // one killed at once by a collision still took a serial).
 void spawnFinish() {
-    nextSerial += min(min(step.count, emitter.capacity), deadCount);
-    deadCount -= popped;
-    popped = 0u;
-    dispatchX = (aliveOutCount + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
-    dispatchY = 1u;
-    dispatchZ = 1u;
-    aliveInCount = 0u;  // the next step's output list
+    dead.nextSerial += min(min(step.count, emitter.capacity), dead.deadCount);
+    dead.deadCount -= dead.popped;
+    dead.popped = 0u;
+    dead.dispatchX = (aliveOutTable.count + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
+    dead.dispatchY = 1u;
+    dead.dispatchZ = 1u;
+    aliveInTable.count = 0u;  // the next step's output list
 }
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
     KernelContext ctx;
     ctx.unused = 0u;
-    if (PASS == PASS_RECYCLE_UPDATE) {
+    if (PASS == SD_PASS_RECYCLE_UPDATE) {
         recycleUpdate(ctx, i);
-    } else if (PASS == PASS_SPAWN_UPDATE) {
+    } else if (PASS == SD_PASS_SPAWN_UPDATE) {
         spawnUpdate(ctx, i);
-    } else if (PASS == PASS_SPAWN_EMIT) {
+    } else if (PASS == SD_PASS_SPAWN_EMIT) {
         spawnEmit(ctx, i);
     } else if (i == 0u) {
         spawnFinish();

@@ -1,0 +1,181 @@
+// The contract between the host and the effect update shader
+// (src/gpu/shaders/effects_update.comp), written once for both languages:
+// limits, workgroup size, passes, specialization constant ids, binding
+// numbers, buffer headers and the push constant block; and the renderer's
+// frame uniforms. The shader declares its
+// buffer blocks with these headers as members; src/gpu sizes, fills and reads
+// the buffers with the same structs. Headers are 4-byte fields in groups of
+// four (std430 offsets equal C++ offsets); the static_asserts at the end fail
+// the C++ build if either side's layout drifts. The parameter structs
+// themselves are in types.glsl.
+#ifndef SPINDRIFT_KERNELS_LAYOUT
+#define SPINDRIFT_KERNELS_LAYOUT
+#include "types.glsl"
+SD_BEGIN
+
+// Limits. An emitter selects forces and colliders with 32-bit masks
+// (EmitterParams::forceMask, colliderMask), and the step counts hits per
+// collider (StepCounters::hits): at most 32 of each per world.
+SD_CONST uint SD_MAX_FORCES = 32u;
+SD_CONST uint SD_MAX_COLLIDERS = 32u;
+// Sampled fields of one Vulkan world, the sizes of the sampler arrays of set 2.
+// effects_update.comp switches over literal indices 0..7 (lavapipe cannot index
+// sampler arrays dynamically): raising these needs more cases there.
+SD_CONST uint SD_MAX_FLOW_FIELDS = 8u;
+SD_CONST uint SD_MAX_HEIGHT_MAPS = 8u;
+SD_CONST uint SD_MAX_CUBE_MAPS = 8u;
+
+// Threads per workgroup of effects_update.comp (local_size_x).
+SD_CONST uint SD_UPDATE_WORKGROUP = 64u;
+
+// The passes of one emitter's step: the PASS specialization constant.
+SD_CONST uint SD_PASS_RECYCLE_UPDATE = 0u;
+SD_CONST uint SD_PASS_SPAWN_UPDATE = 1u;
+SD_CONST uint SD_PASS_SPAWN_EMIT = 2u;
+SD_CONST uint SD_PASS_SPAWN_FINISH = 3u;
+
+// Specialization constant ids, in the order the host passes them.
+SD_CONST uint SD_SPEC_PASS = 0u;
+SD_CONST uint SD_SPEC_FLOW_FIELDS = 1u;  // flow fields of the world, 0..SD_MAX_FLOW_FIELDS
+SD_CONST uint SD_SPEC_HEIGHT_MAPS = 2u;
+SD_CONST uint SD_SPEC_CUBE_MAPS = 3u;
+SD_CONST uint SD_SPEC_INTEGRATOR = 4u;   // SD_INTEGRATE_*, or SD_ANY_INTEGRATOR
+SD_CONST uint SD_SPEC_COUNT = 5u;
+// INTEGRATOR value that reads the emitter's own (EmitterParams::integrator).
+SD_CONST uint SD_ANY_INTEGRATOR = 0xFFFFFFFFu;
+
+// Descriptor sets of effects_update.comp.
+SD_CONST uint SD_SET_EMITTER = 0u;  // per emitter and frame in flight
+SD_CONST uint SD_SET_LISTS = 1u;    // spawn mode's slot lists (recycle emitters bind a placeholder)
+SD_CONST uint SD_SET_FIELDS = 2u;   // the world's sampled fields
+
+// Set 0 bindings, in order.
+SD_CONST uint SD_BINDING_EMITTER = 0u;    // EmitterParams
+SD_CONST uint SD_BINDING_FORCES = 1u;     // TableHeader, ForceParams[SD_MAX_FORCES]
+SD_CONST uint SD_BINDING_COLLIDERS = 2u;  // TableHeader, ColliderParams[SD_MAX_COLLIDERS]
+SD_CONST uint SD_BINDING_POSITIONS = 3u;  // float[3 capacity] (m)
+SD_CONST uint SD_BINDING_VELOCITIES = 4u; // float[3 capacity] (m/s)
+SD_CONST uint SD_BINDING_AGES = 5u;       // float[capacity] (s)
+SD_CONST uint SD_BINDING_BIRTHS = 6u;     // uint[capacity], birth serials
+SD_CONST uint SD_BINDING_ROTATIONS = 7u;  // float[capacity] (rad)
+SD_CONST uint SD_BINDING_COUNTERS = 8u;   // StepCounters, host-visible, per frame
+SD_CONST uint SD_BINDING_EVENTS = 9u;     // EventsHeader, EventRecord[capacity], per frame
+SD_CONST uint SD_EMITTER_BINDINGS = 10u;
+
+// Set 1 bindings (spawn mode), in order.
+SD_CONST uint SD_BINDING_DEAD = 0u;       // DeadHeader, uint deadSlots[capacity]
+SD_CONST uint SD_BINDING_ALIVE_IN = 1u;   // TableHeader, uint slots[capacity]
+SD_CONST uint SD_BINDING_ALIVE_OUT = 2u;  // TableHeader, uint slots[capacity]
+SD_CONST uint SD_BINDING_SCHEDULE = 3u;   // ScheduleHeader, uvec2 runs[], host-visible, per frame
+SD_CONST uint SD_LIST_BINDINGS = 4u;
+
+// Set 2 bindings: combined image samplers, arrays of SD_MAX_* elements.
+SD_CONST uint SD_BINDING_FLOW_FIELDS = 0u;  // sampler3D, xyz velocity (m/s)
+SD_CONST uint SD_BINDING_HEIGHT_MAPS = 1u;  // sampler2D, height (m)
+SD_CONST uint SD_BINDING_CUBE_MAPS = 2u;    // samplerCube, outward normal xyz, depth w (m)
+SD_CONST uint SD_FIELD_BINDINGS = 3u;
+
+// Head of a counted array (forces, colliders, alive lists): the count and
+// three pads, so the array starts 16-byte aligned as std430 needs for the
+// vec4 members of its elements. 16 bytes.
+struct TableHeader {
+    uint count;
+    uint pad0, pad1, pad2;
+};
+
+// Head of a spawn emitter's dead-slot stack (its top at deadSlots[deadCount -
+// 1]). dispatch*: the indirect dispatch (VkDispatchIndirectCommand) of the
+// next update pass; popped: slots the emit pass took; nextSerial: serial of
+// the emitter's next birth, kept on the device so the host need not wait for a
+// step's birth count to schedule the next. 32 bytes.
+struct DeadHeader {
+    uint dispatchX, dispatchY, dispatchZ, deadCount;
+    uint popped, nextSerial, pad0, pad1;
+};
+
+// Head of a step's birth schedule (BirthSchedule of
+// src/particles/birth_schedule.h, written by the host): burst runs (end index,
+// age) first, then the rate's births. 32 bytes.
+struct ScheduleHeader {
+    uint burstRuns;
+    uint rateFirst;   // index of the rate's first birth
+    uint pad0, pad1;
+    float rateSpan;   // t1 - t0 (s)
+    float rateCarry;  // the rate's carry before the step (particles)
+    float rate;       // 1/s
+    float maxAge;     // dt (s)
+};
+
+// Counts of one emitter's step, read by the host through a mapping once the
+// step's fence has signalled. 144 bytes.
+struct StepCounters {
+    uint born;
+    uint died;
+    uint clamped;  // births without a free slot
+    uint pad;
+    uint hits[SD_MAX_COLLIDERS];  // per collider
+};
+
+// Head of a frame's events buffer, shared by every emitter of the world: at
+// most capacity records are written; count keeps counting beyond it, so the
+// host knows how many were dropped. 16 bytes.
+struct EventsHeader {
+    uint count;
+    uint capacity;
+    uint pad0, pad1;
+};
+
+// The push constants of every pass. count: slots (recycle update) or births
+// owed (spawn emit and finish). 16 bytes.
+struct StepPush {
+    float dt;  // s
+    uint count;
+    uint emitterIndex;
+    uint pad;
+};
+
+// The renderer (src/render): what every render pipeline reads, the camera and
+// the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
+// 208 bytes.
+SD_CONST uint SD_RENDER_SET_FRAME = 0u;
+SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;
+struct FrameUniforms {
+    mat4 viewProj;
+    vec4 eye;             // xyz camera position (m); w: 1 orthographic, 0 perspective
+    vec4 right;           // xyz camera right (world); w: viewport width (px)
+    vec4 up;              // xyz camera up (world); w: viewport height (px)
+    vec4 forward;         // xyz view direction (world); w: world time (s)
+    vec4 sun;             // xyz unit direction toward the sun
+    vec4 backgroundTop;   // rgb linear; w: background kind (0 colour, 1 gradient, 2 image)
+    vec4 backgroundBottom;
+    vec4 waterColour;     // rgb linear; a: opacity
+    vec4 waterFlags;      // x refraction, y edges (0 or 1); z refraction strength (uv units)
+};
+
+SD_END
+
+#ifdef __cplusplus
+#include <cstddef>
+namespace spindrift::kernels {
+static_assert(sizeof(TableHeader) == 16);
+static_assert(sizeof(DeadHeader) == 32);
+static_assert(offsetof(DeadHeader, deadCount) == 12);
+static_assert(offsetof(DeadHeader, nextSerial) == 20);
+static_assert(sizeof(ScheduleHeader) == 32);
+static_assert(offsetof(ScheduleHeader, rateSpan) == 16);
+static_assert(offsetof(ScheduleHeader, maxAge) == 28);
+static_assert(sizeof(StepCounters) == 16 + 4 * SD_MAX_COLLIDERS);
+static_assert(offsetof(StepCounters, hits) == 16);
+static_assert(sizeof(EventsHeader) == 16);
+static_assert(sizeof(StepPush) == 16);
+static_assert(offsetof(StepPush, emitterIndex) == 8);
+// std140: a mat4 is four vec4 columns, every vec4 16-byte aligned.
+static_assert(sizeof(FrameUniforms) == 208);
+static_assert(offsetof(FrameUniforms, eye) == 64);
+static_assert(offsetof(FrameUniforms, waterFlags) == 192);
+// The masks are 32 bits wide.
+static_assert(SD_MAX_FORCES <= 32u && SD_MAX_COLLIDERS <= 32u);
+}  // namespace spindrift::kernels
+#endif
+
+#endif

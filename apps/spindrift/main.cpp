@@ -2,6 +2,8 @@
 // simulates one and writes particle caches plus a JSON summary, `render`
 // draws one into PNG frames and an MP4 video. Usage and the file formats are
 // documented in docs/cli.md.
+// Over 500 lines: each command's options, checks and loop are straight-line
+// code read top to bottom; the viewer, which has state, is viewer.cpp.
 #include "io/cache.h"
 #include "io/frame_schedule.h"
 #include "io/png_writer.h"

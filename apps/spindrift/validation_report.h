@@ -4,7 +4,7 @@
 // and CI can hold the renderer to zero.
 #pragma once
 
-#include "gpu/gpu_world.h"
+#include "gpu/device_settings.h"
 
 #include <fmt/format.h>
 

@@ -1,6 +1,9 @@
 // Rigid bodies on the Box2D side: the Box2D world, creating and destroying
 // bodies and joints, reading them back, the Box2D step, and the jets' mounts.
 // The public API by world id over these is src/world/body_api.cpp.
+// About 500 lines, kept whole on purpose: every call into Box2D's bodies and
+// joints is in this file (and the broad-phase query in fluid_link.cpp), so the
+// Box2D conventions (b2Vec2, body user data as our slot) live in one place.
 #include "coupling/body_world.h"
 
 #include "kernels/fluid.glsl"

@@ -23,6 +23,9 @@
 // sortBackToFront fuses the depth computation into step 1, does not read the
 // indices in the first pass (they are 0, 1, 2 ...), and writes only indices,
 // straight into the returned vector, in the last.
+// Over 500 lines: the key map, the block layout, the counting, the scan and
+// the write-combined scatter share one set of constants and scratch buffers;
+// apart they would need a header of internals for a single caller.
 #include "effects/sort.h"
 
 #include <spindrift/effects.h>

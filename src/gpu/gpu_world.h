@@ -7,6 +7,7 @@
 // filter (set 2 of effects_update.comp), uploaded once.
 #pragma once
 
+#include "gpu/device_settings.h"
 #include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
 #include "kernels/layout.glsl"
@@ -120,19 +121,6 @@ struct GpuWorld {
     double timestampPeriodNs = 0.0;  // ns per timestamp tick
     std::uint64_t submitted = 0;  // steps submitted so far; frame submitted % framesInFlight is next
 };
-
-/// Validation for GPU worlds created from now on. Default: on when the
-/// environment variable SPINDRIFT_VULKAN_VALIDATION is set and not "0".
-void setWorldValidation(bool on);
-/// Where the debug messengers of all validated GPU worlds write.
-DebugLog& worldDebugLog();
-/// Instance extensions every device created from now on enables, with
-/// VK_KHR_swapchain (the viewer sets them before it builds a world, so the
-/// world's device can present). Empty by default: headless.
-void setPresentationExtensions(std::vector<std::string> instanceExtensions);
-/// Options of the devices of GPU worlds and renderers: validation, log and
-/// presentation as set above.
-DeviceOptions worldDeviceOptions();
 
 /// framesInFlight in [1, kMaxFramesInFlight]; eventCapacity: most events
 /// recorded per step (0: none).

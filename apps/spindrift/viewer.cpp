@@ -238,7 +238,8 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
         if (ImGui::CollapsingHeader(fmt::format("fluid {} '{}' solver", f, def.name).c_str())) {
             int iterations = int(def.iterations);
             float baumgarte = def.baumgarte;
-            bool changed = ImGui::SliderInt("iterations", &iterations, 1, 16);
+            bool changed = ImGui::SliderInt("iterations", &iterations, int(kFluidMinIterations),
+                                            int(kFluidMaxIterations));
             changed |= ImGui::SliderFloat("baumgarte", &baumgarte, 0.0f, 1.0f);
             if (changed) setFluidSolver(s.world, FluidId{f}, std::uint32_t(iterations), baumgarte);
         }

@@ -68,6 +68,15 @@ struct FluidPolygonDef {
     std::vector<glm::vec2> vertices;
 };
 
+/// Limits of a FluidDef, named once: validateFluidDef (and so createFluid and
+/// setFluidSolver), the scene loader and the viewer's panel all use them.
+inline constexpr std::uint32_t kFluidMinIterations = 1;
+inline constexpr std::uint32_t kFluidMaxIterations = 16;
+/// Substeps per world step when given (0: automatic).
+inline constexpr std::uint32_t kFluidMaxSubsteps = 16;
+/// Neighbours kept per particle (FluidDef::maxNeighbours).
+inline constexpr std::uint32_t kFluidMaxNeighbours = 1024;
+
 struct FluidDef {
     std::string name;
     /// 2: particles in the xy plane; 3: in space.
@@ -79,7 +88,7 @@ struct FluidDef {
     /// 2 x spacing, 12 neighbours, a resting tank's density error is several
     /// times larger, see docs/performance.md), 2.5 x spacing in 3D.
     float smoothing = 0.0f;
-    /// Solver iterations per step, 1 to 16.
+    /// Solver iterations per step, kFluidMinIterations (1) to kFluidMaxIterations (16).
     std::uint32_t iterations = 4;
     /// Velocity steering toward the rest density (slide 34): the bias is
     /// (rho0 - rho) x baumgarte x h / dt, in [0, 1].
@@ -87,15 +96,15 @@ struct FluidDef {
     /// Fraction of the previous step's pressure applied before iterating
     /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
     float warmStart = 1.0f;
-    /// Most neighbours kept per particle; more are counted as overflows and
-    /// ignored. 0: 48 in 2D, 128 in 3D.
+    /// Most neighbours kept per particle, at most kFluidMaxNeighbours (1024);
+    /// more are counted as overflows and ignored. 0: 48 in 2D, 128 in 3D.
     std::uint32_t maxNeighbours = 0;
     FluidSolver solver = FluidSolver::Parallel;
     /// Solve most of the bias on a pseudo velocity that moves particles this
     /// step and is then dropped (split impulses), so correcting density errors
     /// adds little kinetic energy; false: the slides' bias in the velocity.
     bool splitImpulse = true;
-    /// Substeps per world step, 1 to 16; 0: automatic, as many (up to 8) as
+    /// Substeps per world step, 1 to kFluidMaxSubsteps (16); 0: automatic, as many (up to 8) as
     /// keep the fastest particle under 0.4 h per substep.
     std::uint32_t substeps = 0;
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
@@ -167,7 +176,8 @@ void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockDef& block);
 void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
 
 /// Changes a fluid's solver settings from the next step on (the viewer's
-/// panel): iterations (1 to 16) and baumgarte (in [0, 1]) as in FluidDef.
+/// panel): iterations (kFluidMinIterations to kFluidMaxIterations) and
+/// baumgarte (in [0, 1]) as in FluidDef.
 /// Throws Error, changing nothing, for values FluidDef rejects.
 void setFluidSolver(WorldId world, FluidId fluid, std::uint32_t iterations, float baumgarte);
 

@@ -10,7 +10,6 @@
 namespace spindrift::fluid {
 namespace {
 
-constexpr std::uint32_t kMaxNeighboursLimit = 1024;
 /// Default smoothing length in spacings: 3 in 2D (24 lattice neighbours), 2.5
 /// in 3D (80 neighbours; 3 would be 122, too slow for what it gains).
 constexpr float kDefaultSmoothing2 = 3.0f;
@@ -207,11 +206,13 @@ void validateFluidDef(const FluidDef& def) {
                                 "{} m, got {}",
                                 label(def), def.spacing, def.smoothing));
     }
-    if (def.substeps > 16) {
-        throw Error(fmt::format("{}: substeps must be 0 (automatic) to 16, got {}", label(def), def.substeps));
+    if (def.substeps > kFluidMaxSubsteps) {
+        throw Error(fmt::format("{}: substeps must be 0 (automatic) to {}, got {}", label(def), kFluidMaxSubsteps,
+                                def.substeps));
     }
-    if (def.iterations < 1 || def.iterations > 16) {
-        throw Error(fmt::format("{}: iterations must be 1 to 16, got {}", label(def), def.iterations));
+    if (def.iterations < kFluidMinIterations || def.iterations > kFluidMaxIterations) {
+        throw Error(fmt::format("{}: iterations must be {} to {}, got {}", label(def), kFluidMinIterations,
+                                kFluidMaxIterations, def.iterations));
     }
     if (!(def.baumgarte >= 0.0f && def.baumgarte <= 1.0f)) {
         throw Error(fmt::format("{}: baumgarte must be in [0, 1], got {}", label(def), def.baumgarte));
@@ -219,8 +220,8 @@ void validateFluidDef(const FluidDef& def) {
     if (!(def.warmStart >= 0.0f && def.warmStart <= 1.0f)) {
         throw Error(fmt::format("{}: warm start must be in [0, 1], got {}", label(def), def.warmStart));
     }
-    if (def.maxNeighbours > kMaxNeighboursLimit) {
-        throw Error(fmt::format("{}: max neighbours must be at most {}, got {}", label(def), kMaxNeighboursLimit,
+    if (def.maxNeighbours > kFluidMaxNeighbours) {
+        throw Error(fmt::format("{}: max neighbours must be at most {}, got {}", label(def), kFluidMaxNeighbours,
                                 def.maxNeighbours));
     }
     if (!(def.friction >= 0.0f) || !std::isfinite(def.friction) || !finite(def.gravity) ||

@@ -1,4 +1,5 @@
 // [[fluid]]: constraint fluids with their blocks, jets and polygon obstacles.
+#include "kernels/fluid.glsl"
 #include "scene/parse_internal.h"
 
 #include <fmt/format.h>
@@ -45,10 +46,12 @@ FluidJetDef parseJet(const Table& t, const NameTable& bodies) {
 
 FluidPolygonDef parsePolygon(const Table& t) {
     t.allowOnly({"vertices"}, "a [[fluid.polygon]]");
-    const Value list = t.require("vertices", "[[x, y], ...] (m), 3 to 16 corners of a convex polygon");
+    constexpr std::size_t kMaxCorners = kernels::SD_FLUID_MAX_POLYGON_VERTICES;  // the kernel's FluidPolygon
+    const std::string what = fmt::format("[[x, y], ...] (m), 3 to {} corners of a convex polygon", kMaxCorners);
+    const Value list = t.require("vertices", what);
     const std::size_t n = list.array().size();
-    if (n < 3 || n > 16) {
-        list.failExpected("3 to 16 [x, y] corners");
+    if (n < 3 || n > kMaxCorners) {
+        list.failExpected(fmt::format("3 to {} [x, y] corners", kMaxCorners));
     }
     FluidPolygonDef p;
     for (std::size_t i = 0; i < n; ++i) {
@@ -74,16 +77,16 @@ FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
                                      "the default",
                                      def.spacing));
     }
-    def.iterations = static_cast<std::uint32_t>(t.integer("iterations", def.iterations, Bounds::between(1, 16)));
+    def.iterations = static_cast<std::uint32_t>(t.integer("iterations", def.iterations, Bounds::between(kFluidMinIterations, kFluidMaxIterations)));
     def.baumgarte = t.real("baumgarte", def.baumgarte, Bounds::unit());
     def.warmStart = t.real("warm_start", def.warmStart, Bounds::unit());
     def.splitImpulse = t.boolean("split_impulse", def.splitImpulse);
     def.maxNeighbours =
-        static_cast<std::uint32_t>(t.integer("max_neighbours", def.maxNeighbours, Bounds::between(0, 1024)));
+        static_cast<std::uint32_t>(t.integer("max_neighbours", def.maxNeighbours, Bounds::between(0, kFluidMaxNeighbours)));
     if (auto v = t.find("solver")) {
         def.solver = v->choice<FluidSolver>({{"parallel", FluidSolver::Parallel}, {"sequential", FluidSolver::Sequential}});
     }
-    def.substeps = static_cast<std::uint32_t>(t.integer("substeps", def.substeps, Bounds::between(0, 16)));
+    def.substeps = static_cast<std::uint32_t>(t.integer("substeps", def.substeps, Bounds::between(0, kFluidMaxSubsteps)));
     def.gravity = t.vec3("gravity", def.gravity);
     def.friction = t.real("friction", def.friction, Bounds::nonNegative());
     def.density = t.real("density", def.density, Bounds::positive());

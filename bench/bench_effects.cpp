@@ -33,7 +33,7 @@ constexpr std::uint32_t kParticles = 1'000'000;
 constexpr float kDt = 1.0f / 60.0f;
 
 // Memory traffic of one particle-step in the CPU backend's structure-of-arrays
-// (src/effects/emitter_state.h: 64 B per slot): the arrays the update needs to
+// (src/particles/emitter_state.h: 64 B per slot): the arrays the update needs to
 // read and the arrays it changes. Rule: count each array once per direction.
 //   read:    position 12, velocity 12, age 4, lifetime 4, rotation 4,
 //            angular velocity 4, birth serial 4 (key of the start colour and

@@ -1,6 +1,6 @@
 // parallelFor on oneTBB with a fixed partition: the work is cut into chunks of
 // `grain` items whatever the thread count, so per-chunk results combined in
-// chunk order are identical for 1 or N threads (determinism, DESIGN.md).
+// chunk order are identical for 1 or N threads (docs/design.md, "Determinism").
 #pragma once
 
 #include <tbb/blocked_range.h>

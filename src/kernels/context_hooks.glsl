@@ -1,6 +1,6 @@
 // The few things a backend provides to the shared kernels: where the emitter's
 // forces and colliders live and how fields are sampled. The CPU backend defines
-// them in C++ over its arrays (src/effects/cpu_context.h); a compute shader
+// them in C++ over its arrays (src/particles/cpu_kernels.h); a compute shader
 // defines them over buffers and samplers. Each backend defines
 //
 //   struct KernelContext { ... };

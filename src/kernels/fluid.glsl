@@ -3,7 +3,7 @@
 // the velocity constraint of a particle against a static collider. Shared by
 // the CPU solver (src/fluid/) and, later, compute shaders.
 //
-// Sign conventions, derived here because the slides' are loose (DESIGN.md):
+// Sign conventions, derived here because the slides' are loose (docs/design.md):
 //   dir   unit vector from particle p to its neighbour n;
 //   g     = w * dir, the neighbour's "gradient" entry (slide 36 scales the
 //           projected relative velocity by the weight);

@@ -1,6 +1,6 @@
 // The common subset of GLSL 450 and C++20/glm that every kernel is written in.
 //
-// Rules (DESIGN.md "Write each rule of physics once"): plain structs, vecN,
+// Rules (docs/design.md, "Write each rule of physics once"): plain structs, vecN,
 // functions that take values and return values (no references, no inout), no
 // swizzle assignment, float literals with an f suffix (glm does not mix float
 // and double), unsigned literals with a u suffix. Struct values are built by

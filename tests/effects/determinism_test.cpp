@@ -1,4 +1,4 @@
-// Determinism (DESIGN.md): the same inputs give bit-identical state for any
+// Determinism (docs/design.md): the same inputs give bit-identical state for any
 // thread count and from run to run.
 #include "effects/effects_test_util.h"
 

@@ -21,7 +21,7 @@ FlowFieldId uniformFlow(WorldId w, glm::vec3 velocity) {
 }
 
 // Stokes drag F = 6 pi eta r (v_flow - v) with gravity reaches the terminal
-// velocity v_flow + m g / (6 pi eta r) (DESIGN.md). The relaxation time is
+// velocity v_flow + m g / (6 pi eta r) (docs/design.md). The relaxation time is
 // m / k = 0.1 s here; after 3 s (30 time constants) the remaining transient is
 // e^-30 of the start, so the only error is RK4's, far below the 1e-4 relative
 // tolerance.

@@ -1,4 +1,4 @@
-// Integrators against closed forms (DESIGN.md, "Checks that physics gives us").
+// Integrators against closed forms (docs/design.md, "Checks that physics gives us").
 #include "effects/effects_test_util.h"
 
 #include <gtest/gtest.h>

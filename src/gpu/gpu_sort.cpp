@@ -5,6 +5,7 @@
 #include "gpu/gpu_world.h"
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
 #include "kernels/sort_key.glsl"
 
 #include <spindrift/effects.h>
@@ -19,23 +20,20 @@
 namespace spindrift::gpu {
 namespace {
 
-constexpr std::uint32_t kBindings = 8;  // set 0 of back_to_front_sort.comp
-constexpr std::uint32_t kFlagAges = 1;  // FLAG_AGES of the shader
-constexpr VkDeviceSize kHeaderBytes = 16;
+// Bindings, passes, flags, the header and the push constants of
+// back_to_front_sort.comp: src/kernels/layout.glsl, which the shader includes.
+constexpr std::uint32_t kBindings = kernels::SD_SORT_BINDINGS;
+constexpr std::uint32_t kFlagAges = kernels::SD_SORT_FLAG_AGES;
+constexpr VkDeviceSize kHeaderBytes = sizeof(kernels::TableHeader);
+using kernels::SortPush;
 
 // The PASS specialization constant of back_to_front_sort.comp.
-enum class SortPass : std::uint32_t { Keys = 0, Count = 1, Scan = 2, Scatter = 3 };
-
-// The shader's push constant block (std430: two vec4 then four uints).
-struct SortPush {
-    glm::vec4 eye;
-    glm::vec4 forward;
-    std::uint32_t count;
-    std::uint32_t tiles;
-    std::uint32_t shift;
-    std::uint32_t flags;
+enum class SortPass : std::uint32_t {
+    Keys = kernels::SD_SORT_PASS_KEYS,
+    Count = kernels::SD_SORT_PASS_COUNT,
+    Scan = kernels::SD_SORT_PASS_SCAN,
+    Scatter = kernels::SD_SORT_PASS_SCATTER,
 };
-static_assert(sizeof(SortPush) == 48);
 static_assert(kernels::SD_SORT_TILE == kernels::SD_SORT_WORKGROUP * kernels::SD_SORT_ITEMS_PER_THREAD);
 static_assert(kernels::SD_SORT_RADIX == 1u << kernels::SD_SORT_DIGIT_BITS);
 static_assert(kernels::SD_SORT_PASSES * kernels::SD_SORT_DIGIT_BITS == 32);
@@ -107,9 +105,15 @@ void writeSets(GpuSort& s, const SortInput& in) {
     std::array<VkDescriptorBufferInfo, 2 * kBindings> infos{};
     std::array<VkWriteDescriptorSet, 2 * kBindings> writes{};
     for (std::uint32_t p = 0; p < 2; ++p) {
-        const std::array<const Buffer*, kBindings> buffers{in.positions,     ages,          &s.keys[p],
-                                                           &s.values[p],     &s.keys[1 - p], &s.values[1 - p],
-                                                           &s.tileCounts,    &s.header};
+        std::array<const Buffer*, kBindings> buffers{};
+        buffers[kernels::SD_SORT_BINDING_POSITIONS] = in.positions;
+        buffers[kernels::SD_SORT_BINDING_AGES] = ages;
+        buffers[kernels::SD_SORT_BINDING_KEYS] = &s.keys[p];
+        buffers[kernels::SD_SORT_BINDING_VALUES] = &s.values[p];
+        buffers[kernels::SD_SORT_BINDING_NEXT_KEYS] = &s.keys[1 - p];
+        buffers[kernels::SD_SORT_BINDING_NEXT_VALUES] = &s.values[1 - p];
+        buffers[kernels::SD_SORT_BINDING_TILE_COUNTS] = &s.tileCounts;
+        buffers[kernels::SD_SORT_BINDING_HEADER] = &s.header;
         for (std::uint32_t i = 0; i < kBindings; ++i) {
             const std::uint32_t k = p * kBindings + i;
             infos[k] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};

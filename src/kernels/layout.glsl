@@ -1,8 +1,9 @@
 // The contract between the host and the effect update shader
 // (src/gpu/shaders/effects_update.comp), written once for both languages:
 // limits, workgroup size, passes, specialization constant ids, binding
-// numbers, buffer headers and the push constant block; and the renderer's
-// frame uniforms. The shader declares its
+// numbers, buffer headers and the push constant block; the same for the
+// back-to-front sort; and the renderer's frame uniforms, sprite and splat
+// contracts. The shader declares its
 // buffer blocks with these headers as members; src/gpu sizes, fills and reads
 // the buffers with the same structs. Headers are 4-byte fields in groups of
 // four (std430 offsets equal C++ offsets); the static_asserts at the end fail
@@ -134,11 +135,43 @@ struct StepPush {
     uint pad;
 };
 
+// The back-to-front sort (src/gpu/shaders/back_to_front_sort.comp, src/gpu/
+// gpu_sort.cpp); its digit and tile sizes are in sort_key.glsl.
+SD_CONST uint SD_SORT_PASS_KEYS = 0u;  // the PASS specialization constant (id 0)
+SD_CONST uint SD_SORT_PASS_COUNT = 1u;
+SD_CONST uint SD_SORT_PASS_SCAN = 2u;
+SD_CONST uint SD_SORT_PASS_SCATTER = 3u;
+// Set 0 bindings, in order.
+SD_CONST uint SD_SORT_BINDING_POSITIONS = 0u;    // float[3 n], tightly packed xyz (m)
+SD_CONST uint SD_SORT_BINDING_AGES = 1u;         // float[n] (s), read with SD_SORT_FLAG_AGES
+SD_CONST uint SD_SORT_BINDING_KEYS = 2u;         // uint[n], the current pairs
+SD_CONST uint SD_SORT_BINDING_VALUES = 3u;
+SD_CONST uint SD_SORT_BINDING_NEXT_KEYS = 4u;    // uint[n], the next pairs
+SD_CONST uint SD_SORT_BINDING_NEXT_VALUES = 5u;
+SD_CONST uint SD_SORT_BINDING_TILE_COUNTS = 6u;  // per (digit, tile), digit-major
+SD_CONST uint SD_SORT_BINDING_HEADER = 7u;       // TableHeader: count of live pairs
+SD_CONST uint SD_SORT_BINDINGS = 8u;
+// SortPush::flags: ages are bound, a negative age is a dead slot (sorted last).
+SD_CONST uint SD_SORT_FLAG_AGES = 1u;
+
+// The sort's push constants (std430: two vec4 then four uints). 48 bytes.
+struct SortPush {
+    vec4 eye;      // xyz camera position (m)
+    vec4 forward;  // xyz unit view direction
+    uint count;    // pairs
+    uint tiles;    // workgroups of the keys pass
+    uint shift;    // of the pass's digit (bits)
+    uint flags;    // SD_SORT_FLAG_*
+};
+
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
 // 208 bytes.
 SD_CONST uint SD_RENDER_SET_FRAME = 0u;
-SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;
+SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;         // uniform FrameUniforms
+SD_CONST uint SD_RENDER_BINDING_BACKGROUND = 1u;    // sampler2D, the background image
+SD_CONST uint SD_RENDER_BINDING_SCENE_BEHIND = 2u;  // sampler2D, the colour target before the water
+SD_CONST uint SD_RENDER_FRAME_BINDINGS = 3u;
 struct FrameUniforms {
     mat4 viewProj;
     vec4 eye;             // xyz camera position (m); w: 1 orthographic, 0 perspective
@@ -150,6 +183,44 @@ struct FrameUniforms {
     vec4 backgroundBottom;
     vec4 waterColour;     // rgb linear; a: opacity
     vec4 waterFlags;      // x refraction, y edges (0 or 1); z refraction strength (uv units)
+};
+
+// Effect sprites (src/render/shaders/sprites.*, src/render/sprite_pass.cpp):
+// set 1 of the sprite pipelines, in order, then the sprite image.
+SD_CONST uint SD_SPRITE_SET = 1u;
+SD_CONST uint SD_SPRITE_BINDING_EMITTER = 0u;     // EmitterParams
+SD_CONST uint SD_SPRITE_BINDING_POSITIONS = 1u;   // float[3 capacity], the GPU world's layout
+SD_CONST uint SD_SPRITE_BINDING_VELOCITIES = 2u;
+SD_CONST uint SD_SPRITE_BINDING_AGES = 3u;
+SD_CONST uint SD_SPRITE_BINDING_BIRTHS = 4u;
+SD_CONST uint SD_SPRITE_BINDING_ROTATIONS = 5u;
+SD_CONST uint SD_SPRITE_BINDING_ORDER = 6u;       // uint[capacity]: slot of instance i
+SD_CONST uint SD_SPRITE_BINDING_RUNS = 7u;        // uvec4[]: stateless runs
+SD_CONST uint SD_SPRITE_BINDING_IMAGE = 8u;       // sampler2D
+SD_CONST uint SD_SPRITE_BUFFERS = 8u;             // storage buffers before the image
+// SpriteDraw::mode.
+SD_CONST uint SD_SPRITE_MODE_SLOTS = 0u;      // stored slots in instance order
+SD_CONST uint SD_SPRITE_MODE_ORDERED = 1u;    // stored slots via order[] (back to front)
+SD_CONST uint SD_SPRITE_MODE_STATELESS = 2u;  // stateless runs
+// The sprite pipelines' push constants (vertex and fragment). 16 bytes.
+struct SpriteDraw {
+    uint mode;      // SD_SPRITE_MODE_*
+    uint runCount;  // stateless runs
+    float stretch;  // s: quad lengthened by speed x stretch (m) along the screen velocity
+    uint textured;  // 1: sample the sprite image
+};
+
+// Fluid splats (src/render/shaders/splats.*, src/render/fluid_splats.cpp):
+// one instance per particle, splash or bubble, set 1 binding 0. 48 bytes.
+SD_CONST uint SD_SPLAT_SET = 1u;
+SD_CONST uint SD_SPLAT_BINDING_INSTANCES = 0u;
+SD_CONST uint SD_SPLAT_WATER = 0u;   // SplatInstance::shade.z
+SD_CONST uint SD_SPLAT_SPLASH = 1u;
+SD_CONST uint SD_SPLAT_BUBBLE = 2u;
+struct SplatInstance {
+    vec4 centre;  // xyz position (m); w: radius (m) across the major axis
+    vec4 axis;    // xyz unit major axis (2D: z = 0; (1,0,0) unoriented); w: stretch >= 1 (major semi-axis / radius)
+    vec4 shade;   // x: brightness (1 base, > 1 sun highlight, splashes); y: edge factor in [0,1]; z: SD_SPLAT_*; w: rho / rho0 (0 for splashes)
 };
 
 SD_END
@@ -169,6 +240,12 @@ static_assert(offsetof(StepCounters, hits) == 16);
 static_assert(sizeof(EventsHeader) == 16);
 static_assert(sizeof(StepPush) == 16);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
+static_assert(sizeof(SortPush) == 48);
+static_assert(offsetof(SortPush, count) == 32);
+static_assert(sizeof(SpriteDraw) == 16);
+static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
+static_assert(sizeof(SplatInstance) == 48);
+static_assert(offsetof(SplatInstance, shade) == 32);
 // std140: a mat4 is four vec4 columns, every vec4 16-byte aligned.
 static_assert(sizeof(FrameUniforms) == 208);
 static_assert(offsetof(FrameUniforms, eye) == 64);

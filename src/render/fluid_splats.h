@@ -13,6 +13,8 @@
 // docs/rendering.md ("Fluid splats") lists every constant.
 #pragma once
 
+#include "kernels/layout.glsl"
+
 #include <spindrift/fluid.h>
 #include <spindrift/render.h>
 
@@ -21,16 +23,14 @@
 
 namespace spindrift::render {
 
-/// One splat as the shader reads it (std430 `vec4 centre; vec4 axis; vec4
-/// shade;`). 48 bytes.
-struct SplatInstance {
-    glm::vec4 centre;  ///< xyz position (m); w: radius (m) across the major axis
-    glm::vec4 axis;    ///< xyz unit major axis (2D: z = 0; (1,0,0) unoriented); w: stretch >= 1 (major semi-axis / radius)
-    glm::vec4 shade;   ///< x: brightness (1 base, > 1 sun highlight, splashes); y: edge factor in [0,1]; z: SplatKind; w: rho / rho0 (0 for splashes)
-};
-static_assert(sizeof(SplatInstance) == 48, "std430 layout of three vec4");
+/// One splat as the shader reads it: src/kernels/layout.glsl. 48 bytes.
+using SplatInstance = kernels::SplatInstance;
 
-enum class SplatKind : std::uint32_t { Water = 0, Splash = 1, Bubble = 2 };
+enum class SplatKind : std::uint32_t {
+    Water = kernels::SD_SPLAT_WATER,
+    Splash = kernels::SD_SPLAT_SPLASH,
+    Bubble = kernels::SD_SPLAT_BUBBLE,
+};
 
 /// Displayed orientation of one particle, kept between frames (slide 60).
 struct SplatOrientation {

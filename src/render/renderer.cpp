@@ -38,14 +38,17 @@ std::span<const std::uint32_t> code(const T* words, std::size_t count) {
 
 void createDescriptors(Renderer& r) {
     gpu::Device& d = *r.device;
-    const VkDescriptorType frameTypes[3] = {VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER,
-                                            VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER,
-                                            VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER};
+    // Bindings by number, as src/kernels/layout.glsl gives them to the shaders.
+    VkDescriptorType frameTypes[kernels::SD_RENDER_FRAME_BINDINGS];
+    frameTypes[kernels::SD_RENDER_BINDING_FRAME] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
+    frameTypes[kernels::SD_RENDER_BINDING_BACKGROUND] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    frameTypes[kernels::SD_RENDER_BINDING_SCENE_BEHIND] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     r.frameLayout = createSetLayout(d, frameTypes);
-    VkDescriptorType spriteTypes[9];
-    std::fill(spriteTypes, spriteTypes + 8, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
-    spriteTypes[8] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    VkDescriptorType spriteTypes[kernels::SD_SPRITE_BUFFERS + 1];
+    std::fill(spriteTypes, spriteTypes + kernels::SD_SPRITE_BUFFERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
+    spriteTypes[kernels::SD_SPRITE_BINDING_IMAGE] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     r.spriteLayout = createSetLayout(d, spriteTypes);
+    static_assert(kernels::SD_SPLAT_BINDING_INSTANCES == 0);
     const VkDescriptorType splatTypes[1] = {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER};
     r.splatLayout = createSetLayout(d, splatTypes);
 
@@ -76,18 +79,18 @@ void createDescriptors(Renderer& r) {
                                                                                     : r.placeholderImage.view,
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo behind{r.linearSampler, r.target.behind.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
-    VkWriteDescriptorSet writes[3];
-    for (std::uint32_t i = 0; i < 3; ++i) {
+    VkWriteDescriptorSet writes[kernels::SD_RENDER_FRAME_BINDINGS];
+    for (std::uint32_t i = 0; i < kernels::SD_RENDER_FRAME_BINDINGS; ++i) {
         writes[i] = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
         writes[i].dstSet = r.frameSet;
         writes[i].dstBinding = i;
         writes[i].descriptorCount = 1;
         writes[i].descriptorType = frameTypes[i];
     }
-    writes[0].pBufferInfo = &uniforms;
-    writes[1].pImageInfo = &background;
-    writes[2].pImageInfo = &behind;
-    vkUpdateDescriptorSets(d.device, 3, writes, 0, nullptr);
+    writes[kernels::SD_RENDER_BINDING_FRAME].pBufferInfo = &uniforms;
+    writes[kernels::SD_RENDER_BINDING_BACKGROUND].pImageInfo = &background;
+    writes[kernels::SD_RENDER_BINDING_SCENE_BEHIND].pImageInfo = &behind;
+    vkUpdateDescriptorSets(d.device, kernels::SD_RENDER_FRAME_BINDINGS, writes, 0, nullptr);
 }
 
 Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
@@ -132,7 +135,7 @@ void createPipelines(Renderer& r) {
     sprites.vertexCode = code(s::kSpritesVert, s::kSpritesVertWords);
     sprites.fragmentCode = code(s::kSpritesFrag, s::kSpritesFragWords);
     sprites.setLayouts = {r.frameLayout, r.spriteLayout};
-    sprites.pushConstantBytes = 16;
+    sprites.pushConstantBytes = sizeof(kernels::SpriteDraw);
     sprites.blend = Blend::Additive;
     sprites.depthTest = true;
     sprites.renderPass = r.passes.second;

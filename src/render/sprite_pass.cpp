@@ -14,21 +14,19 @@
 
 #include <fmt/format.h>
 
+#include <array>
 #include <chrono>
 #include <cstring>
 
 namespace spindrift::render {
 namespace {
 
-// Push constants of sprites.vert / sprites.frag.
-struct SpriteDraw {
-    std::uint32_t mode;  // 0 slots, 1 slots via order[], 2 stateless runs
-    std::uint32_t runCount;
-    float stretch;
-    std::uint32_t textured;
-};
-
-constexpr std::uint32_t kModeSlots = 0, kModeOrdered = 1, kModeStateless = 2;
+// Push constants, modes and bindings of sprites.vert / sprites.frag:
+// src/kernels/layout.glsl, which the shaders include.
+using kernels::SpriteDraw;
+constexpr std::uint32_t kModeSlots = kernels::SD_SPRITE_MODE_SLOTS;
+constexpr std::uint32_t kModeOrdered = kernels::SD_SPRITE_MODE_ORDERED;
+constexpr std::uint32_t kModeStateless = kernels::SD_SPRITE_MODE_STATELESS;
 
 void writeSet(gpu::Device& d, VkDescriptorSet set, std::span<const gpu::Buffer* const> buffers, VkImageView image,
               VkSampler sampler) {
@@ -103,10 +101,15 @@ void createSpriteEmitters(Renderer& r) {
         alloc.pSetLayouts = &r.spriteLayout;
         gpu::check(vkAllocateDescriptorSets(d.device, &alloc, &s.set), "vkAllocateDescriptorSets");
         const gpu::GpuEmitter* g = onDevice ? w.gpu->emitters[i].get() : nullptr;
-        const gpu::Buffer* buffers[8] = {
-            g ? &g->params : &s.params,         g ? &g->positions : &s.positions, g ? &g->velocities : &s.velocities,
-            g ? &g->ages : &s.ages,             g ? &g->births : &s.births,       g ? &g->rotations : &s.rotations,
-            &s.order,                           &s.runs};
+        std::array<const gpu::Buffer*, kernels::SD_SPRITE_BUFFERS> buffers{};
+        buffers[kernels::SD_SPRITE_BINDING_EMITTER] = g ? &g->params : &s.params;
+        buffers[kernels::SD_SPRITE_BINDING_POSITIONS] = g ? &g->positions : &s.positions;
+        buffers[kernels::SD_SPRITE_BINDING_VELOCITIES] = g ? &g->velocities : &s.velocities;
+        buffers[kernels::SD_SPRITE_BINDING_AGES] = g ? &g->ages : &s.ages;
+        buffers[kernels::SD_SPRITE_BINDING_BIRTHS] = g ? &g->births : &s.births;
+        buffers[kernels::SD_SPRITE_BINDING_ROTATIONS] = g ? &g->rotations : &s.rotations;
+        buffers[kernels::SD_SPRITE_BINDING_ORDER] = &s.order;
+        buffers[kernels::SD_SPRITE_BINDING_RUNS] = &s.runs;
         writeSet(d, s.set, buffers, s.ownTexture ? s.texture.view : r.placeholderImage.view, r.linearSampler);
     }
 }

@@ -31,41 +31,30 @@
 //   1 count:   per tile, how many keys have each value of the pass's digit;
 //   2 scan:    one workgroup turns the digit-major counts into offsets;
 //   3 scatter: pairs to their place in the other buffer pair.
+#include "layout.glsl"
 #include "sort_key.glsl"
 
 layout(constant_id = 0) const uint PASS = 0u;
-const uint PASS_KEYS = 0u;
-const uint PASS_COUNT = 1u;
-const uint PASS_SCAN = 2u;
-const uint PASS_SCATTER = 3u;
 
 const uint DEAD_KEY = 0xFFFFFFFFu;
 const uint LIVE_NAN_KEY = 0xFFFFFFFEu;  // no depth maps there (-inf is 0xFF800000)
-const uint FLAG_AGES = 1u;
 
 layout(local_size_x = SD_SORT_WORKGROUP) in;
 
 // Tightly packed xyz floats, as effects_update.comp stores them.
-layout(std430, set = 0, binding = 0) readonly buffer Positions { float positions[]; };
-layout(std430, set = 0, binding = 1) readonly buffer Ages { float ages[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_POSITIONS) readonly buffer Positions { float positions[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_AGES) readonly buffer Ages { float ages[]; };
 // The current pairs and the next (the CPU swaps them between passes by
 // binding the other descriptor set).
-layout(std430, set = 0, binding = 2) buffer Keys { uint keys[]; };
-layout(std430, set = 0, binding = 3) buffer Values { uint values[]; };
-layout(std430, set = 0, binding = 4) writeonly buffer NextKeys { uint nextKeys[]; };
-layout(std430, set = 0, binding = 5) writeonly buffer NextValues { uint nextValues[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_KEYS) buffer Keys { uint keys[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_VALUES) buffer Values { uint values[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_NEXT_KEYS) writeonly buffer NextKeys { uint nextKeys[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_NEXT_VALUES) writeonly buffer NextValues { uint nextValues[]; };
 // Per (digit, tile), digit-major: counts, then (after the scan) offsets.
-layout(std430, set = 0, binding = 6) buffer TileCounts { uint tileCounts[]; };
-layout(std430, set = 0, binding = 7) buffer Header { uint liveCount; uint pad0, pad1, pad2; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_TILE_COUNTS) buffer TileCounts { uint tileCounts[]; };
+layout(std430, set = 0, binding = SD_SORT_BINDING_HEADER) buffer Header { TableHeader live; };
 
-layout(push_constant) uniform Sort {
-    vec4 eye;      // xyz
-    vec4 forward;  // xyz, unit length
-    uint count;
-    uint tiles;
-    uint shift;    // of the pass's digit
-    uint flags;
-} sortArgs;
+layout(push_constant) uniform Sort { SortPush sortArgs; };  // SortPush in layout.glsl
 
 shared uint columns[SD_SORT_RADIX * SD_SORT_WORKGROUP];  // [digit][invocation]
 shared uint partials[SD_SORT_WORKGROUP];
@@ -88,7 +77,7 @@ void makeKeys(uint g, uint t) {
         if (i < sortArgs.count) {
             vec3 p = vec3(positions[3u * i], positions[3u * i + 1u], positions[3u * i + 2u]);
             uint key = backToFrontKey(viewDepth(p, sortArgs.eye.xyz, sortArgs.forward.xyz));
-            bool dead = (sortArgs.flags & FLAG_AGES) != 0u && ages[i] < 0.0f;
+            bool dead = (sortArgs.flags & SD_SORT_FLAG_AGES) != 0u && ages[i] < 0.0f;
             if (dead) {
                 key = DEAD_KEY;
             } else {
@@ -102,7 +91,7 @@ void makeKeys(uint g, uint t) {
     // One global atomic per tile, not per key.
     barrier();
     if (t == 0u) {
-        atomicAdd(liveCount, tileLive);
+        atomicAdd(live.count, tileLive);
     }
 }
 
@@ -190,11 +179,11 @@ void scatterTile(uint g, uint t) {
 void main() {
     uint g = gl_WorkGroupID.x;
     uint t = gl_LocalInvocationID.x;
-    if (PASS == PASS_KEYS) {
+    if (PASS == SD_SORT_PASS_KEYS) {
         makeKeys(g, t);
-    } else if (PASS == PASS_COUNT) {
+    } else if (PASS == SD_SORT_PASS_COUNT) {
         countTile(g, t);
-    } else if (PASS == PASS_SCAN) {
+    } else if (PASS == SD_SORT_PASS_SCAN) {
         scanCounts(t);
     } else {
         scatterTile(g, t);

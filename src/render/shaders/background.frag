@@ -2,7 +2,7 @@
 // The background: one colour, a vertical gradient, or an image over the frame.
 #include "frame.glsl"
 
-layout(set = 0, binding = 1) uniform sampler2D backgroundImage;
+layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_BACKGROUND) uniform sampler2D backgroundImage;
 
 layout(location = 0) in vec2 uv;
 layout(location = 0) out vec4 colour;

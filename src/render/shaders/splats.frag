@@ -6,7 +6,7 @@
 // (edges, step 5); bubbles as rings (step 7). Output premultiplied by alpha.
 #include "frame.glsl"
 
-layout(set = 0, binding = 2) uniform sampler2D sceneBehind;
+layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_SCENE_BEHIND) uniform sampler2D sceneBehind;
 
 layout(location = 0) in vec2 local;
 layout(location = 1) in vec4 shade;
@@ -24,11 +24,11 @@ void main() {
     uint kind = uint(shade.z + 0.5);
     vec3 water = frame.waterColour.rgb * brightness;
     float opacity = frame.waterColour.a;
-    if (kind == 1u) {  // splash: small, bright, opaque
+    if (kind == SD_SPLAT_SPLASH) {  // splash: small, bright, opaque
         outColour = vec4(min(water + vec3(0.35), vec3(1.0)) * coverage, coverage);
         return;
     }
-    if (kind == 2u) {  // bubble: a light ring with a clear middle
+    if (kind == SD_SPLAT_BUBBLE) {  // bubble: a light ring with a clear middle
         float ring = smoothstep(0.45, 0.8, r2) * (1.0 - smoothstep(0.8, 1.0, r2));
         vec3 c = mix(water, vec3(0.85, 0.95, 1.0), 0.7);
         outColour = vec4(c * ring, ring);

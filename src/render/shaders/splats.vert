@@ -4,12 +4,10 @@
 // CPU from what the solver knows (src/render/fluid_splats.cpp).
 #include "frame.glsl"
 
-struct SplatInstance {
-    vec4 centre;  // xyz (m), w radius (m)
-    vec4 axis;    // xyz unit major axis, w stretch >= 1
-    vec4 shade;   // x brightness, y edge factor, z kind (0 water, 1 splash, 2 bubble), w density ratio
+// SplatInstance in layout.glsl (included by frame.glsl), shared with the C++.
+layout(std430, set = SD_SPLAT_SET, binding = SD_SPLAT_BINDING_INSTANCES) readonly buffer Splats {
+    SplatInstance splats[];
 };
-layout(std430, set = 1, binding = 0) readonly buffer Splats { SplatInstance splats[]; };
 
 layout(location = 0) out vec2 local;
 layout(location = 1) out vec4 shade;

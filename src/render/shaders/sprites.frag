@@ -1,14 +1,11 @@
 #version 450
 // A sprite's coverage: the sprite image's alpha, or a soft round spot
 // (1 - r^2)^2 that falls smoothly to zero at the quad's inscribed circle.
-layout(set = 1, binding = 8) uniform sampler2D spriteImage;
+#include "layout.glsl"
 
-layout(push_constant) uniform Draw {
-    uint mode;
-    uint runCount;
-    float stretch;
-    uint textured;
-} draw;
+layout(set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_IMAGE) uniform sampler2D spriteImage;
+
+layout(push_constant) uniform Draw { SpriteDraw draw; };  // SpriteDraw in layout.glsl
 
 layout(location = 0) in vec4 colour;
 layout(location = 1) in vec2 local;

@@ -8,25 +8,28 @@
 #include "derived.glsl"
 #include "stateless.glsl"
 
-layout(std430, set = 1, binding = 0) readonly buffer Emitter { EmitterParams emitter; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_EMITTER) readonly buffer Emitter {
+    EmitterParams emitter;
+};
 // The GPU world's layout (effects_update.comp): float triples, one per slot.
-layout(std430, set = 1, binding = 1) readonly buffer Positions { float positions[]; };
-layout(std430, set = 1, binding = 2) readonly buffer Velocities { float velocities[]; };
-layout(std430, set = 1, binding = 3) readonly buffer Ages { float ages[]; };
-layout(std430, set = 1, binding = 4) readonly buffer Births { uint births[]; };
-layout(std430, set = 1, binding = 5) readonly buffer Rotations { float rotations[]; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_POSITIONS) readonly buffer Positions {
+    float positions[];
+};
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_VELOCITIES) readonly buffer Velocities {
+    float velocities[];
+};
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_AGES) readonly buffer Ages { float ages[]; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_BIRTHS) readonly buffer Births { uint births[]; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_ROTATIONS) readonly buffer Rotations {
+    float rotations[];
+};
 // Draw order: slot of instance i (back to front for alpha blending).
-layout(std430, set = 1, binding = 6) readonly buffer Order { uint order[]; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_ORDER) readonly buffer Order { uint order[]; };
 // Stateless candidates in runs: x first serial, y instances before this run,
 // z age of the first serial (float bits), w birth interval (float bits).
-layout(std430, set = 1, binding = 7) readonly buffer Runs { uvec4 runs[]; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_RUNS) readonly buffer Runs { uvec4 runs[]; };
 
-layout(push_constant) uniform Draw {
-    uint mode;      // 0: stored slots in instance order, 1: stored slots via order[], 2: stateless runs
-    uint runCount;  // stateless runs
-    float stretch;  // s: quad lengthened by speed x stretch (m) along the screen velocity
-    uint textured;  // 1: sample the sprite image
-} draw;
+layout(push_constant) uniform Draw { SpriteDraw draw; };  // SpriteDraw in layout.glsl
 
 layout(location = 0) out vec4 colour;  // linear, premultiplied by alpha
 layout(location = 1) out vec2 local;   // quad coordinates, -1..1
@@ -60,10 +63,10 @@ Particle statelessParticle(uint instance) {
 void main() {
     uint instance = uint(gl_InstanceIndex);
     Particle p;
-    if (draw.mode == 2u) {
+    if (draw.mode == SD_SPRITE_MODE_STATELESS) {
         p = statelessParticle(instance);
     } else {
-        p = storedParticle(draw.mode == 1u ? order[instance] : instance);
+        p = storedParticle(draw.mode == SD_SPRITE_MODE_ORDERED ? order[instance] : instance);
     }
     if (p.alive == 0u || p.size <= 0.0) {
         gl_Position = kCulled;

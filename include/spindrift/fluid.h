@@ -88,7 +88,7 @@ struct FluidDef {
     /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
     float warmStart = 1.0f;
     /// Most neighbours kept per particle; more are counted as overflows and
-    /// ignored. 0: 48 in 2D, 128 in 3D.
+    /// ignored. 0 (the default): no limit (the lists are compact and grow).
     std::uint32_t maxNeighbours = 0;
     FluidSolver solver = FluidSolver::Parallel;
     /// Solve most of the bias on a pseudo velocity that moves particles this
@@ -98,6 +98,13 @@ struct FluidDef {
     /// Substeps per world step, 1 to 16; 0: automatic, as many (up to 8) as
     /// keep the fastest particle under 0.4 h per substep.
     std::uint32_t substeps = 0;
+    /// Sleeping, as Box2D's bodies and FleX's particles: a particle that
+    /// stays within `sleepSpeed` x `sleepTime` (m) of where it was for
+    /// `sleepTime` (s) stops (velocity 0, position held) until the solver
+    /// gives it more than twice `sleepSpeed`. A tank at rest then rests;
+    /// flow slower than about `sleepSpeed` (m/s) stops too. 0: never sleeps.
+    float sleepSpeed = 0.05f;
+    float sleepTime = 0.5f;  ///< s
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
     /// Mass density of the fluid, for its exchange of momentum with rigid
     /// bodies: a particle's mass is density x spacing^dimension. 2D: kg/m^2,

@@ -39,6 +39,11 @@ struct Particles {
     std::vector<float> pressure;   // accumulated impulse (m/s), warm start of the next step
     std::vector<float> density;    // rho / rho0 at the last setup
     std::vector<std::uint32_t> id; // creation serial
+    /// Sleeping (integratePositions): where the particle has stayed within
+    /// FluidDef::sleepSpeed x sleepTime of (m), and for how long (s); at
+    /// sleepTime and above it sleeps.
+    std::vector<Vec<D>> anchor;
+    std::vector<float> still;
     /// Split impulses: this step's position-correction velocity (m/s),
     /// zeroed every step, so not kept in grid order.
     std::vector<Vec<D>> pseudo;
@@ -50,6 +55,8 @@ struct Particles {
         pressure.push_back(0.0f);
         density.push_back(1.0f);
         id.push_back(serial);
+        anchor.push_back(x);
+        still.push_back(0.0f);
     }
 };
 
@@ -71,6 +78,7 @@ static_assert(sizeof(Neighbour<2>) == 12 && sizeof(Neighbour<3>) == 16);
 template <int D>
 struct Grid {
     Vec<D> origin{0.0f};        // m, corner of sub-cell 0
+    Vec<D> extent{0.0f};        // m, size of the particles' bounding box
     float h = 0.0f;             // sub-cell size (m)
     std::array<int, 3> cells{1, 1, 1};  // cells per axis (z = 1 in 2D)
     std::vector<std::uint32_t> keyStart;  // particles of key k: [keyStart[k], keyStart[k + 1])
@@ -92,7 +100,46 @@ struct Constraints {
     std::vector<float> bias;      // m/s
     std::vector<float> invMass;   // 1 / A
     std::vector<std::uint32_t> count;  // neighbours stored
+    std::vector<std::uint32_t> first;  // offset of the list in its chunk's array
+    /// Colliders' share (wall_density.cpp), found with the contacts: density
+    /// (kernel-sum units) and g of the motionless ghost neighbours (w times
+    /// the unit direction into the wall, summed).
+    std::vector<float> wallDensity;
+    std::vector<glm::vec3> wallGradient;
 };
+
+/// Neighbour lists of one step, compact (no fixed stride, so no overflow and
+/// no memory for room that is rarely used): particle i's neighbours are
+/// chunks[i / kParticleChunk][first[i] + k] for k < count[i] (Constraints).
+/// One growable array per chunk of particles, so the setup fills them in
+/// parallel without counting first.
+template <int D>
+using NeighbourChunks = std::vector<std::vector<Neighbour<D>>>;
+
+template <int D>
+inline const Neighbour<D>* neighbourList(const NeighbourChunks<D>& lists, const Constraints& c, std::size_t i) {
+    return lists[i / kParticleChunk].data() + c.first[i];
+}
+
+struct FluidState;
+
+/// The density a collider lends a particle at `distance` (m) from its surface,
+/// and the size of the push it gives (sum of w times the normal part of the
+/// direction to the ghosts): wall_density.cpp. Linear between kSize entries.
+struct WallTable {
+    static constexpr int kSize = 128;
+    float start = 0.0f;  // m, distance of entry 0
+    float step = 1.0f;   // m between entries
+    std::array<float, kSize> density{};
+    std::array<float, kSize> push{};
+};
+struct WallTerm {
+    float density = 0.0f;
+    float push = 0.0f;
+};
+/// Fills FluidState::wallTable for its spacing and h.
+void buildWallTable(FluidState& f);
+WallTerm wallTerm(const WallTable& t, float distance);
 
 /// A particle near a collider surface this step (found once per step; the
 /// surface does not move while the solver iterates). 24 bytes.
@@ -121,19 +168,25 @@ struct FluidState {
     std::uint32_t nextSerial = 0;
     std::vector<kernels::FluidPolygon> polygons;
     std::vector<Jet> jets;
+    WallTable wallTable;
 
     Particles<2> p2;
     Particles<3> p3;
     Grid<2> g2;
     Grid<3> g3;
-    std::vector<Neighbour<2>> n2;
-    std::vector<Neighbour<3>> n3;
+    NeighbourChunks<2> n2;
+    NeighbourChunks<3> n3;
     Constraints constraints;
     std::vector<float> pseudoImpulse;  // accumulated bias impulse (m/s), per step
     /// Contacts of each chunk of kParticleChunk particles, in particle order.
     std::vector<std::vector<Contact>> contacts;
     std::uint64_t steps = 0;
-    float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
+    float lastMaxSpeed = 0.0f;  // m/s, of the previous step
+    float maxApproach = 0.0f;   // m/s, fastest closing pair of the step so far: picks the next step's substeps
+    float lastMeanDensityError = 0.0f;  // of the previous step's last substep: picks the substeps
+    int lastSubsteps = 1;
+    int compressionSubsteps = 0;  // what the density error asks for (automaticSubsteps)
+    std::uint32_t quietSteps = 0;
     float lastSubstep = 0.0f;   // s, the substep the pressure was solved for
     /// The rigid bodies near this 2D fluid during its step (src/coupling);
     /// null outside stepFluid or when none are near.
@@ -149,7 +202,7 @@ struct FluidState {
     template <int D> Grid<D>& grid() {
         if constexpr (D == 2) return g2; else return g3;
     }
-    template <int D> std::vector<Neighbour<D>>& neighbours() {
+    template <int D> NeighbourChunks<D>& neighbours() {
         if constexpr (D == 2) return n2; else return n3;
     }
     std::size_t size() const { return def.dimension == 2 ? p2.size() : p3.size(); }

@@ -78,6 +78,7 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
         }
         g.h = f.h;
         g.origin = box.lo;
+        g.extent = box.hi - box.lo;
         const double budget = static_cast<double>(cellBudget(n));
         const int axisCap = std::max(2, static_cast<int>(std::pow(budget, 1.0 / D)));
         g.cells = {1, 1, 1};
@@ -133,6 +134,8 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
         gather(p.pressure, g.scratchFloat);
         gather(p.density, g.scratchFloat);
         gather(p.id, g.scratchUint);
+        gather(p.anchor, g.scratchVec);
+        gather(p.still, g.scratchFloat);
         gather(g.key, g.scratchUint);
     }
 

@@ -125,13 +125,23 @@ template <int D>
 void integratePositions(WorkerPool& pool, FluidState& f, const World& world, float dt, FluidStepStats& stats) {
     Particles<D>& p = f.particles<D>();
     std::vector<float> maxSpeed(WorkerPool::chunkCount(p.size(), kParticleChunk), 0.0f);
+    // Extent along gravity of the particles under pressure: the depth of
+    // the columns the solver holds up (fluid_step.cpp's substeps).
+    const float gravity = glm::length(f.def.gravity);
+    const Vec<D> down = gravity > 0.0f ? Vec<D>(f.def.gravity / gravity) : Vec<D>(0.0f);
+    std::vector<glm::vec2> pressed(maxSpeed.size(), glm::vec2(3.0e38f, -3.0e38f));
     const bool sleeps = f.def.sleepSpeed > 0.0f;
     const float wakeSpeed = kWakeFactor * f.def.sleepSpeed;
     const float sleepTime = f.def.sleepTime;
     const float drift = f.def.sleepSpeed * f.def.sleepTime;  // m
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         float fastest = 0.0f;
+        glm::vec2 range(3.0e38f, -3.0e38f);
         for (std::size_t i = begin; i < end; ++i) {
+            if (p.pressure[i] > 0.0f) {
+                const float along = glm::dot(p.position[i], down);
+                range = glm::vec2(std::min(range.x, along), std::max(range.y, along));
+            }
             const glm::vec3 x0 = to3<D>(p.position[i]);
             glm::vec3 v = to3<D>(p.velocity[i]);
             // Sleeping: a particle that has not left a circle of `drift`
@@ -197,10 +207,14 @@ void integratePositions(WorkerPool& pool, FluidState& f, const World& world, flo
             fastest = std::max(fastest, glm::length(from3<D>(v)));
         }
         maxSpeed[chunk] = fastest;
+        pressed[chunk] = range;
     });
     float fastest = 0.0f;
     for (float s : maxSpeed) fastest = std::max(fastest, s);
     stats.maxSpeed = fastest;
+    glm::vec2 range(3.0e38f, -3.0e38f);
+    for (glm::vec2 r : pressed) range = glm::vec2(std::min(range.x, r.x), std::max(range.y, r.y));
+    f.pressedDepth = range.y > range.x ? range.y - range.x : 0.0f;
 }
 
 template void findContacts<2>(WorkerPool&, FluidState&, const World&, float);

@@ -78,7 +78,6 @@ static_assert(sizeof(Neighbour<2>) == 12 && sizeof(Neighbour<3>) == 16);
 template <int D>
 struct Grid {
     Vec<D> origin{0.0f};        // m, corner of sub-cell 0
-    Vec<D> extent{0.0f};        // m, size of the particles' bounding box
     float h = 0.0f;             // sub-cell size (m)
     std::array<int, 3> cells{1, 1, 1};  // cells per axis (z = 1 in 2D)
     std::vector<std::uint32_t> keyStart;  // particles of key k: [keyStart[k], keyStart[k + 1])
@@ -182,6 +181,7 @@ struct FluidState {
     std::vector<std::vector<Contact>> contacts;
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step
+    float pressedDepth = 0.0f;  // m, extent along gravity of the particles under pressure (integratePositions)
     float maxApproach = 0.0f;   // m/s, fastest closing pair of the step so far: picks the next step's substeps
     float lastMeanDensityError = 0.0f;  // of the previous step's last substep: picks the substeps
     int lastSubsteps = 1;

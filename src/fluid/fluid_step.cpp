@@ -112,23 +112,22 @@ void addImpactEvents(World& w, FluidState& f, const coupling::FluidBodyStep& s, 
     w.events.addEvents(events);
 }
 
-/// Extent (m) of the fluid's particles along gravity: at the last binning,
-/// or, before the first, of the particles as they were added.
+/// Depth (m) of the fluid's columns: the extent along gravity of the
+/// particles under pressure at the end of the last step (a drop in free fall
+/// or a stream leaving a ledge presses on nothing); before the first step,
+/// of all the particles, which are about to press on each other.
 template <int D>
-float depthAlongGravity(const FluidState& f, const Grid<D>& g, const Particles<D>& p) {
+float pressedDepth(const FluidState& f, const Particles<D>& p) {
     const float gravity = glm::length(f.def.gravity);
     if (!(gravity > 0.0f) || p.size() == 0) return 0.0f;
-    Vec<D> extent = g.extent;
-    if (f.steps == 0) {
-        Vec<D> lo = p.position[0], hi = p.position[0];
-        for (const Vec<D>& x : p.position) {
-            lo = glm::min(lo, x);
-            hi = glm::max(hi, x);
-        }
-        extent = hi - lo;
+    if (f.steps > 0) return f.pressedDepth;
+    const Vec<D> down = Vec<D>(f.def.gravity / gravity);
+    float lo = 3.0e38f, hi = -3.0e38f;
+    for (const Vec<D>& x : p.position) {
+        lo = std::min(lo, glm::dot(x, down));
+        hi = std::max(hi, glm::dot(x, down));
     }
-    const Vec<D> down = glm::abs(Vec<D>(f.def.gravity / gravity));
-    return glm::dot(extent, down);
+    return hi - lo;
 }
 
 /// Substeps of this step when FluidDef::substeps is 0, from the last step's
@@ -148,7 +147,7 @@ float depthAlongGravity(const FluidState& f, const Grid<D>& g, const Particles<D
 ///   per substep (2D tanks released at rest, 1 substep of 1/60 s: 20 layers
 ///   at 2.5 cm spacing (0.74) rest; 20 layers at 1 cm (1.85) and 60 at 2.5 cm
 ///   (2.2) collapse; 60 at 1 cm (5.6) collapses at 2 substeps and rests at
-///   4); the depth is the extent of the particles along gravity;
+///   4);
 /// - compression, the backstop: a step that ended more than
 ///   kCompressionLimit over rest density doubles
 ///   the count it asks for; that count holds while the error stays above a
@@ -164,7 +163,7 @@ int automaticSubsteps(FluidState& f, float dt) {
     const float reach = f.maxApproach * dt;
     f.maxApproach = 0.0f;
     const float bySpeed = std::ceil(reach / (kCourant * f.h));  // NaN or inf after a blow-up: the most
-    const float depth = f.def.dimension == 2 ? depthAlongGravity<2>(f, f.g2, f.p2) : depthAlongGravity<3>(f, f.g3, f.p3);
+    const float depth = f.def.dimension == 2 ? pressedDepth<2>(f, f.p2) : pressedDepth<3>(f, f.p3);
     const float layers = depth / f.def.spacing;
     const float byDepth = std::ceil(std::sqrt(layers * glm::length(f.def.gravity) * dt * dt / (kDepthNumber * f.h)));
     if (!(f.lastMeanDensityError <= kCompressionLimit)) {

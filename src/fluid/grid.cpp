@@ -78,7 +78,6 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
         }
         g.h = f.h;
         g.origin = box.lo;
-        g.extent = box.hi - box.lo;
         const double budget = static_cast<double>(cellBudget(n));
         const int axisCap = std::max(2, static_cast<int>(std::pow(budget, 1.0 / D)));
         g.cells = {1, 1, 1};

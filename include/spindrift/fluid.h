@@ -202,7 +202,7 @@ struct FluidNumberDensity {
     std::uint64_t particles = 0;
 };
 /// Measures it now over the fluid's current particles: O(n log n), one
-/// thread, on demand (not part of a step; about as costly as one substep).
+/// thread, on demand (not part of a step).
 FluidNumberDensity measureFluidNumberDensity(WorldId world, FluidId fluid);
 
 std::uint32_t fluidCount(WorldId world);

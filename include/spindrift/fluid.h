@@ -191,6 +191,27 @@ void aimFluidJet(WorldId world, FluidId fluid, std::uint32_t jet, float angle);
 void releaseFluidJetAim(WorldId world, FluidId fluid, std::uint32_t jet);
 FluidJetPose fluidJetPose(WorldId world, FluidId fluid, std::uint32_t jet);
 
+/// A solver-independent measure of compression, the number-density ratio:
+/// for each particle, the number of particles (itself included) within a
+/// fixed radius R, divided by that count at an interior point of a lattice at
+/// the fluid's spacing (an untouched block reads 1 inside, less near its
+/// surface; a fluid squeezed to 0.9 of its spacing in 2D reads about 1/0.81).
+/// R is 3.78 spacings in 2D (reference 45) and 3.91 in 3D (reference 251): no
+/// lattice shell lies within 2 % of R, and the reference equals the ball's
+/// volume in particles, so a disordered fluid at rest reads about 1 as well
+/// (src/fluid/number_density.cpp says why). Counted on its own grid, not the
+/// solver's neighbour lists or kernel, so engines compare.
+struct FluidNumberDensity {
+    double median = 0.0;  ///< median ratio over particles (0: no particles)
+    double p95 = 0.0;     ///< 95th percentile (nearest rank)
+    std::uint32_t reference = 0;  ///< the lattice count the ratio divides by
+    float radius = 0.0f;          ///< R, m
+    std::uint64_t particles = 0;
+};
+/// Measures it now over the fluid's current particles: O(n log n), one
+/// thread, on demand (not part of a step).
+FluidNumberDensity measureFluidNumberDensity(WorldId world, FluidId fluid);
+
 std::uint32_t fluidCount(WorldId world);
 const FluidDef& fluidDef(WorldId world, FluidId fluid);
 /// Rest density (kernel-sum units) the fluid uses, derived or given.

@@ -94,6 +94,17 @@ struct Grid {
     std::vector<std::uint32_t> scratchUint;
 };
 
+/// Neighbour pairs counted by closing speed (m/s, the rate at which their
+/// distance shrinks; moving apart counts as 0), in bins kApproachBin wide,
+/// the last one open-ended. Integer counts summed in chunk order, so the
+/// substeps they pick are the same for any thread count.
+inline constexpr float kApproachBin = 0.5f;
+using ApproachHistogram = std::array<std::uint64_t, 64>;
+inline std::size_t approachBin(float speed) {
+    const float b = speed / kApproachBin;
+    return b > 0.0f ? static_cast<std::size_t>(std::min(b, 63.0f)) : 0u;  // NaN: 0
+}
+
 /// Per-particle constraint data of one step (slide 35).
 struct Constraints {
     std::vector<float> bias;      // m/s
@@ -182,7 +193,9 @@ struct FluidState {
     std::uint64_t steps = 0;
     float lastMaxSpeed = 0.0f;  // m/s, of the previous step
     float pressedDepth = 0.0f;  // m, extent along gravity of the particles under pressure (integratePositions)
-    float maxApproach = 0.0f;   // m/s, fastest closing pair of the step so far: picks the next step's substeps
+    /// Closing speeds of the step's neighbour pairs, all substeps so far:
+    /// picks the next step's substeps (fluid_step.cpp).
+    ApproachHistogram approach{};
     float lastMeanDensityError = 0.0f;  // of the previous step's last substep: picks the substeps
     int lastSubsteps = 1;
     int compressionSubsteps = 0;  // what the density error asks for (automaticSubsteps)

@@ -130,12 +130,30 @@ float pressedDepth(const FluidState& f, const Particles<D>& p) {
     return hi - lo;
 }
 
+/// The closing speed (m/s) that all but kFastPairs of the last step's
+/// neighbour pairs stay under: the top of its histogram bin. Not the fastest
+/// pair: a drop landing from a splash at 10 m/s is one particle in thousands,
+/// meets the surface at most once, and the density constraint pushes it back
+/// out; the bulk's closing speeds are what the solver must resolve.
+float closingSpeed(const ApproachHistogram& h) {
+    constexpr double kFastPairs = 1e-3;
+    std::uint64_t total = 0;
+    for (std::uint64_t c : h) total += c;
+    const auto allowed = static_cast<std::uint64_t>(kFastPairs * static_cast<double>(total));
+    std::uint64_t above = 0;
+    for (std::size_t b = h.size(); b-- > 0;) {
+        above += h[b];
+        if (above > allowed) return static_cast<float>(b + 1) * kApproachBin;
+    }
+    return 0.0f;
+}
+
 /// Substeps of this step when FluidDef::substeps is 0, from the last step's
 /// statistics, so the count is deterministic:
 /// - speed: two neighbours may close in on each other by at most kCourant h
 ///   per substep, or they pass through each other before any constraint sees
 ///   them (a dam break at 2 cm spacing and 60 Hz reaches 2 h per step and
-///   explodes); from the last step's fastest closing pair. Relative, not
+///   explodes); from the last step's closing speeds (closingSpeed). Relative, not
 ///   absolute speed: a front that runs along the floor as one, or a drop in
 ///   free flight, needs no substeps (the colliders' contacts are speculative
 ///   and path-tested, so no speed passes through a wall);
@@ -160,8 +178,8 @@ int automaticSubsteps(FluidState& f, float dt) {
     constexpr float kDepthNumber = 0.8f;
     constexpr std::uint32_t kHoldSteps = 30;
     constexpr int kMaxSubsteps = 16;  // FluidDef::substeps' upper bound
-    const float reach = f.maxApproach * dt;
-    f.maxApproach = 0.0f;
+    const float reach = closingSpeed(f.approach) * dt;
+    f.approach.fill(0);
     const float bySpeed = std::ceil(reach / (kCourant * f.h));  // NaN or inf after a blow-up: the most
     const float depth = f.def.dimension == 2 ? pressedDepth<2>(f, f.p2) : pressedDepth<3>(f, f.p3);
     const float layers = depth / f.def.spacing;

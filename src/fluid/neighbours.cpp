@@ -13,7 +13,7 @@ namespace {
 struct ChunkStats {
     double errorSum = 0.0;
     double maxError = -1.0e30;
-    float maxApproach = 0.0f;  // m/s
+    ApproachHistogram approach{};
     std::uint64_t neighbourSum = 0;
     std::uint64_t overflows = 0;
 };
@@ -99,7 +99,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                             const Vec<D> gj = offset * (w / r);
                             // Closing speed of the pair (m/s): picks the next
                             // step's substeps (fluid_step.cpp).
-                            s.maxApproach = std::max(s.maxApproach, glm::dot(p.velocity[i] - p.velocity[j], offset) / r);
+                            s.approach[approachBin(glm::dot(p.velocity[i] - p.velocity[j], offset) / r)] += 1;
                             out.push_back(Neighbour<D>{gj, static_cast<std::uint32_t>(j)});
                             mass += w * w;
                             gSum += gj;
@@ -136,14 +136,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     for (const ChunkStats& s : chunks) {  // chunk order: the same sums for any thread count
         all.errorSum += s.errorSum;
         all.maxError = std::max(all.maxError, s.maxError);
-        all.maxApproach = std::max(all.maxApproach, s.maxApproach);
+        for (std::size_t b = 0; b < all.approach.size(); ++b) all.approach[b] += s.approach[b];
         all.neighbourSum += s.neighbourSum;
         all.overflows += s.overflows;
     }
     const double count = static_cast<double>(std::max<std::size_t>(n, 1));
     stats.meanDensityError = all.errorSum / count;
     stats.maxDensityError = n > 0 ? all.maxError : 0.0;
-    f.maxApproach = std::max(f.maxApproach, all.maxApproach);
+    for (std::size_t b = 0; b < all.approach.size(); ++b) f.approach[b] += all.approach[b];
     stats.meanNeighbours = static_cast<double>(all.neighbourSum) / count;
     stats.neighbourOverflows += all.overflows;  // summed over the substeps
 }

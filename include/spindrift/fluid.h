@@ -95,8 +95,10 @@ struct FluidDef {
     /// step and is then dropped (split impulses), so correcting density errors
     /// adds little kinetic energy; false: the slides' bias in the velocity.
     bool splitImpulse = true;
-    /// Substeps per world step, 1 to 16; 0: automatic, as many (up to 8) as
-    /// keep the fastest particle under 0.4 h per substep.
+    /// Substeps per world step, 1 to 16; 0: automatic (up to 16): enough that
+    /// neighbours close in by at most 0.4 h per substep, that the deepest
+    /// column is held up, and more after a step compressed over 1 %
+    /// (docs/fluid.md).
     std::uint32_t substeps = 0;
     /// Sleeping, as Box2D's bodies and FleX's particles: a particle that
     /// stays within `sleepSpeed` x `sleepTime` (m) of where it was for

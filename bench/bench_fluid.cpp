@@ -14,6 +14,27 @@
 // max(rho / rho0 - 1, 0)), substeps (mean per step), particles, and the
 // passes' wall time per step (grid_ms, setup_ms, contacts_ms, solve_ms,
 // integrate_ms).
+//
+// BM_FluidLiquidFunDamBreak (issue 12): exactly LiquidFun's Testbed dam break,
+// to compare with LiquidFun measured outside the repository (docs/performance.md).
+//
+//   build/release/bench/bench_fluid --benchmark_filter=LiquidFun
+//
+// A closed 4 x 4 m box of plane walls, a column 1.6 m wide and 2.0 m high in
+// its left bottom corner, gravity (0, -10) m/s^2, dt = 1/60 s, particles on
+// the block lattice at 1.8 cm (10k: 88 x 111 = 9,768), 1.0 cm (30k: 160 x 200
+// = 32,000) or 0.57 cm (100k: 280 x 350 = 98,000) spacing, every other
+// setting at FluidDef's defaults (automatic substeps). Args {particles,
+// threads}. One iteration is the whole run, 360 steps (t = 0 to 6 s), of
+// which steps 60 to 359 (t = 1 s to 6 s, after the first impact) are timed:
+// the benchmark's time is their sum (manual time). Counters: ms_per_step and
+// median_ms_per_step (wall time of stepWorld over the timed steps),
+// cpu_ms_per_step and median_cpu_ms_per_step (process CPU time, all threads:
+// with one thread the figure that holds up on a busy machine), substeps
+// (mean over the timed steps), max_mean_density_error (largest per-step mean
+// of max(rho / rho0 - 1, 0) over all 360 steps), neighbour_overflows (total,
+// all steps), max_speed (m/s, over all steps), number_density_median and
+// number_density_p95 (measureFluidNumberDensity at t = 6 s), particles.
 #include <spindrift/world.h>
 
 #include "bench_util.h"
@@ -23,6 +44,7 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <ctime>
 #include <vector>
 
 namespace {
@@ -101,6 +123,83 @@ void damBreak(benchmark::State& state, std::uint32_t dimension) {
 void BM_FluidDamBreak2D(benchmark::State& state) { damBreak(state, 2); }
 void BM_FluidDamBreak3D(benchmark::State& state) { damBreak(state, 3); }
 
+double cpuMs() {
+    timespec ts{};
+    clock_gettime(CLOCK_PROCESS_CPUTIME_ID, &ts);
+    return static_cast<double>(ts.tv_sec) * 1e3 + static_cast<double>(ts.tv_nsec) * 1e-6;
+}
+
+double median(std::vector<double> v) {
+    std::nth_element(v.begin(), v.begin() + static_cast<std::ptrdiff_t>(v.size() / 2), v.end());
+    return v[v.size() / 2];
+}
+
+double mean(const std::vector<double>& v) {
+    double sum = 0.0;
+    for (double x : v) sum += x;
+    return sum / static_cast<double>(v.size());
+}
+
+void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
+    const auto particles = static_cast<std::uint32_t>(state.range(0));
+    const auto threads = static_cast<std::uint32_t>(state.range(1));
+    const float spacing = particles <= 10000 ? 0.018f : particles <= 30000 ? 0.010f : 0.0057f;
+    constexpr int kTotalSteps = 360, kFirstTimed = 60;  // t = 0..6 s, timed from t = 1 s
+    constexpr float kDt = 1.0f / 60.0f;
+    for (auto _ : state) {
+        WorldDef wd;
+        wd.threads = threads;
+        const WorldId world = createWorld(wd);
+        const glm::vec3 box(4.0f, 4.0f, 0.0f);
+        createCollider(world, wall(glm::vec3(0.0f), {1, 0, 0}));
+        createCollider(world, wall(box, {-1, 0, 0}));
+        createCollider(world, wall(glm::vec3(0.0f), {0, 1, 0}));
+        createCollider(world, wall(box, {0, -1, 0}));
+        FluidDef def;
+        def.name = "water";
+        def.dimension = 2;
+        def.spacing = spacing;
+        def.gravity = glm::vec3(0.0f, -10.0f, 0.0f);
+        def.blocks.push_back({glm::vec3(0.0f), glm::vec3(1.6f, 2.0f, 0.0f), glm::vec3(0.0f)});
+        const FluidId fluid = createFluid(world, def);
+        std::vector<double> wallMs, cpu;
+        double substeps = 0.0, maxMeanError = 0.0, maxSpeed = 0.0;
+        std::uint64_t overflows = 0;
+        for (int step = 0; step < kTotalSteps; ++step) {
+            const double c0 = cpuMs();
+            const auto t0 = std::chrono::steady_clock::now();
+            const StepStats s = stepWorld(world, kDt);
+            const auto t1 = std::chrono::steady_clock::now();
+            const double c1 = cpuMs();
+            const FluidStepStats& f = s.fluids.at(0);
+            if (step >= kFirstTimed) {
+                wallMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
+                cpu.push_back(c1 - c0);
+                substeps += f.substeps;
+            }
+            maxMeanError = std::max(maxMeanError, f.meanDensityError);
+            maxSpeed = std::max(maxSpeed, f.maxSpeed);
+            overflows += f.neighbourOverflows;
+        }
+        const FluidNumberDensity nd = measureFluidNumberDensity(world, fluid);
+        double timed = 0.0;
+        for (double ms : wallMs) timed += ms;
+        state.SetIterationTime(timed * 1e-3);
+        state.counters["particles"] = static_cast<double>(nd.particles);
+        state.counters["ms_per_step"] = mean(wallMs);
+        state.counters["median_ms_per_step"] = median(wallMs);
+        state.counters["cpu_ms_per_step"] = mean(cpu);
+        state.counters["median_cpu_ms_per_step"] = median(cpu);
+        state.counters["substeps"] = substeps / static_cast<double>(wallMs.size());
+        state.counters["max_mean_density_error"] = maxMeanError;
+        state.counters["neighbour_overflows"] = static_cast<double>(overflows);
+        state.counters["max_speed"] = maxSpeed;
+        state.counters["number_density_median"] = nd.median;
+        state.counters["number_density_p95"] = nd.p95;
+        destroyWorld(world);
+    }
+}
+
 BENCHMARK(BM_FluidDamBreak2D)
     ->ArgNames({"particles", "threads"})
     ->Args({10000, 2})
@@ -113,6 +212,17 @@ BENCHMARK(BM_FluidDamBreak3D)
     ->ArgNames({"particles", "threads"})
     ->Args({100000, 2})
     ->Iterations(kSteps)
+    ->Unit(benchmark::kMillisecond);
+BENCHMARK(BM_FluidLiquidFunDamBreak)
+    ->ArgNames({"particles", "threads"})
+    ->Args({10000, 1})
+    ->Args({10000, 2})
+    ->Args({30000, 1})
+    ->Args({30000, 2})
+    ->Args({100000, 1})
+    ->Args({100000, 2})
+    ->Iterations(1)
+    ->UseManualTime()
     ->Unit(benchmark::kMillisecond);
 
 }  // namespace

@@ -272,6 +272,16 @@ io::RunSummary startSummary(const RunOptions& o, const SceneDef& scene, WorldId 
     return s;
 }
 
+/// Every fluid's number-density ratio now, for summary.json (each written frame).
+io::RunSummary::NumberDensityFrame measureNumberDensity(WorldId world, std::uint64_t step) {
+    io::RunSummary::NumberDensityFrame frame;
+    frame.step = step;
+    for (std::uint32_t i = 0; i < fluidCount(world); ++i) {
+        frame.fluids.push_back(measureFluidNumberDensity(world, FluidId{i + 1}));
+    }
+    return frame;
+}
+
 double secondsSince(std::chrono::steady_clock::time_point start) {
     return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
@@ -297,6 +307,7 @@ void simulate(WorldId world, const SceneDef& scene, const RunOptions& o, io::Run
         summary.steps.push_back(std::move(stats));
         if (dump && (done % o.every == 0 || done == total)) {
             summary.cacheFiles += dumpCaches(world, o.out, done, stems, fluids, formats);
+            if (fluidCount(world) > 0) summary.numberDensity.push_back(measureNumberDensity(world, done));
         }
         if (!o.quiet) progress.update(done, summary.steps.back().alive, secondsSince(start));
     }

@@ -97,16 +97,26 @@ struct FluidDef {
     /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
     float warmStart = 1.0f;
     /// Most neighbours kept per particle, at most kFluidMaxNeighbours (1024);
-    /// more are counted as overflows and ignored. 0: 48 in 2D, 128 in 3D.
+    /// more are counted as overflows and ignored. 0 (the default): no limit
+    /// (the lists are compact and grow).
     std::uint32_t maxNeighbours = 0;
     FluidSolver solver = FluidSolver::Parallel;
     /// Solve most of the bias on a pseudo velocity that moves particles this
     /// step and is then dropped (split impulses), so correcting density errors
     /// adds little kinetic energy; false: the slides' bias in the velocity.
     bool splitImpulse = true;
-    /// Substeps per world step, 1 to kFluidMaxSubsteps (16); 0: automatic, as many (up to 8) as
-    /// keep the fastest particle under 0.4 h per substep.
+    /// Substeps per world step, 1 to kFluidMaxSubsteps (16); 0: automatic (up
+    /// to 16): enough that neighbours close in by at most 0.4 h per substep,
+    /// that the deepest column is held up, and more after a step compressed
+    /// over 1 % (docs/fluid.md).
     std::uint32_t substeps = 0;
+    /// Sleeping, as Box2D's bodies and FleX's particles: a particle that
+    /// stays within `sleepSpeed` x `sleepTime` (m) of where it was for
+    /// `sleepTime` (s) stops (velocity 0, position held) until the solver
+    /// gives it more than twice `sleepSpeed`. A tank at rest then rests;
+    /// flow slower than about `sleepSpeed` (m/s) stops too. 0: never sleeps.
+    float sleepSpeed = 0.05f;
+    float sleepTime = 0.5f;  ///< s
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2
     /// Mass density of the fluid, for its exchange of momentum with rigid
     /// bodies: a particle's mass is density x spacing^dimension. 2D: kg/m^2,
@@ -193,6 +203,27 @@ struct FluidJetPose {
 void aimFluidJet(WorldId world, FluidId fluid, std::uint32_t jet, float angle);
 void releaseFluidJetAim(WorldId world, FluidId fluid, std::uint32_t jet);
 FluidJetPose fluidJetPose(WorldId world, FluidId fluid, std::uint32_t jet);
+
+/// A solver-independent measure of compression, the number-density ratio:
+/// for each particle, the number of particles (itself included) within a
+/// fixed radius R, divided by that count at an interior point of a lattice at
+/// the fluid's spacing (an untouched block reads 1 inside, less near its
+/// surface; a fluid squeezed to 0.9 of its spacing in 2D reads about 1/0.81).
+/// R is 3.78 spacings in 2D (reference 45) and 3.91 in 3D (reference 251): no
+/// lattice shell lies within 2 % of R, and the reference equals the ball's
+/// volume in particles, so a disordered fluid at rest reads about 1 as well
+/// (src/fluid/number_density.cpp says why). Counted on its own grid, not the
+/// solver's neighbour lists or kernel, so engines compare.
+struct FluidNumberDensity {
+    double median = 0.0;  ///< median ratio over particles (0: no particles)
+    double p95 = 0.0;     ///< 95th percentile (nearest rank)
+    std::uint32_t reference = 0;  ///< the lattice count the ratio divides by
+    float radius = 0.0f;          ///< R, m
+    std::uint64_t particles = 0;
+};
+/// Measures it now over the fluid's current particles: O(n log n), one
+/// thread, on demand (not part of a step).
+FluidNumberDensity measureFluidNumberDensity(WorldId world, FluidId fluid);
 
 std::uint32_t fluidCount(WorldId world);
 const FluidDef& fluidDef(WorldId world, FluidId fluid);

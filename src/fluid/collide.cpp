@@ -19,6 +19,8 @@ constexpr float kOverlapPush = 0.2f;
 /// Distance (m) a put-back particle keeps from the surface, so rounding does
 /// not leave it inside for the next step.
 constexpr float kSkin = 1e-5f;
+/// A sleeping particle wakes above this many times FluidDef::sleepSpeed.
+constexpr float kWakeFactor = 2.0f;
 
 template <int D>
 glm::vec3 to3(Vec<D> v) {
@@ -63,8 +65,11 @@ void forEachSurface(const StepContext& world, const FluidState& f, glm::vec3 x, 
 template <int D>
 void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, float dt) {
     Particles<D>& p = f.particles<D>();
+    Constraints& c = f.constraints;
     f.contacts.resize(WorkerPool::chunkCount(p.size(), kParticleChunk));
     for (auto& list : f.contacts) list.clear();
+    c.wallDensity.assign(p.size(), 0.0f);
+    c.wallGradient.assign(p.size(), glm::vec3(0.0f));
     if (world.colliders.empty() && f.polygons.empty()) return;
     const float radius = f.radius;
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
@@ -76,6 +81,11 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
             const float reach = radius + glm::length(p.velocity[i]) * dt + f.def.spacing;
             forEachSurface<D>(world, f, x, [&](const kernels::FluidSurface& s) {
                 if (s.distance < reach) out.push_back(Contact{s, static_cast<std::uint32_t>(i)});
+                // The wall's ghost neighbours (wall_density.cpp): their
+                // direction from the particle is into the wall, -normal.
+                const WallTerm t = wallTerm(f.wallTable, s.distance);
+                c.wallDensity[i] += t.density;
+                c.wallGradient[i] -= s.normal * t.push;
             });
         }
     });
@@ -115,11 +125,51 @@ template <int D>
 void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt, FluidStepStats& stats) {
     Particles<D>& p = f.particles<D>();
     std::vector<float> maxSpeed(WorkerPool::chunkCount(p.size(), kParticleChunk), 0.0f);
+    // Extent along gravity of the particles under pressure: the depth of
+    // the columns the solver holds up (fluid_step.cpp's substeps).
+    const float gravity = glm::length(f.def.gravity);
+    const Vec<D> down = gravity > 0.0f ? Vec<D>(f.def.gravity / gravity) : Vec<D>(0.0f);
+    std::vector<glm::vec2> pressed(maxSpeed.size(), glm::vec2(3.0e38f, -3.0e38f));
+    const bool sleeps = f.def.sleepSpeed > 0.0f;
+    const float wakeSpeed = kWakeFactor * f.def.sleepSpeed;
+    const float sleepTime = f.def.sleepTime;
+    const float drift = f.def.sleepSpeed * f.def.sleepTime;  // m
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         float fastest = 0.0f;
+        glm::vec2 range(3.0e38f, -3.0e38f);
         for (std::size_t i = begin; i < end; ++i) {
+            if (p.pressure[i] > 0.0f) {
+                const float along = glm::dot(p.position[i], down);
+                range = glm::vec2(std::min(range.x, along), std::max(range.y, along));
+            }
             const glm::vec3 x0 = to3<D>(p.position[i]);
             glm::vec3 v = to3<D>(p.velocity[i]);
+            // Sleeping: a particle that has not left a circle of `drift`
+            // for sleepTime holds still until the solver gives it more than
+            // the wake speed. Displacement, not speed, decides: a resting
+            // tank's particles jitter at several cm/s (the pressure of a
+            // disordered packing cannot cancel gravity exactly; the leftover
+            // accumulates, docs/fluid.md) but go nowhere, while a flow as slow
+            // as sleepSpeed leaves the circle and stays awake.
+            if (sleeps) {
+                if (p.still[i] >= sleepTime) {
+                    if (glm::length(v) < wakeSpeed) {
+                        p.velocity[i] = Vec<D>(0.0f);
+                        continue;
+                    }
+                    p.still[i] = 0.0f;
+                    p.anchor[i] = p.position[i];
+                } else if (glm::distance(p.position[i], p.anchor[i]) > drift) {
+                    p.still[i] = 0.0f;
+                    p.anchor[i] = p.position[i];
+                } else {
+                    p.still[i] += dt;
+                    if (p.still[i] >= sleepTime) {
+                        p.velocity[i] = Vec<D>(0.0f);
+                        continue;
+                    }
+                }
+            }
             const glm::vec3 motion = p.pseudo.empty() ? v : v + to3<D>(p.pseudo[i]);
             glm::vec3 x1 = x0 + motion * dt;
             // Path tests (as the effects' collisions): a path that crosses a
@@ -157,10 +207,14 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             fastest = std::max(fastest, glm::length(from3<D>(v)));
         }
         maxSpeed[chunk] = fastest;
+        pressed[chunk] = range;
     });
     float fastest = 0.0f;
     for (float s : maxSpeed) fastest = std::max(fastest, s);
     stats.maxSpeed = fastest;
+    glm::vec2 range(3.0e38f, -3.0e38f);
+    for (glm::vec2 r : pressed) range = glm::vec2(std::min(range.x, r.x), std::max(range.y, r.y));
+    f.pressedDepth = range.y > range.x ? range.y - range.x : 0.0f;
 }
 
 template void findContacts<2>(WorkerPool&, FluidState&, const StepContext&, float);

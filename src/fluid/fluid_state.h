@@ -37,6 +37,11 @@ struct Particles {
     std::vector<float> pressure;   // accumulated impulse (m/s), warm start of the next step
     std::vector<float> density;    // rho / rho0 at the last setup
     std::vector<std::uint32_t> id; // creation serial
+    /// Sleeping (integratePositions): where the particle has stayed within
+    /// FluidDef::sleepSpeed x sleepTime of (m), and for how long (s); at
+    /// sleepTime and above it sleeps.
+    std::vector<Vec<D>> anchor;
+    std::vector<float> still;
     /// Split impulses: this step's position-correction velocity (m/s),
     /// zeroed every step, so not kept in grid order.
     std::vector<Vec<D>> pseudo;
@@ -48,6 +53,8 @@ struct Particles {
         pressure.push_back(0.0f);
         density.push_back(1.0f);
         id.push_back(serial);
+        anchor.push_back(x);
+        still.push_back(0.0f);
     }
 };
 
@@ -85,12 +92,62 @@ struct Grid {
     std::vector<std::uint32_t> scratchUint;
 };
 
+/// Neighbour pairs counted by closing speed (m/s, the rate at which their
+/// distance shrinks; moving apart counts as 0), in bins kApproachBin wide,
+/// the last one open-ended. Integer counts summed in chunk order, so the
+/// substeps they pick are the same for any thread count.
+inline constexpr float kApproachBin = 0.5f;
+using ApproachHistogram = std::array<std::uint64_t, 64>;
+inline std::size_t approachBin(float speed) {
+    const float b = speed / kApproachBin;
+    return b > 0.0f ? static_cast<std::size_t>(std::min(b, 63.0f)) : 0u;  // NaN: 0
+}
+
 /// Per-particle constraint data of one step (slide 35).
 struct Constraints {
     std::vector<float> bias;      // m/s
     std::vector<float> invMass;   // 1 / A
     std::vector<std::uint32_t> count;  // neighbours stored
+    std::vector<std::uint32_t> first;  // offset of the list in its chunk's array
+    /// Colliders' share (wall_density.cpp), found with the contacts: density
+    /// (kernel-sum units) and g of the motionless ghost neighbours (w times
+    /// the unit direction into the wall, summed).
+    std::vector<float> wallDensity;
+    std::vector<glm::vec3> wallGradient;
 };
+
+/// Neighbour lists of one step, compact (no fixed stride, so no overflow and
+/// no memory for room that is rarely used): particle i's neighbours are
+/// chunks[i / kParticleChunk][first[i] + k] for k < count[i] (Constraints).
+/// One growable array per chunk of particles, so the setup fills them in
+/// parallel without counting first.
+template <int D>
+using NeighbourChunks = std::vector<std::vector<Neighbour<D>>>;
+
+template <int D>
+inline const Neighbour<D>* neighbourList(const NeighbourChunks<D>& lists, const Constraints& c, std::size_t i) {
+    return lists[i / kParticleChunk].data() + c.first[i];
+}
+
+struct FluidState;
+
+/// The density a collider lends a particle at `distance` (m) from its surface,
+/// and the size of the push it gives (sum of w times the normal part of the
+/// direction to the ghosts): wall_density.cpp. Linear between kSize entries.
+struct WallTable {
+    static constexpr int kSize = 128;
+    float start = 0.0f;  // m, distance of entry 0
+    float step = 1.0f;   // m between entries
+    std::array<float, kSize> density{};
+    std::array<float, kSize> push{};
+};
+struct WallTerm {
+    float density = 0.0f;
+    float push = 0.0f;
+};
+/// Fills FluidState::wallTable for its spacing and h.
+void buildWallTable(FluidState& f);
+WallTerm wallTerm(const WallTable& t, float distance);
 
 /// A particle near a collider surface this step (found once per step; the
 /// surface does not move while the solver iterates). 24 bytes.
@@ -119,19 +176,28 @@ struct FluidState {
     std::uint32_t nextSerial = 0;
     std::vector<kernels::FluidPolygon> polygons;
     std::vector<Jet> jets;
+    WallTable wallTable;
 
     Particles<2> p2;
     Particles<3> p3;
     Grid<2> g2;
     Grid<3> g3;
-    std::vector<Neighbour<2>> n2;
-    std::vector<Neighbour<3>> n3;
+    NeighbourChunks<2> n2;
+    NeighbourChunks<3> n3;
     Constraints constraints;
     std::vector<float> pseudoImpulse;  // accumulated bias impulse (m/s), per step
     /// Contacts of each chunk of kParticleChunk particles, in particle order.
     std::vector<std::vector<Contact>> contacts;
     std::uint64_t steps = 0;
-    float lastMaxSpeed = 0.0f;  // m/s, of the previous step: picks the substeps
+    float lastMaxSpeed = 0.0f;  // m/s, of the previous step
+    float pressedDepth = 0.0f;  // m, extent along gravity of the particles under pressure (integratePositions)
+    /// Closing speeds of the step's neighbour pairs, all substeps so far:
+    /// picks the next step's substeps (fluid_step.cpp).
+    ApproachHistogram approach{};
+    float lastMeanDensityError = 0.0f;  // of the previous step's last substep: picks the substeps
+    int lastSubsteps = 1;
+    int compressionSubsteps = 0;  // what the density error asks for (automaticSubsteps)
+    std::uint32_t quietSteps = 0;
     float lastSubstep = 0.0f;   // s, the substep the pressure was solved for
     /// The rigid bodies near this 2D fluid during its step (body_contacts.h,
     /// filled by src/coupling); null outside stepFluid or when none are near.
@@ -147,7 +213,7 @@ struct FluidState {
     template <int D> Grid<D>& grid() {
         if constexpr (D == 2) return g2; else return g3;
     }
-    template <int D> std::vector<Neighbour<D>>& neighbours() {
+    template <int D> NeighbourChunks<D>& neighbours() {
         if constexpr (D == 2) return n2; else return n3;
     }
     std::size_t size() const { return def.dimension == 2 ? p2.size() : p3.size(); }

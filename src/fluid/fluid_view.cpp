@@ -14,7 +14,7 @@ const Particles<D>& particlesOf(const FluidState& f) {
 }
 
 template <int D>
-const std::vector<Neighbour<D>>& neighboursOf(const FluidState& f) {
+const NeighbourChunks<D>& neighboursOf(const FluidState& f) {
     if constexpr (D == 2) return f.n2; else return f.n3;
 }
 
@@ -23,7 +23,7 @@ const std::vector<Neighbour<D>>& neighboursOf(const FluidState& f) {
 template <int D>
 FluidView<D> viewFluid(const FluidState& f) {
     const Particles<D>& p = particlesOf<D>(f);
-    const std::vector<Neighbour<D>>& lists = neighboursOf<D>(f);
+    const NeighbourChunks<D>& lists = neighboursOf<D>(f);
     FluidView<D> v;
     v.position = p.position;
     v.velocity = p.velocity;
@@ -31,7 +31,7 @@ FluidView<D> viewFluid(const FluidState& f) {
     v.id = p.id;
     v.neighbours = lists;
     v.count = f.constraints.count;
-    v.maxNeighbours = f.maxNeighbours;
+    v.first = f.constraints.first;
     return v;
 }
 

@@ -12,8 +12,8 @@
 namespace spindrift::fluid {
 
 /// One fluid's particles in grid order, and the neighbour lists of its last
-/// constraint setup: particle i's neighbours are neighbours[i * maxNeighbours
-/// + k] for k < count[i]. Before the first step there are no lists (count is
+/// constraint setup: particle i's neighbours are neighbourList(i)[k] for
+/// k < count[i]. Before the first step there are no lists (count is
 /// empty); a particle added since the last step (i >= count.size()) has none.
 template <int D>
 struct FluidView {
@@ -21,9 +21,12 @@ struct FluidView {
     std::span<const Vec<D>> velocity;    // m/s
     std::span<const float> density;      // rho / rho0 at the last setup
     std::span<const std::uint32_t> id;   // creation serial
-    std::span<const Neighbour<D>> neighbours;
+    std::span<const std::vector<Neighbour<D>>> neighbours;  // per chunk of kParticleChunk particles
     std::span<const std::uint32_t> count;
-    std::uint32_t maxNeighbours = 0;
+    std::span<const std::uint32_t> first;  // offset in the chunk's list
+    const Neighbour<D>* neighbourList(std::size_t i) const {
+        return neighbours[i / kParticleChunk].data() + first[i];
+    }
 };
 
 template <int D>

@@ -6,6 +6,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace spindrift::fluid {
 namespace {
@@ -14,9 +15,6 @@ namespace {
 /// in 3D (80 neighbours; 3 would be 122, too slow for what it gains).
 constexpr float kDefaultSmoothing2 = 3.0f;
 constexpr float kDefaultSmoothing3 = 2.5f;
-/// Default neighbour capacity: room for compression and splashes landing.
-constexpr std::uint32_t kDefaultNeighbours2 = 48;
-constexpr std::uint32_t kDefaultNeighbours3 = 128;
 constexpr std::uint32_t kDefaultJetCapacity = 10000;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
@@ -228,6 +226,10 @@ void validateFluidDef(const FluidDef& def) {
         !(def.restDensity >= 0.0f) || !std::isfinite(def.restDensity)) {
         throw Error(fmt::format("{}: friction and rest density must be finite and >= 0, gravity finite", label(def)));
     }
+    if (!(def.sleepSpeed >= 0.0f) || !std::isfinite(def.sleepSpeed) || !(def.sleepTime >= 0.0f) ||
+        !std::isfinite(def.sleepTime)) {
+        throw Error(fmt::format("{}: sleep speed (m/s) and sleep time (s) must be finite and >= 0", label(def)));
+    }
     if (!(def.density > 0.0f) || !std::isfinite(def.density)) {
         throw Error(fmt::format("{}: density must be a finite mass density > 0 (kg/m^2 in 2D), got {}", label(def),
                                 def.density));
@@ -238,19 +240,20 @@ void validateFluidDef(const FluidDef& def) {
 }
 
 float latticeRestDensity(std::uint32_t dimension, float spacing, float h) {
-    // Sum of w over the lattice points within h of one of them, itself
-    // included (w(0) = 1): what the constraint setup measures for an interior
+    // Sum of the density kernel over the lattice points within h of one of
+    // them, itself included (W(0) = 1): what the constraint setup measures for an interior
     // particle of a freshly laid block, in the same float arithmetic.
     const int reach = static_cast<int>(std::ceil(h / spacing));
     const int zReach = dimension == 3 ? reach : 0;
-    const float invH2 = 1.0f / (h * h);
+    const float invH = 1.0f / h;
     float sum = 1.0f;
     for (int k = -zReach; k <= zReach; ++k) {
         for (int j = -reach; j <= reach; ++j) {
             for (int i = -reach; i <= reach; ++i) {
                 if (i == 0 && j == 0 && k == 0) continue;
                 const glm::vec3 o = glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * spacing;
-                sum += kernels::fluidWeight(glm::dot(o, o), invH2);
+                const float r2 = glm::dot(o, o);
+                if (r2 < h * h) sum += kernels::fluidDensityKernel(std::sqrt(r2) * invH);
             }
         }
     }
@@ -263,15 +266,15 @@ void initialiseFluid(FluidState& f) {
                                : (def.dimension == 2 ? kDefaultSmoothing2 : kDefaultSmoothing3) * def.spacing;
     f.restDensity = def.restDensity > 0.0f ? def.restDensity : latticeRestDensity(def.dimension, def.spacing, f.h);
     f.radius = 0.5f * def.spacing;
-    f.maxNeighbours = def.maxNeighbours > 0 ? def.maxNeighbours
-                                            : (def.dimension == 2 ? kDefaultNeighbours2 : kDefaultNeighbours3);
+    buildWallTable(f);
+    f.maxNeighbours = def.maxNeighbours > 0 ? def.maxNeighbours : std::numeric_limits<std::uint32_t>::max();
     std::uint64_t capacity = def.capacity;
     if (capacity == 0) {
         for (const FluidBlockDef& b : def.blocks) capacity += blockParticles(def, b);
         capacity += static_cast<std::uint64_t>(kDefaultJetCapacity) * def.jets.size();
     }
-    if (capacity > 0xFFFFFFF0u / std::max<std::uint32_t>(f.maxNeighbours, 1)) {
-        throw Error(fmt::format("{}: capacity {} x {} neighbours is too large", label(def), capacity, f.maxNeighbours));
+    if (capacity > 0xFFFFFFF0u) {
+        throw Error(fmt::format("{}: capacity {} is too large", label(def), capacity));
     }
     f.capacity = static_cast<std::uint32_t>(capacity);
     for (std::size_t i = 0; i < def.polygons.size(); ++i) f.polygons.push_back(makePolygon(def, def.polygons[i], i + 1));

@@ -133,6 +133,8 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
         gather(p.pressure, g.scratchFloat);
         gather(p.density, g.scratchFloat);
         gather(p.id, g.scratchUint);
+        gather(p.anchor, g.scratchVec);
+        gather(p.still, g.scratchFloat);
         gather(g.key, g.scratchUint);
     }
 

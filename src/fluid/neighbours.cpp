@@ -13,6 +13,7 @@ namespace {
 struct ChunkStats {
     double errorSum = 0.0;
     double maxError = -1.0e30;
+    ApproachHistogram approach{};
     std::uint64_t neighbourSum = 0;
     std::uint64_t overflows = 0;
 };
@@ -42,17 +43,19 @@ template <int D>
 void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats& stats) {
     Particles<D>& p = f.particles<D>();
     const Grid<D>& g = f.grid<D>();
-    std::vector<Neighbour<D>>& lists = f.neighbours<D>();
+    NeighbourChunks<D>& lists = f.neighbours<D>();
     Constraints& c = f.constraints;
     const std::size_t n = p.size();
     const std::uint32_t maxN = f.maxNeighbours;
-    lists.resize(n * maxN);
+    lists.resize(WorkerPool::chunkCount(n, kParticleChunk));
     c.bias.resize(n);
     c.invMass.resize(n);
     c.count.resize(n);
+    c.first.resize(n);
 
     const float h2 = f.h * f.h;
     const float invH2 = 1.0f / h2;
+    const float invH = 1.0f / f.h;
     const float invDt = 1.0f / dt;
     const float invRest = 1.0f / f.restDensity;
     const int subCells[3] = {2 * g.cells[0], 2 * g.cells[1], D == 3 ? 2 * g.cells[2] : 1};
@@ -61,9 +64,11 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkStats s;
+        std::vector<Neighbour<D>>& out = lists[chunk];
+        out.clear();  // keeps its capacity from the last step
         for (std::size_t i = begin; i < end; ++i) {
             const Vec<D> xi = p.position[i];
-            Neighbour<D>* list = lists.data() + i * maxN;
+            c.first[i] = static_cast<std::uint32_t>(out.size());
             std::uint32_t count = 0;
             float density = 1.0f;  // the particle itself: w(0) = 1
             float mass = 0.0f;
@@ -84,22 +89,31 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                             const float r2 = glm::dot(offset, offset);
                             if (r2 >= h2 || j == i) continue;
                             const float w = kernels::fluidWeight(r2, invH2);
-                            density += w;
+                            const float r = std::sqrt(r2);
+                            density += kernels::fluidDensityKernel(r * invH);
                             if (r2 <= 0.0f) continue;  // coincident: no direction to push along
                             if (count == maxN) {
                                 s.overflows += 1;
                                 continue;
                             }
-                            list[count].g = offset * (w / std::sqrt(r2));
-                            list[count].index = j;
+                            const Vec<D> gj = offset * (w / r);
+                            // Closing speed of the pair (m/s): picks the next
+                            // step's substeps (fluid_step.cpp).
+                            s.approach[approachBin(glm::dot(p.velocity[i] - p.velocity[j], offset) / r)] += 1;
+                            out.push_back(Neighbour<D>{gj, static_cast<std::uint32_t>(j)});
                             mass += w * w;
-                            gSum += list[count].g;
+                            gSum += gj;
                             count += 1;
                         }
                     }
                 }
             }
             c.count[i] = count;
+            // The colliders' ghosts (wall_density.cpp): motionless
+            // neighbours, so they add to the density and to the particle's
+            // own Jacobian entry, -(sum g + wall).
+            density += c.wallDensity[i];
+            gSum += Vec<D>(c.wallGradient[i]);
             // Effective mass of the Jacobian (g_n for each neighbour, -sum g for
             // the particle itself): sum |g|^2 + |sum g|^2. The slides' A =
             // sum 2 w^2 is exact for one neighbour only; at a wall or a free
@@ -122,12 +136,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     for (const ChunkStats& s : chunks) {  // chunk order: the same sums for any thread count
         all.errorSum += s.errorSum;
         all.maxError = std::max(all.maxError, s.maxError);
+        for (std::size_t b = 0; b < all.approach.size(); ++b) all.approach[b] += s.approach[b];
         all.neighbourSum += s.neighbourSum;
         all.overflows += s.overflows;
     }
     const double count = static_cast<double>(std::max<std::size_t>(n, 1));
     stats.meanDensityError = all.errorSum / count;
     stats.maxDensityError = n > 0 ? all.maxError : 0.0;
+    for (std::size_t b = 0; b < all.approach.size(); ++b) f.approach[b] += all.approach[b];
     stats.meanNeighbours = static_cast<double>(all.neighbourSum) / count;
     stats.neighbourOverflows += all.overflows;  // summed over the substeps
 }

@@ -42,11 +42,12 @@ struct SolverView {
     Vec<D>* pseudo;  // null: bias on the real velocity
     float* pressure;
     float* pseudoImpulse;
-    const Neighbour<D>* lists;
+    const std::vector<Neighbour<D>>* lists;  // per chunk (NeighbourChunks)
+    const std::uint32_t* first;
+    const glm::vec3* wall;  // the colliders' ghosts' g (wall_density.cpp)
     const float* bias;
     const float* invMass;
     const std::uint32_t* count;
-    std::uint32_t maxN;
     float allowanceSlop;  // m/s of bias an under-dense particle's allowance starts above
 };
 
@@ -54,8 +55,8 @@ struct SolverView {
 /// every neighbour, v_i -= sum g delta (Newton's third law, slide 39).
 template <int D>
 inline void applyImpulse(const SolverView<D>& s, Vec<D>* v, std::size_t i, float delta) {
-    const Neighbour<D>* list = s.lists + i * s.maxN;
-    Vec<D> self(0.0f);
+    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    Vec<D> self = Vec<D>(s.wall[i]) * delta;  // the motionless ghosts take no impulse
     for (std::uint32_t k = 0; k < s.count[i]; ++k) {
         const Vec<D> impulse = list[k].g * delta;
         v[list[k].index] += impulse;
@@ -67,9 +68,9 @@ inline void applyImpulse(const SolverView<D>& s, Vec<D>* v, std::size_t i, float
 /// C' of particle i's constraint over velocities v (slide 36).
 template <int D>
 inline float rateOf(const SolverView<D>& s, const Vec<D>* v, std::size_t i) {
-    const Neighbour<D>* list = s.lists + i * s.maxN;
+    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
     const Vec<D> vi = v[i];
-    float rate = 0.0f;
+    float rate = -glm::dot(Vec<D>(s.wall[i]), vi);  // ghosts at rest
     for (std::uint32_t k = 0; k < s.count[i]; ++k) {
         rate += glm::dot(list[k].g, v[list[k].index] - vi);
     }
@@ -100,12 +101,13 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
         if (r.delta != 0.0f) applyImpulse<D>(s, s.velocity, i, r.delta);
         return;
     }
-    const Neighbour<D>* list = s.lists + i * s.maxN;
+    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
     const std::uint32_t count = s.count[i];
     const Vec<D> vi = s.velocity[i];
     const Vec<D> pi = s.pseudo[i];
-    float rate = 0.0f;
-    float pseudoRate = 0.0f;
+    const Vec<D> wall(s.wall[i]);
+    float rate = -glm::dot(wall, vi);
+    float pseudoRate = -glm::dot(wall, pi);
     for (std::uint32_t k = 0; k < count; ++k) {
         const std::uint32_t j = list[k].index;
         rate += glm::dot(list[k].g, s.velocity[j] - vi);
@@ -116,8 +118,8 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
         kernels::fluidSolveImpulse(pseudoRate, bias * (1.0f - kRealBiasShare), s.invMass[i], s.pseudoImpulse[i]);
     s.pressure[i] = r.accumulated;
     s.pseudoImpulse[i] = q.accumulated;
-    Vec<D> self(0.0f);
-    Vec<D> pseudoSelf(0.0f);
+    Vec<D> self = wall * r.delta;
+    Vec<D> pseudoSelf = wall * q.delta;
     for (std::uint32_t k = 0; k < count; ++k) {
         const std::uint32_t j = list[k].index;
         const Vec<D> impulse = list[k].g * r.delta;
@@ -178,20 +180,22 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
                           p.pressure.data(),
                           f.pseudoImpulse.data(),
                           f.neighbours<D>().data(),
+                          f.constraints.first.data(),
+                          f.constraints.wallGradient.data(),
                           f.constraints.bias.data(),
                           f.constraints.invMass.data(),
                           f.constraints.count.data(),
-                          f.maxNeighbours,
                           kAllowanceSlop * f.restDensity * f.def.baumgarte * f.h / dt};
     // The pressure is an impulse per (sub)step: when the substep length
     // changes, the warm start scales with it, or a switch from 1 to 8
     // substeps would apply 8 times the support per unit time and blow up.
     const float fraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
     f.lastSubstep = dt;
+    const std::uint32_t iterations = f.def.iterations;
     if (f.def.solver == FluidSolver::Sequential) {
         for (std::size_t i = 0; i < n; ++i) warmStart<D>(s, i, fraction);
         solveContacts<D>(pool, f, dt);
-        for (std::uint32_t it = 0; it < f.def.iterations; ++it) {
+        for (std::uint32_t it = 0; it < iterations; ++it) {
             for (std::size_t i = 0; i < n; ++i) visit<D>(s, i);
             solveContacts<D>(pool, f, dt);
         }
@@ -200,7 +204,7 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
     const Grid<D>& g = f.grid<D>();
     forEachByColour<D>(pool, g, [&](std::size_t i) { warmStart<D>(s, i, fraction); });
     solveContacts<D>(pool, f, dt);
-    for (std::uint32_t it = 0; it < f.def.iterations; ++it) {
+    for (std::uint32_t it = 0; it < iterations; ++it) {
         forEachByColour<D>(pool, g, [&](std::size_t i) { visit<D>(s, i); });
         solveContacts<D>(pool, f, dt);
     }

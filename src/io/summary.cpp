@@ -57,7 +57,14 @@ void writeHeader(JsonWriter& json, const RunSummary& s) {
     if (!s.fluidNames.empty()) writeNames(json, "fluids", s.fluidNames);
 }
 
-void writeFluidStep(JsonWriter& json, const FluidStepStats& f) {
+/// The frame measured after 1-based step `step`, or null.
+const RunSummary::NumberDensityFrame* frameAt(const RunSummary& s, std::uint64_t step) {
+    const auto it = std::lower_bound(s.numberDensity.begin(), s.numberDensity.end(), step,
+                                     [](const RunSummary::NumberDensityFrame& f, std::uint64_t n) { return f.step < n; });
+    return it != s.numberDensity.end() && it->step == step ? &*it : nullptr;
+}
+
+void writeFluidStep(JsonWriter& json, const FluidStepStats& f, const FluidNumberDensity* density) {
     json.beginObject(true);
     json.key("particles");
     json.value(f.particles);
@@ -75,11 +82,18 @@ void writeFluidStep(JsonWriter& json, const FluidStepStats& f) {
     json.value(f.neighbourOverflows);
     json.key("substeps");
     json.value(f.substeps);
+    if (density != nullptr) {
+        json.key("number_density_median");
+        json.value(density->median);
+        json.key("number_density_p95");
+        json.value(density->p95);
+    }
     json.endObject();
 }
 
 /// Per fluid over the run: final count, mean of the steps' mean density
-/// error, max of their max, overflows summed.
+/// error, max of their max, overflows summed; the number-density ratio of the
+/// last frame measured and the largest p95 of all of them.
 void writeFluidTotals(JsonWriter& json, const RunSummary& s) {
     json.beginArray();
     for (std::size_t k = 0; k < s.fluidNames.size(); ++k) {
@@ -109,12 +123,30 @@ void writeFluidTotals(JsonWriter& json, const RunSummary& s) {
         json.value(maxSpeed);
         json.key("neighbour_overflows");
         json.value(overflows);
+        const FluidNumberDensity* last = nullptr;
+        double maxP95 = 0.0;
+        for (const RunSummary::NumberDensityFrame& frame : s.numberDensity) {
+            if (k >= frame.fluids.size()) continue;
+            last = &frame.fluids[k];
+            maxP95 = std::max(maxP95, last->p95);
+        }
+        if (last != nullptr) {
+            json.key("number_density_reference");
+            json.value(static_cast<std::uint64_t>(last->reference));
+            json.key("final_number_density_median");
+            json.value(last->median);
+            json.key("final_number_density_p95");
+            json.value(last->p95);
+            json.key("max_number_density_p95");
+            json.value(maxP95);
+        }
         json.endObject();
     }
     json.endArray();
 }
 
-void writeStep(JsonWriter& json, const StepStats& step, std::size_t colliderCount) {
+void writeStep(JsonWriter& json, const StepStats& step, const RunSummary& s) {
+    const std::size_t colliderCount = s.colliderNames.size();
     json.beginObject(true);
     // 1-based: the state after this many steps, the number in the cache file names.
     json.key("step");
@@ -138,7 +170,11 @@ void writeStep(JsonWriter& json, const StepStats& step, std::size_t colliderCoun
     if (!step.fluids.empty()) {
         json.key("fluids");
         json.beginArray();
-        for (const FluidStepStats& f : step.fluids) writeFluidStep(json, f);
+        const RunSummary::NumberDensityFrame* frame = frameAt(s, step.step + 1);
+        for (std::size_t k = 0; k < step.fluids.size(); ++k) {
+            const bool measured = frame != nullptr && k < frame->fluids.size();
+            writeFluidStep(json, step.fluids[k], measured ? &frame->fluids[k] : nullptr);
+        }
         json.endArray();
     }
     json.endObject();
@@ -203,7 +239,7 @@ void writeSummaryJson(std::ostream& out, const RunSummary& summary) {
     writeHeader(json, summary);
     json.key("per_step");
     json.beginArray();
-    for (const StepStats& step : summary.steps) writeStep(json, step, summary.colliderNames.size());
+    for (const StepStats& step : summary.steps) writeStep(json, step, summary);
     json.endArray();
     json.key("totals");
     writeTotals(json, summary);

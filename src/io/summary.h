@@ -26,6 +26,13 @@ struct RunSummary {
     /// index i = fluid id i + 1; the "fluids" members appear only when non-empty.
     std::vector<std::string> fluidNames;
     std::vector<StepStats> steps;            ///< in order, one per step taken
+    /// The number-density ratio of every fluid (index i = fluid id i + 1),
+    /// measured after some steps (`spindrift run`: each written frame).
+    struct NumberDensityFrame {
+        std::uint64_t step = 0;  ///< 1-based, as "step" of per_step
+        std::vector<FluidNumberDensity> fluids;
+    };
+    std::vector<NumberDensityFrame> numberDensity;  ///< in step order
     double wallSeconds = 0.0;   ///< whole run, including cache writes
     std::uint64_t cacheFiles = 0;  ///< cache files written (summary.json not counted)
 };

@@ -90,7 +90,7 @@ glm::vec3 flatIf2D(glm::vec3 v, std::uint32_t dimension) {
 template <int D>
 glm::vec3 averageDirection(const fluid::FluidView<D>& v, std::size_t i) {
     if (i >= v.count.size()) return glm::vec3(0.0f);
-    const fluid::Neighbour<D>* list = v.neighbours.data() + i * v.maxNeighbours;
+    const fluid::Neighbour<D>* list = v.neighbourList(i);
     fluid::Vec<D> sum(0.0f);
     float weights = 0.0f;
     for (std::uint32_t k = 0; k < v.count[i]; ++k) {

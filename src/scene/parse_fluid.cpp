@@ -65,7 +65,7 @@ FluidPolygonDef parsePolygon(const Table& t) {
 
 FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
     t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
-                 "solver", "substeps", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
+                 "solver", "substeps", "sleep_speed", "sleep_time", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
                 "a [[fluid]]");
     FluidDef def;
     def.name = names.add(t);
@@ -87,6 +87,8 @@ FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
         def.solver = v->choice<FluidSolver>({{"parallel", FluidSolver::Parallel}, {"sequential", FluidSolver::Sequential}});
     }
     def.substeps = static_cast<std::uint32_t>(t.integer("substeps", def.substeps, Bounds::between(0, kFluidMaxSubsteps)));
+    def.sleepSpeed = t.real("sleep_speed", def.sleepSpeed, Bounds::nonNegative());
+    def.sleepTime = t.real("sleep_time", def.sleepTime, Bounds::nonNegative());
     def.gravity = t.vec3("gravity", def.gravity);
     def.friction = t.real("friction", def.friction, Bounds::nonNegative());
     def.density = t.real("density", def.density, Bounds::positive());

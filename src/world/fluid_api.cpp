@@ -6,6 +6,7 @@
 #include "coupling/fluid_link.h"
 #include "fluid/body_link.h"
 #include "fluid/fluid_world.h"
+#include "fluid/number_density.h"
 #include "world/world.h"
 
 #include <fmt/format.h>
@@ -144,6 +145,18 @@ float fluidRestDensity(WorldId id, FluidId fluidId) {
 
 FluidSnapshot readFluid(WorldId id, FluidId fluidId) {
     return fluid::snapshotOf(fluidFromId(worldFromId(id), fluidId));
+}
+
+FluidNumberDensity measureFluidNumberDensity(WorldId id, FluidId fluidId) {
+    const fluid::FluidState& f = fluidFromId(worldFromId(id), fluidId);
+    std::vector<glm::vec3> position;
+    if (f.def.dimension == 2) {
+        position.reserve(f.p2.size());
+        for (const glm::vec2& p : f.p2.position) position.emplace_back(p, 0.0f);
+    } else {
+        position.assign(f.p3.position.begin(), f.p3.position.end());
+    }
+    return fluid::measureNumberDensity(position, f.def.dimension, f.def.spacing);
 }
 
 }  // namespace spindrift

@@ -7,7 +7,14 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
+#include <string>
+#include <string_view>
+
+namespace spindrift_test {  // tests/io/json_check.cpp
+std::optional<std::string> jsonQuery(std::string_view text, std::string_view path);
+}  // namespace spindrift_test
 
 namespace spindrift {
 namespace {
@@ -88,7 +95,7 @@ TEST(FluidScene, CliWritesDensityAndPressureColumnsAndStats) {
     const std::filesystem::path out = std::filesystem::temp_directory_path() / "spindrift_fluid_cli_test";
     std::filesystem::remove_all(out);
     const std::string command = std::string(SPINDRIFT_CLI_PATH) + " run " + SPINDRIFT_SOURCE_DIR +
-                                "/scenes/fluid_tank.toml -q -n 5 -o " + out.string() + " -f csv,ply > /dev/null";
+                                "/scenes/fluid_tank.toml -q -n 5 -e 3 -o " + out.string() + " -f csv,ply > /dev/null";
     ASSERT_EQ(std::system(command.c_str()), 0);
     std::ifstream csv(out / "water_000005.csv");
     std::string header;
@@ -101,6 +108,18 @@ TEST(FluidScene, CliWritesDensityAndPressureColumnsAndStats) {
                             "\"max_speed\"", "\"neighbour_overflows\""}) {
         EXPECT_NE(summary.str().find(key), std::string::npos) << key;
     }
+    // The number-density ratio on the written frames (steps 3 and 5, not 4)
+    // and in the totals: a tank 5 steps after release is still close to its lattice,
+    // whose interior reads exactly 1 (more than half of its particles).
+    const std::string json = summary.str();
+    const auto median = spindrift_test::jsonQuery(json, "per_step/4/fluids/0/number_density_median");
+    ASSERT_TRUE(median.has_value()) << json.substr(0, 2000);
+    EXPECT_NEAR(std::strtod(median->c_str(), nullptr), 1.0, 0.03);
+    EXPECT_EQ(spindrift_test::jsonQuery(json, "totals/fluids/0/final_number_density_median"), *median);
+    EXPECT_TRUE(spindrift_test::jsonQuery(json, "per_step/4/fluids/0/number_density_p95").has_value());
+    EXPECT_TRUE(spindrift_test::jsonQuery(json, "per_step/2/fluids/0/number_density_median").has_value());
+    EXPECT_FALSE(spindrift_test::jsonQuery(json, "per_step/3/fluids/0/number_density_median").has_value());
+    EXPECT_EQ(spindrift_test::jsonQuery(json, "totals/fluids/0/number_density_reference"), "45");
     std::filesystem::remove_all(out);
 }
 

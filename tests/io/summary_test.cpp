@@ -113,6 +113,38 @@ TEST(IoSummary, TotalsAddUpTheSteps) {
     EXPECT_EQ(query(json, "totals/cache_files"), "12");
 }
 
+TEST(IoSummary, FluidNumberDensityOnTheMeasuredFramesAndInTheTotals) {
+    RunSummary s = makeSummary(25);
+    s.fluidNames = {"water"};
+    for (spindrift::StepStats& st : s.steps) {
+        spindrift::FluidStepStats f;
+        f.fluid = spindrift::FluidId{1};
+        f.particles = 100;
+        st.fluids.push_back(f);
+    }
+    // Measured after steps 10, 20 and 25 (every = 10, and the last step).
+    const double median[3] = {1.0, 1.25, 1.5}, p95[3] = {1.5, 2.5, 2.0};
+    const std::uint64_t frames[3] = {10, 20, 25};
+    for (int i = 0; i < 3; ++i) {
+        spindrift::FluidNumberDensity d;
+        d.median = median[i];
+        d.p95 = p95[i];
+        d.reference = 45;
+        s.numberDensity.push_back({frames[i], {d}});
+    }
+    const std::string json = toJson(s);
+    ASSERT_EQ(jsonError(json), "") << json;
+    EXPECT_EQ(query(json, "per_step/9/fluids/0/number_density_median"), "1");
+    EXPECT_EQ(query(json, "per_step/19/fluids/0/number_density_p95"), "2.5");
+    EXPECT_EQ(query(json, "per_step/24/fluids/0/number_density_median"), "1.5");
+    EXPECT_FALSE(jsonQuery(json, "per_step/10/fluids/0/number_density_median").has_value());
+    EXPECT_EQ(query(json, "per_step/10/fluids/0/particles"), "100");
+    EXPECT_EQ(query(json, "totals/fluids/0/number_density_reference"), "45");
+    EXPECT_EQ(query(json, "totals/fluids/0/final_number_density_median"), "1.5");
+    EXPECT_EQ(query(json, "totals/fluids/0/final_number_density_p95"), "2");
+    EXPECT_EQ(query(json, "totals/fluids/0/max_number_density_p95"), "2.5");
+}
+
 TEST(IoSummary, NumbersRoundTrip) {
     RunSummary s = makeSummary(2);
     s.steps[1].time = 0.1 + 0.2;  // 0.30000000000000004

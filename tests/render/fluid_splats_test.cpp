@@ -112,7 +112,10 @@ TEST(FluidSplats, StrayParticleIsSmallerThanInterior) {
     EXPECT_FLOAT_EQ(byId[lone].centre.w, rest * std::clamp(std::sqrt(s.density[lone]), 0.3f, 1.2f));
     // Interior: id 44 is row 4, column 4, four rows (> h) from every side.
     EXPECT_NEAR(byId[44].centre.w, rest, 0.05f * rest);  // density within 10% of rest
-    EXPECT_LT(byId[lone].centre.w, 0.5f * byId[44].centre.w);
+    // Rest density in 2D at h = 3 spacings is 3.31 (the lattice sum of
+    // the density kernel), so a lone particle reads 0.3 of rest and its splat
+    // is about sqrt(0.3) = 0.55 of an interior one.
+    EXPECT_LT(byId[lone].centre.w, 0.6f * byId[44].centre.w);
 }
 
 // Rules 3 and 5 (slides 57-58): on a resting block the flat top's particles

@@ -18,7 +18,7 @@
 // BM_FluidLiquidFunDamBreak (issue 12): exactly LiquidFun's Testbed dam break,
 // to compare with LiquidFun measured outside the repository (docs/performance.md).
 //
-//   build/release/bench/bench_fluid --benchmark_filter=LiquidFun
+//   build/release/bench_fluid --benchmark_filter=LiquidFun
 //
 // A closed 4 x 4 m box of plane walls, a column 1.6 m wide and 2.0 m high in
 // its left bottom corner, gravity (0, -10) m/s^2, dt = 1/60 s, particles on

@@ -189,7 +189,6 @@ struct FluidState {
     /// Contacts of each chunk of kParticleChunk particles, in particle order.
     std::vector<std::vector<Contact>> contacts;
     std::uint64_t steps = 0;
-    float lastMaxSpeed = 0.0f;  // m/s, of the previous step
     float pressedDepth = 0.0f;  // m, extent along gravity of the particles under pressure (integratePositions)
     /// Closing speeds of the step's neighbour pairs, all substeps so far:
     /// picks the next step's substeps (fluid_step.cpp).

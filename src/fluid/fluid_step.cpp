@@ -225,7 +225,6 @@ FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float 
         stats.bodyContacts = f.bodies->contactCount;
         f.bodies = nullptr;
     }
-    f.lastMaxSpeed = static_cast<float>(stats.maxSpeed);
     f.lastMeanDensityError = static_cast<float>(stats.meanDensityError);
     f.lastSubsteps = substeps;
     stats.substeps = static_cast<std::uint32_t>(substeps);

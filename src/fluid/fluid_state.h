@@ -92,7 +92,7 @@ struct Grid {
     std::vector<std::uint32_t> scratchUint;
 };
 
-/// Neighbour pairs counted by closing speed (m/s, the rate at which their
+/// Particles counted by the fastest closing speed of a neighbour (m/s, the rate at which their
 /// distance shrinks; moving apart counts as 0), in bins kApproachBin wide,
 /// the last one open-ended. Integer counts summed in chunk order, so the
 /// substeps they pick are the same for any thread count.
@@ -190,7 +190,7 @@ struct FluidState {
     std::vector<std::vector<Contact>> contacts;
     std::uint64_t steps = 0;
     float pressedDepth = 0.0f;  // m, extent along gravity of the particles under pressure (integratePositions)
-    /// Closing speeds of the step's neighbour pairs, all substeps so far:
+    /// Fastest closing speeds of the step's particles, all substeps so far:
     /// picks the next step's substeps (fluid_step.cpp).
     ApproachHistogram approach{};
     float lastMeanDensityError = 0.0f;  // of the previous step's last substep: picks the substeps

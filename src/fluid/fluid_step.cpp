@@ -128,16 +128,17 @@ float pressedDepth(const FluidState& f, const Particles<D>& p) {
     return hi - lo;
 }
 
-/// The closing speed (m/s) that all but kFastPairs of the last step's
-/// neighbour pairs stay under: the top of its histogram bin. Not the fastest
-/// pair: a drop landing from a splash at 10 m/s is one particle in thousands,
-/// meets the surface at most once, and the density constraint pushes it back
-/// out; the bulk's closing speeds are what the solver must resolve.
+/// The closing speed (m/s) that all but kFastParticles of the last step's
+/// particles stay under, each counted at the fastest approach of a neighbour:
+/// the top of its histogram bin. Not the fastest particle: a drop landing
+/// from a splash at 10 m/s is one particle in thousands, meets the surface at
+/// most once, and the density constraint pushes it back out; the bulk's
+/// closing speeds are what the solver must resolve.
 float closingSpeed(const ApproachHistogram& h) {
-    constexpr double kFastPairs = 1e-3;
+    constexpr double kFastParticles = 5e-3;
     std::uint64_t total = 0;
     for (std::uint64_t c : h) total += c;
-    const auto allowed = static_cast<std::uint64_t>(kFastPairs * static_cast<double>(total));
+    const auto allowed = static_cast<std::uint64_t>(kFastParticles * static_cast<double>(total));
     std::uint64_t above = 0;
     for (std::size_t b = h.size(); b-- > 0;) {
         above += h[b];
@@ -174,7 +175,8 @@ int automaticSubsteps(FluidState& f, float dt) {
     constexpr float kCourant = 0.4f;
     constexpr float kCompressionLimit = 0.01f;
     constexpr float kDepthNumber = 0.8f;
-    constexpr std::uint32_t kHoldSteps = 30;
+    constexpr float kAim = 0.005f;
+    constexpr std::uint32_t kHoldSteps = 10;
     constexpr int kMaxSubsteps = static_cast<int>(kFluidMaxSubsteps);
     const float reach = closingSpeed(f.approach) * dt;
     f.approach.fill(0);
@@ -182,11 +184,22 @@ int automaticSubsteps(FluidState& f, float dt) {
     const float depth = f.def.dimension == 2 ? pressedDepth<2>(f, f.p2) : pressedDepth<3>(f, f.p3);
     const float layers = depth / f.def.spacing;
     const float byDepth = std::ceil(std::sqrt(layers * glm::length(f.def.gravity) * dt * dt / (kDepthNumber * f.h)));
-    if (!(f.lastMeanDensityError <= kCompressionLimit)) {
-        f.compressionSubsteps = std::min(2 * std::max(f.compressionSubsteps, f.lastSubsteps), kMaxSubsteps);
+    // The compression of a step falls about as 1 / substeps^2 (each substep
+    // lets the fluid sink by g dt^2 / substeps^2 before the pressure answers):
+    // the count that would have brought the last step's error to kAim.
+    const float error = f.lastMeanDensityError;
+    const float needed = std::ceil(static_cast<float>(f.lastSubsteps) * std::sqrt(std::max(error, 0.0f) / kAim));
+    if (!(error <= kCompressionLimit)) {
+        f.compressionSubsteps = static_cast<int>(std::min(std::max(static_cast<float>(f.compressionSubsteps), needed),
+                                                          static_cast<float>(kMaxSubsteps)));
         f.quietSteps = 0;
-    } else if (f.lastMeanDensityError < 0.25f * kCompressionLimit && ++f.quietSteps >= kHoldSteps) {
-        f.compressionSubsteps = std::max(f.compressionSubsteps - 1, 0);
+    } else if (needed < static_cast<float>(f.compressionSubsteps)) {
+        if (++f.quietSteps >= kHoldSteps) {
+            const int drop = std::max(1, f.compressionSubsteps / 4);
+            f.compressionSubsteps = std::max(f.compressionSubsteps - drop, static_cast<int>(needed));
+            f.quietSteps = 0;
+        }
+    } else {
         f.quietSteps = 0;
     }
     const float wanted = std::max({bySpeed, byDepth, static_cast<float>(f.compressionSubsteps)});

@@ -30,6 +30,9 @@ execute_process(COMMAND ${CXX} -std=c++20 -O1 ${SOURCE_DIR}/examples/particle_ef
 if(NOT rc EQUAL 0)
     message(FATAL_ERROR "compiling with pkg-config's flags failed:\n${out}")
 endif()
+if(NOT static)
+    set(ENV{LD_LIBRARY_PATH} ${PREFIX}/${LIBDIR})  # pkg-config gives no run path
+endif()
 execute_process(COMMAND ${program} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
 if(NOT rc EQUAL 0 OR NOT out MATCHES "particles=[1-9][0-9]* collisions=[1-9]")
     message(FATAL_ERROR "the program built with pkg-config's flags failed (${rc}):\n${out}")

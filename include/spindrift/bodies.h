@@ -17,6 +17,8 @@
 // exact shapes. World colliders (ColliderDef) act on particles only.
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <spindrift/effects.h>
 
 #include <cstdint>
@@ -51,11 +53,11 @@ struct BodyShapeDef {
     bool loop = false;            ///< Chain: joins the last point to the first
 };
 
-BodyShapeDef boxShape(glm::vec2 halfExtents, glm::vec2 offset = glm::vec2(0.0f), float angle = 0.0f);
-BodyShapeDef circleShape(float radius, glm::vec2 offset = glm::vec2(0.0f));
-BodyShapeDef polygonShape(std::vector<glm::vec2> vertices);
-BodyShapeDef edgeShape(glm::vec2 a, glm::vec2 b);
-BodyShapeDef chainShape(std::vector<glm::vec2> points, bool loop);
+SPINDRIFT_API BodyShapeDef boxShape(glm::vec2 halfExtents, glm::vec2 offset = glm::vec2(0.0f), float angle = 0.0f);
+SPINDRIFT_API BodyShapeDef circleShape(float radius, glm::vec2 offset = glm::vec2(0.0f));
+SPINDRIFT_API BodyShapeDef polygonShape(std::vector<glm::vec2> vertices);
+SPINDRIFT_API BodyShapeDef edgeShape(glm::vec2 a, glm::vec2 b);
+SPINDRIFT_API BodyShapeDef chainShape(std::vector<glm::vec2> points, bool loop);
 
 struct BodyDef {
     std::string name;
@@ -122,28 +124,28 @@ struct BodySnapshot {
 };
 
 /// Throws Error, saying what is wrong, for a body createBody would reject.
-void validateBodyDef(const BodyDef& def);
+SPINDRIFT_API void validateBodyDef(const BodyDef& def);
 
 /// Adds a body to the world (either backend: bodies always run on the CPU).
-BodyId createBody(WorldId world, const BodyDef& def);
+SPINDRIFT_API BodyId createBody(WorldId world, const BodyDef& def);
 /// Removes a body and the joints attached to it.
-void destroyBody(WorldId world, BodyId body);
+SPINDRIFT_API void destroyBody(WorldId world, BodyId body);
 /// Joins two existing bodies; throws Error for a bad definition.
-JointId createJoint(WorldId world, const JointDef& def);
-void destroyJoint(WorldId world, JointId joint);
+SPINDRIFT_API JointId createJoint(WorldId world, const JointDef& def);
+SPINDRIFT_API void destroyJoint(WorldId world, JointId joint);
 
 /// Moves a body now (teleport; for kinematic bodies prefer setBodyVelocity).
-void setBodyTransform(WorldId world, BodyId body, glm::vec2 position, float angle);
+SPINDRIFT_API void setBodyTransform(WorldId world, BodyId body, glm::vec2 position, float angle);
 /// Sets the velocity of a body's centre of mass (m/s) and its spin (rad/s).
-void setBodyVelocity(WorldId world, BodyId body, glm::vec2 linearVelocity, float angularVelocity);
+SPINDRIFT_API void setBodyVelocity(WorldId world, BodyId body, glm::vec2 linearVelocity, float angularVelocity);
 /// Applies an impulse (N s) at a world point (m) to a dynamic body.
-void applyBodyImpulse(WorldId world, BodyId body, glm::vec2 impulse, glm::vec2 point);
+SPINDRIFT_API void applyBodyImpulse(WorldId world, BodyId body, glm::vec2 impulse, glm::vec2 point);
 /// Mass (kg) of a body: 0 for static and kinematic ones.
-float bodyMass(WorldId world, BodyId body);
+SPINDRIFT_API float bodyMass(WorldId world, BodyId body);
 
 /// Bodies that exist now (created and not destroyed).
-std::uint32_t bodyCount(WorldId world);
+SPINDRIFT_API std::uint32_t bodyCount(WorldId world);
 /// Every existing body, in creation order.
-std::vector<BodySnapshot> readBodies(WorldId world);
+SPINDRIFT_API std::vector<BodySnapshot> readBodies(WorldId world);
 
 }  // namespace spindrift

@@ -5,6 +5,8 @@
 // kilograms, newtons; angles in radians (scene files use degrees).
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -16,7 +18,7 @@ namespace spindrift {
 
 /// Thrown for invalid definitions, bad ids and I/O failures. The message says
 /// what was wrong and what was expected.
-class Error : public std::runtime_error {
+class SPINDRIFT_API Error : public std::runtime_error {
 public:
     using std::runtime_error::runtime_error;
 };

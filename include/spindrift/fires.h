@@ -4,6 +4,8 @@
 // its strength and turns into steam where the water hit, until it goes out.
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <spindrift/bodies.h>
 #include <spindrift/world.h>
 
@@ -29,11 +31,11 @@ struct FireDef {
 };
 
 /// Throws Error for a bad definition or ids the world does not have.
-FireId createFire(WorldId world, const FireDef& def);
-std::uint32_t fireCount(WorldId world);
+SPINDRIFT_API FireId createFire(WorldId world, const FireDef& def);
+SPINDRIFT_API std::uint32_t fireCount(WorldId world);
 /// Strength now: 1 burning fully, 0 out.
-float fireStrength(WorldId world, FireId fire);
+SPINDRIFT_API float fireStrength(WorldId world, FireId fire);
 /// Fluid strikes on the fire's body so far.
-std::uint64_t fireStrikes(WorldId world, FireId fire);
+SPINDRIFT_API std::uint64_t fireStrikes(WorldId world, FireId fire);
 
 }  // namespace spindrift

@@ -4,6 +4,8 @@
 // for now.
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <spindrift/bodies.h>
 #include <spindrift/effects.h>
 
@@ -175,21 +177,21 @@ struct FluidSnapshot {
 };
 
 /// Throws Error, saying what is wrong, for a definition createFluid rejects.
-void validateFluidDef(const FluidDef& def);
+SPINDRIFT_API void validateFluidDef(const FluidDef& def);
 
 /// Adds a fluid to a CPU world with its blocks, jets and polygons; throws Error
 /// for a bad definition or a Vulkan world.
-FluidId createFluid(WorldId world, const FluidDef& def);
+SPINDRIFT_API FluidId createFluid(WorldId world, const FluidDef& def);
 /// Adds a block of particles now (at the world's current time).
-void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockDef& block);
+SPINDRIFT_API void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockDef& block);
 /// Adds a jet; its start time is world time.
-void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
+SPINDRIFT_API void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
 
 /// Changes a fluid's solver settings from the next step on (the viewer's
 /// panel): iterations (kFluidMinIterations to kFluidMaxIterations) and
 /// baumgarte (in [0, 1]) as in FluidDef.
 /// Throws Error, changing nothing, for values FluidDef rejects.
-void setFluidSolver(WorldId world, FluidId fluid, std::uint32_t iterations, float baumgarte);
+SPINDRIFT_API void setFluidSolver(WorldId world, FluidId fluid, std::uint32_t iterations, float baumgarte);
 
 /// Where a 2D jet's nozzle is now (m, world) and the angle (rad) of the frame
 /// its aim is measured in: its body's, or 0 without one.
@@ -200,9 +202,9 @@ struct FluidJetPose {
 /// Points 2D jet `jet` (0-based, in definition order) at `angle` rad in its
 /// frame, replacing its aim keys until releaseFluidJetAim (the viewer's mouse
 /// aim). Throws Error for a 3D fluid, a jet it does not have or a non-finite angle.
-void aimFluidJet(WorldId world, FluidId fluid, std::uint32_t jet, float angle);
-void releaseFluidJetAim(WorldId world, FluidId fluid, std::uint32_t jet);
-FluidJetPose fluidJetPose(WorldId world, FluidId fluid, std::uint32_t jet);
+SPINDRIFT_API void aimFluidJet(WorldId world, FluidId fluid, std::uint32_t jet, float angle);
+SPINDRIFT_API void releaseFluidJetAim(WorldId world, FluidId fluid, std::uint32_t jet);
+SPINDRIFT_API FluidJetPose fluidJetPose(WorldId world, FluidId fluid, std::uint32_t jet);
 
 /// A solver-independent measure of compression, the number-density ratio:
 /// for each particle, the number of particles (itself included) within a
@@ -223,12 +225,12 @@ struct FluidNumberDensity {
 };
 /// Measures it now over the fluid's current particles: O(n log n), one
 /// thread, on demand (not part of a step).
-FluidNumberDensity measureFluidNumberDensity(WorldId world, FluidId fluid);
+SPINDRIFT_API FluidNumberDensity measureFluidNumberDensity(WorldId world, FluidId fluid);
 
-std::uint32_t fluidCount(WorldId world);
-const FluidDef& fluidDef(WorldId world, FluidId fluid);
+SPINDRIFT_API std::uint32_t fluidCount(WorldId world);
+SPINDRIFT_API const FluidDef& fluidDef(WorldId world, FluidId fluid);
 /// Rest density (kernel-sum units) the fluid uses, derived or given.
-float fluidRestDensity(WorldId world, FluidId fluid);
-FluidSnapshot readFluid(WorldId world, FluidId fluid);
+SPINDRIFT_API float fluidRestDensity(WorldId world, FluidId fluid);
+SPINDRIFT_API FluidSnapshot readFluid(WorldId world, FluidId fluid);
 
 }  // namespace spindrift

@@ -6,6 +6,8 @@
 // lavapipe.
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <spindrift/world.h>
 
 #include <cstdint>
@@ -54,7 +56,7 @@ struct FluidRenderDef {
     bool splashes = true;         ///< 6: ballistic splash particles from low-density, rising particles
     bool bubbles = true;          ///< 7: some dense particles drawn as bubbles
     /// Step 1 (raw point splats) alone, then steps 2..n: n in [1, 7].
-    static FluidRenderDef upTo(int n);
+    SPINDRIFT_API static FluidRenderDef upTo(int n);
 };
 
 /// How a world is drawn.
@@ -98,19 +100,19 @@ struct RenderStats {
 /// Creates a renderer for `world` on the world's own Vulkan device (Vulkan
 /// backend) or a device of its own (CPU backend; lavapipe without a GPU).
 /// Throws Error when there is no Vulkan driver or `def` is invalid.
-RendererId createRenderer(WorldId world, const RenderDef& def);
-void destroyRenderer(RendererId renderer);
+SPINDRIFT_API RendererId createRenderer(WorldId world, const RenderDef& def);
+SPINDRIFT_API void destroyRenderer(RendererId renderer);
 /// Changes the camera from the next frame on (the viewer's orbit).
-void setRenderCamera(RendererId renderer, const CameraDef& camera);
+SPINDRIFT_API void setRenderCamera(RendererId renderer, const CameraDef& camera);
 /// Replaces the fluid splat settings from the next frame on.
-void setFluidRender(RendererId renderer, const FluidRenderDef& fluid);
+SPINDRIFT_API void setFluidRender(RendererId renderer, const FluidRenderDef& fluid);
 /// Draws the world as it is now and returns the pixels. Temporal effects
 /// (orientation smoothing, splashes) advance by the world time since the
 /// previous frame.
-Frame renderFrame(RendererId renderer);
-RenderStats renderStats(RendererId renderer);
+SPINDRIFT_API Frame renderFrame(RendererId renderer);
+SPINDRIFT_API RenderStats renderStats(RendererId renderer);
 
 /// Throws Error naming the field for a definition createRenderer rejects.
-void validateRenderDef(const RenderDef& def);
+SPINDRIFT_API void validateRenderDef(const RenderDef& def);
 
 }  // namespace spindrift

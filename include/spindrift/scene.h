@@ -1,6 +1,8 @@
 // spindrift public API: scene files (TOML) and building a world from them.
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <spindrift/bodies.h>
 #include <spindrift/fires.h>
 #include <spindrift/render.h>
@@ -14,7 +16,7 @@ namespace spindrift {
 
 /// A scene file was rejected. what() reads "file:line:col: key.path: message";
 /// the parts are also available separately.
-class SceneError : public Error {
+class SPINDRIFT_API SceneError : public Error {
 public:
     SceneError(std::string file, int line, int column, std::string keyPath, std::string message);
     const std::string& file() const { return file_; }
@@ -58,15 +60,15 @@ struct SceneDef {
 
 /// Parses and validates a scene file; throws SceneError on the first problem,
 /// before anything is built. Relative data paths resolve against the file.
-SceneDef loadScene(const std::string& path);
+SPINDRIFT_API SceneDef loadScene(const std::string& path);
 /// Same, from text in memory; `sourceName` is used in error messages and
 /// `baseDir` to resolve relative data paths.
-SceneDef parseScene(std::string_view text, const std::string& sourceName,
-                    const std::string& baseDir = ".");
+SPINDRIFT_API SceneDef parseScene(std::string_view text, const std::string& sourceName,
+                                  const std::string& baseDir = ".");
 
 /// Creates a world with flow fields, forces, colliders, emitters, bodies,
 /// fluids (whose jets may ride on bodies), joints and fires in that order, so their
 /// ids match the SceneDef's references.
-WorldId buildWorld(const SceneDef& scene);
+SPINDRIFT_API WorldId buildWorld(const SceneDef& scene);
 
 }  // namespace spindrift

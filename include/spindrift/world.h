@@ -1,6 +1,8 @@
 // spindrift public API: the world that owns emitters, forces and colliders.
 #pragma once
 
+#include <spindrift/export.h>
+
 #include <spindrift/bodies.h>
 #include <spindrift/effects.h>
 #include <spindrift/fluid.h>
@@ -120,25 +122,25 @@ struct ParticleSnapshot {
     std::size_t count() const { return position.size(); }
 };
 
-WorldId createWorld(const WorldDef& def);
-void destroyWorld(WorldId world);
+SPINDRIFT_API WorldId createWorld(const WorldDef& def);
+SPINDRIFT_API void destroyWorld(WorldId world);
 
-EmitterId createEmitter(WorldId world, const EmitterDef& def);
-ForceId createForce(WorldId world, const ForceDef& def);
-ColliderId createCollider(WorldId world, const ColliderDef& def);
-FlowFieldId createFlowField(WorldId world, const FlowFieldDef& def);
+SPINDRIFT_API EmitterId createEmitter(WorldId world, const EmitterDef& def);
+SPINDRIFT_API ForceId createForce(WorldId world, const ForceDef& def);
+SPINDRIFT_API ColliderId createCollider(WorldId world, const ColliderDef& def);
+SPINDRIFT_API FlowFieldId createFlowField(WorldId world, const FlowFieldDef& def);
 
 /// Advances every emitter by dt seconds (dt > 0).
-StepStats stepWorld(WorldId world, float dt);
+SPINDRIFT_API StepStats stepWorld(WorldId world, float dt);
 
 /// Events of the steps whose counts have been reported so far (see
 /// StepStats), and those dropped; each is handed out once.
-EventBatch takeEvents(WorldId world);
+SPINDRIFT_API EventBatch takeEvents(WorldId world);
 
 /// Waits until the GPU has finished every submitted step and returns the
 /// counts not yet reported (countedSteps may be 0); their events become
 /// available to takeEvents. The CPU backend has nothing pending.
-StepStats flushWorld(WorldId world);
+SPINDRIFT_API StepStats flushWorld(WorldId world);
 
 /// Live changes to a state-preserving emitter, from the next step on (the
 /// viewer's panel). Only what acts at birth can change, so that particles
@@ -148,30 +150,30 @@ StepStats flushWorld(WorldId world);
 /// and re-uploads the emitter's parameters. Throws Error for a stateless
 /// emitter (its closed form covers all time) or a value EmitterDef rejects;
 /// nothing changes then.
-void setEmitterRate(WorldId world, EmitterId emitter, float rate);
-void setEmitterSpeed(WorldId world, EmitterId emitter, FloatRange speed);
+SPINDRIFT_API void setEmitterRate(WorldId world, EmitterId emitter, float rate);
+SPINDRIFT_API void setEmitterSpeed(WorldId world, EmitterId emitter, FloatRange speed);
 /// Moves the emitter's spawn shape (its centre, m): where particles are born
 /// from now on, as setEmitterRate.
-void setEmitterPosition(WorldId world, EmitterId emitter, glm::vec3 centre);
+SPINDRIFT_API void setEmitterPosition(WorldId world, EmitterId emitter, glm::vec3 centre);
 
 /// Approach speed (m/s) above which a fluid particle touching a body makes a
 /// collision event.
 inline constexpr float kFluidImpactSpeed = 0.5f;
 
 /// Simulated time (s) of the world.
-double worldTime(WorldId world);
+SPINDRIFT_API double worldTime(WorldId world);
 
-std::uint32_t emitterCount(WorldId world);
-const EmitterDef& emitterDef(WorldId world, EmitterId emitter);
-std::uint32_t colliderCount(WorldId world);
+SPINDRIFT_API std::uint32_t emitterCount(WorldId world);
+SPINDRIFT_API const EmitterDef& emitterDef(WorldId world, EmitterId emitter);
+SPINDRIFT_API std::uint32_t colliderCount(WorldId world);
 
 /// Copies the live particles of a state-preserving emitter; for a stateless
 /// emitter evaluates its closed form at the world's current time.
-ParticleSnapshot readParticles(WorldId world, EmitterId emitter);
+SPINDRIFT_API ParticleSnapshot readParticles(WorldId world, EmitterId emitter);
 
 /// Live particles of a stateless emitter at time t (s), from the closed form.
-ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed,
-                                   std::uint32_t emitterIndex, float t);
+SPINDRIFT_API ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed,
+                                                 std::uint32_t emitterIndex, float t);
 
 /// Back-to-front order for alpha blending: indices into `positions`, the
 /// farthest from the camera first, by view depth dot(p - eye, normalize(forward)).
@@ -179,8 +181,8 @@ ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed,
 /// last. Throws Error for a zero or non-finite `forward` or a non-finite `eye`.
 /// Radix sort; each calling thread keeps 16 bytes of scratch per position
 /// between calls.
-std::vector<std::uint32_t> sortBackToFront(std::span<const glm::vec3> positions,
-                                           glm::vec3 eye, glm::vec3 forward);
+SPINDRIFT_API std::vector<std::uint32_t> sortBackToFront(std::span<const glm::vec3> positions,
+                                                         glm::vec3 eye, glm::vec3 forward);
 
 /// Back-to-front order of one emitter's live particles: their slots
 /// (ParticleSnapshot::slot of readParticles), farthest first. The order is
@@ -189,8 +191,8 @@ std::vector<std::uint32_t> sortBackToFront(std::span<const glm::vec3> positions,
 /// the device, over the positions there, and only the live count and the order
 /// (4 bytes per live particle) are copied back; stateless emitters are sorted
 /// on the CPU from their closed form. Throws Error as sortBackToFront does.
-std::vector<std::uint32_t> sortEmitterBackToFront(WorldId world, EmitterId emitter,
-                                                  glm::vec3 eye, glm::vec3 forward);
+SPINDRIFT_API std::vector<std::uint32_t> sortEmitterBackToFront(WorldId world, EmitterId emitter,
+                                                                glm::vec3 eye, glm::vec3 forward);
 
 /// Bytes copied between host and device memory since the world was created.
 /// A GPU world moves particle data only on creation and readParticles; the
@@ -199,9 +201,9 @@ struct TransferStats {
     std::uint64_t bytesUploaded = 0;
     std::uint64_t bytesDownloaded = 0;
 };
-TransferStats transferStats(WorldId world);
+SPINDRIFT_API TransferStats transferStats(WorldId world);
 
 /// Library version, "MAJOR.MINOR.PATCH".
-const char* versionString();
+SPINDRIFT_API const char* versionString();
 
 }  // namespace spindrift

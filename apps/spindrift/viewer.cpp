@@ -13,6 +13,7 @@
 #include "presenter.h"
 #include "validation_report.h"
 
+#include "fluid/fluid_rules.h"
 #include "gpu/device_settings.h"
 #include "gpu/vulkan_device.h"
 #include "render/render_target.h"
@@ -238,9 +239,13 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
         if (ImGui::CollapsingHeader(fmt::format("fluid {} '{}' solver", f, def.name).c_str())) {
             int iterations = int(def.iterations);
             float baumgarte = def.baumgarte;
-            bool changed = ImGui::SliderInt("iterations", &iterations, int(kFluidMinIterations),
-                                            int(kFluidMaxIterations));
-            changed |= ImGui::SliderFloat("baumgarte", &baumgarte, 0.0f, 1.0f);
+            // The ranges of the rules setFluidSolver checks (fluid_rules.h),
+            // so a slider never offers a value the API refuses.
+            namespace rules = fluid::rules;
+            bool changed = ImGui::SliderInt("iterations", &iterations, int(rules::kIterations.bounds.min),
+                                            int(rules::kIterations.bounds.max));
+            changed |= ImGui::SliderFloat("baumgarte", &baumgarte, float(rules::kBaumgarte.bounds.min),
+                                          float(rules::kBaumgarte.bounds.max));
             if (changed) setFluidSolver(s.world, FluidId{f}, std::uint32_t(iterations), baumgarte);
         }
         ImGui::PopID();

@@ -5,6 +5,7 @@
 // kilograms, newtons; angles in radians (scene files use degrees).
 #pragma once
 
+#include <spindrift/errors.h>
 #include <spindrift/export.h>
 
 #include <glm/glm.hpp>
@@ -15,13 +16,6 @@
 #include <vector>
 
 namespace spindrift {
-
-/// Thrown for invalid definitions, bad ids and I/O failures. The message says
-/// what was wrong and what was expected.
-class SPINDRIFT_API Error : public std::runtime_error {
-public:
-    using std::runtime_error::runtime_error;
-};
 
 /// Handles. A zero index means "none"; ids are only valid for the world that
 /// made them.

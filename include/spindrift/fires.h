@@ -30,6 +30,10 @@ struct FireDef {
     float steamPerStrike = 0.5f;   ///< steam particles per strike
 };
 
+/// Throws FieldError, naming the field as a scene file spells it
+/// ("douse_per_strike") and the rule it broke, for a definition createFire
+/// rejects whatever the world (ids are checked at creation).
+SPINDRIFT_API void validateFireDef(const FireDef& def);
 /// Throws Error for a bad definition or ids the world does not have.
 SPINDRIFT_API FireId createFire(WorldId world, const FireDef& def);
 SPINDRIFT_API std::uint32_t fireCount(WorldId world);

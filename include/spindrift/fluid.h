@@ -70,14 +70,17 @@ struct FluidPolygonDef {
     std::vector<glm::vec2> vertices;
 };
 
-/// Limits of a FluidDef, named once: validateFluidDef (and so createFluid and
-/// setFluidSolver), the scene loader and the viewer's panel all use them.
+/// Limits of a FluidDef, named once: validateFluidDef (and so createFluid,
+/// setFluidSolver and the scene loader) checks them, the viewer's panel uses
+/// them (src/fluid/fluid_rules.h).
 inline constexpr std::uint32_t kFluidMinIterations = 1;
 inline constexpr std::uint32_t kFluidMaxIterations = 16;
 /// Substeps per world step when given (0: automatic).
 inline constexpr std::uint32_t kFluidMaxSubsteps = 16;
 /// Neighbours kept per particle (FluidDef::maxNeighbours).
 inline constexpr std::uint32_t kFluidMaxNeighbours = 1024;
+/// Most particles a fluid may ask for (FluidDef::capacity), as an emitter.
+inline constexpr std::uint32_t kFluidMaxCapacity = 16 * 1024 * 1024;
 
 struct FluidDef {
     std::string name;
@@ -129,8 +132,8 @@ struct FluidDef {
     /// frictionless, as the slides' particle body); against a rigid body the
     /// coefficient is sqrt(this x the body's friction), as Box2D mixes them.
     float friction = 0.0f;
-    /// Most particles at once; jets stop emitting when it is reached.
-    /// 0: the blocks' particles plus 10,000 per jet.
+    /// Most particles at once, at most kFluidMaxCapacity; jets stop emitting
+    /// when it is reached. 0: the blocks' particles plus 10,000 per jet.
     std::uint32_t capacity = 0;
     /// Rest density in units of the kernel sum (a lone particle has density
     /// 1); 0: that of an interior particle of a block at `spacing`, so a block
@@ -176,7 +179,8 @@ struct FluidSnapshot {
     std::size_t count() const { return position.size(); }
 };
 
-/// Throws Error, saying what is wrong, for a definition createFluid rejects.
+/// Throws FieldError, naming the field as a scene file spells it ("iterations",
+/// "jet[0].speed") and the rule it broke, for a definition createFluid rejects.
 SPINDRIFT_API void validateFluidDef(const FluidDef& def);
 
 /// Adds a fluid to a CPU world with its blocks, jets and polygons; throws Error

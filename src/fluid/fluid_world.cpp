@@ -2,6 +2,9 @@
 // public API over them, by world and fluid id, is src/world/fluid_api.cpp).
 #include "fluid/fluid_world.h"
 
+#include "core/field_rules.h"
+#include "fluid/fluid_rules.h"
+
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,9 +20,7 @@ constexpr float kDefaultSmoothing2 = 3.0f;
 constexpr float kDefaultSmoothing3 = 2.5f;
 constexpr std::uint32_t kDefaultJetCapacity = 10000;
 
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-std::string label(const FluidDef& def) { return fmt::format("fluid '{}'", def.name); }
+std::string label(const FluidDef& def) { return objectLabel("fluid", def.name); }
 
 /// Lattice points per axis of a block: particles at min + spacing (i + 1/2)
 /// while inside [min, max].
@@ -41,63 +42,63 @@ std::uint64_t blockParticles(const FluidDef& def, const FluidBlockDef& b) {
 }  // namespace
 
 void validateBlock(const FluidDef& def, const FluidBlockDef& b, std::size_t index) {
-    if (!finite(b.min) || !finite(b.max) || !finite(b.velocity)) {
-        throw Error(fmt::format("{}: block {}: min, max and velocity must be finite", label(def), index));
-    }
+    const FieldCheck check(label(def));
+    check.finite(fieldPath("block", index, "min"), b.min);
+    check.finite(fieldPath("block", index, "max"), b.max);
+    check.finite(fieldPath("block", index, "velocity"), b.velocity);
     if (blockParticles(def, b) == 0) {
-        throw Error(fmt::format("{}: block {}: holds no particle; each extent (max - min) must be at least "
-                                "the spacing {} m",
-                                label(def), index, def.spacing));
+        check.fail(fieldPath("block", index, "max"),
+                   fmt::format("the block holds no particle; each extent (max - min) must be at least the "
+                               "spacing {} m",
+                               def.spacing));
     }
 }
 
 void validateJet(const FluidDef& def, const FluidJetDef& j, std::size_t index) {
-    if (def.dimension != 2 && (!j.aim.empty() || j.body.index != 0)) {
-        throw Error(fmt::format("{}: jet {}: aim keys and a body are for 2D jets only", label(def), index));
-    }
+    const FieldCheck check(label(def));
+    auto field = [&](std::string_view key) { return fieldPath("jet", index, key); };
+    if (def.dimension != 2 && !j.aim.empty()) check.fail(field("aim"), "aim keys are for 2D jets only");
+    if (def.dimension != 2 && j.body.index != 0) check.fail(field("body"), "a body is for 2D jets only");
     for (std::size_t k = 0; k < j.aim.size(); ++k) {
-        if (!std::isfinite(j.aim[k].time) || !std::isfinite(j.aim[k].angle) || j.aim[k].time < 0.0f ||
-            (k > 0 && j.aim[k].time < j.aim[k - 1].time)) {
-            throw Error(fmt::format("{}: jet {}: aim key {}: time must be finite, >= 0 s and not before the "
-                                    "previous key's; angle finite",
-                                    label(def), index, k + 1));
-        }
+        const FluidJetAimKey& key = j.aim[k];
+        check.expect(std::isfinite(key.time) && std::isfinite(key.angle) && key.time >= 0.0f &&
+                         (k == 0 || key.time >= j.aim[k - 1].time),
+                     fieldPath(field("aim"), k),
+                     "a [time, angle] key (s, rad) with time >= 0 s and not before the previous key's",
+                     fmt::format("[{}, {}]", key.time, key.angle));
     }
-    if (!finite(j.position) || !finite(j.direction) || glm::length(j.direction) <= 0.0f) {
-        throw Error(fmt::format("{}: jet {}: position must be finite and direction non-zero", label(def), index));
-    }
+    check.finite(field("position"), j.position);
+    check.finite(field("direction"), j.direction);
+    check.expect(glm::length(j.direction) > 0.0f, field("direction"), "a non-zero direction",
+                 fmt::format("[{}, {}, {}]", j.direction.x, j.direction.y, j.direction.z));
     if (def.dimension == 2 && glm::length(glm::vec2(j.direction)) <= 0.0f) {
-        throw Error(fmt::format("{}: jet {}: a 2D jet needs a direction in the xy plane", label(def), index));
+        check.fail(field("direction"), "a 2D jet needs a direction in the xy plane");
     }
-    if (!(j.speed > 0.0f) || !std::isfinite(j.speed) || !(j.rate >= 0.0f) || !std::isfinite(j.rate) ||
-        !(j.radius >= 0.0f) || !std::isfinite(j.radius) || !std::isfinite(j.start) || !std::isfinite(j.duration)) {
-        throw Error(fmt::format("{}: jet {}: speed must be > 0 m/s, rate >= 0 /s, radius >= 0 m, start and "
-                                "duration finite",
-                                label(def), index));
-    }
+    check.number(field("speed"), j.speed, rules::kJetSpeed);
+    check.number(field("rate"), j.rate, rules::kJetRate);
+    check.number(field("radius"), j.radius, rules::kJetRadius);
+    check.number(field("start"), j.start, rules::kJetStart);
+    check.number(field("duration"), j.duration, rules::kJetDuration);
 }
 
 namespace {
 
 /// Counter-clockwise copy of a convex polygon; throws if it is not convex.
 kernels::FluidPolygon makePolygon(const FluidDef& def, const FluidPolygonDef& poly, std::size_t index) {
+    const FieldCheck check(label(def));
+    const std::string field = fieldPath("polygon", index, "vertices");
     const std::size_t n = poly.vertices.size();
-    if (n < 3 || n > kernels::SD_FLUID_MAX_POLYGON_VERTICES) {
-        throw Error(fmt::format("{}: polygon {}: needs 3 to {} vertices, got {}", label(def), index,
-                                kernels::SD_FLUID_MAX_POLYGON_VERTICES, n));
-    }
+    check.expect(n >= 3 && n <= kernels::SD_FLUID_MAX_POLYGON_VERTICES, field,
+                 fmt::format("3 to {} [x, y] corners of a convex polygon", kernels::SD_FLUID_MAX_POLYGON_VERTICES),
+                 fmt::format("{}", n));
     double area = 0.0;
     for (std::size_t i = 0; i < n; ++i) {
         const glm::vec2 a = poly.vertices[i];
         const glm::vec2 b = poly.vertices[(i + 1) % n];
-        if (!std::isfinite(a.x) || !std::isfinite(a.y)) {
-            throw Error(fmt::format("{}: polygon {}: vertex {} is not finite", label(def), index, i));
-        }
+        check.finite(fieldPath(field, i), a);
         area += static_cast<double>(a.x) * b.y - static_cast<double>(b.x) * a.y;
     }
-    if (std::abs(area) <= 0.0) {
-        throw Error(fmt::format("{}: polygon {}: has no area", label(def), index));
-    }
+    if (std::abs(area) <= 0.0) check.fail(field, "the polygon has no area");
     const double sign = area > 0.0 ? 1.0 : -1.0;
     for (std::size_t i = 0; i < n; ++i) {
         const glm::dvec2 a = poly.vertices[i];
@@ -105,8 +106,8 @@ kernels::FluidPolygon makePolygon(const FluidDef& def, const FluidPolygonDef& po
         const glm::dvec2 c = poly.vertices[(i + 2) % n];
         const double turn = (b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x);
         if (turn * sign < 0.0) {
-            throw Error(fmt::format("{}: polygon {}: is not convex (turns the other way at vertex {})",
-                                    label(def), index, (i + 1) % n));
+            check.fail(fieldPath(field, (i + 1) % n),
+                       "the polygon is not convex: it turns the other way at this vertex");
         }
     }
     kernels::FluidPolygon out{};
@@ -192,51 +193,32 @@ FluidSnapshot snapshotOf(const FluidState& f) {
 }
 
 void validateFluidDef(const FluidDef& def) {
-    if (def.dimension != 2 && def.dimension != 3) {
-        throw Error(fmt::format("{}: dimension must be 2 or 3, got {}", label(def), def.dimension));
+    // Each field against its rule (fluid_rules.h), in the order a scene file
+    // lists the keys, named as it spells them.
+    const FieldCheck check(label(def));
+    check.number("dimension", def.dimension, rules::kDimension);
+    check.number("spacing", def.spacing, rules::kSpacing);
+    check.number("h", def.smoothing, rules::kSmoothing);
+    if (def.smoothing > 0.0f && def.smoothing <= def.spacing) {
+        check.fail("h", fmt::format("expected 0 (the default) or a smoothing length h greater than the spacing "
+                                    "{} m, got {}",
+                                    def.spacing, def.smoothing));
     }
-    if (!(def.spacing > 0.0f) || !std::isfinite(def.spacing)) {
-        throw Error(fmt::format("{}: spacing must be a finite length > 0 m, got {}", label(def), def.spacing));
-    }
-    if (!(def.smoothing >= 0.0f) || !std::isfinite(def.smoothing) ||
-        (def.smoothing > 0.0f && def.smoothing <= def.spacing)) {
-        throw Error(fmt::format("{}: smoothing length h must be 0 (the default) or greater than the spacing "
-                                "{} m, got {}",
-                                label(def), def.spacing, def.smoothing));
-    }
-    if (def.substeps > kFluidMaxSubsteps) {
-        throw Error(fmt::format("{}: substeps must be 0 (automatic) to {}, got {}", label(def), kFluidMaxSubsteps,
-                                def.substeps));
-    }
-    if (def.iterations < kFluidMinIterations || def.iterations > kFluidMaxIterations) {
-        throw Error(fmt::format("{}: iterations must be {} to {}, got {}", label(def), kFluidMinIterations,
-                                kFluidMaxIterations, def.iterations));
-    }
-    if (!(def.baumgarte >= 0.0f && def.baumgarte <= 1.0f)) {
-        throw Error(fmt::format("{}: baumgarte must be in [0, 1], got {}", label(def), def.baumgarte));
-    }
-    if (!(def.warmStart >= 0.0f && def.warmStart <= 1.0f)) {
-        throw Error(fmt::format("{}: warm start must be in [0, 1], got {}", label(def), def.warmStart));
-    }
-    if (def.maxNeighbours > kFluidMaxNeighbours) {
-        throw Error(fmt::format("{}: max neighbours must be at most {}, got {}", label(def), kFluidMaxNeighbours,
-                                def.maxNeighbours));
-    }
-    if (!(def.friction >= 0.0f) || !std::isfinite(def.friction) || !finite(def.gravity) ||
-        !(def.restDensity >= 0.0f) || !std::isfinite(def.restDensity)) {
-        throw Error(fmt::format("{}: friction and rest density must be finite and >= 0, gravity finite", label(def)));
-    }
-    if (!(def.sleepSpeed >= 0.0f) || !std::isfinite(def.sleepSpeed) || !(def.sleepTime >= 0.0f) ||
-        !std::isfinite(def.sleepTime)) {
-        throw Error(fmt::format("{}: sleep speed (m/s) and sleep time (s) must be finite and >= 0", label(def)));
-    }
-    if (!(def.density > 0.0f) || !std::isfinite(def.density)) {
-        throw Error(fmt::format("{}: density must be a finite mass density > 0 (kg/m^2 in 2D), got {}", label(def),
-                                def.density));
-    }
-    for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i + 1);
-    for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i + 1);
-    for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i + 1);
+    check.number("iterations", def.iterations, rules::kIterations);
+    check.number("baumgarte", def.baumgarte, rules::kBaumgarte);
+    check.number("warm_start", def.warmStart, rules::kWarmStart);
+    check.number("max_neighbours", def.maxNeighbours, rules::kMaxNeighbours);
+    check.number("substeps", def.substeps, rules::kSubsteps);
+    check.number("sleep_speed", def.sleepSpeed, rules::kSleepSpeed);
+    check.number("sleep_time", def.sleepTime, rules::kSleepTime);
+    check.finite("gravity", def.gravity);
+    check.number("friction", def.friction, rules::kFriction);
+    check.number("density", def.density, rules::kDensity);
+    check.number("capacity", def.capacity, rules::kCapacity);
+    check.number("rest_density", def.restDensity, rules::kRestDensity);
+    for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i);
+    for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i);
+    for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i);
 }
 
 float latticeRestDensity(std::uint32_t dimension, float spacing, float h) {
@@ -277,7 +259,7 @@ void initialiseFluid(FluidState& f) {
         throw Error(fmt::format("{}: capacity {} is too large", label(def), capacity));
     }
     f.capacity = static_cast<std::uint32_t>(capacity);
-    for (std::size_t i = 0; i < def.polygons.size(); ++i) f.polygons.push_back(makePolygon(def, def.polygons[i], i + 1));
+    for (std::size_t i = 0; i < def.polygons.size(); ++i) f.polygons.push_back(makePolygon(def, def.polygons[i], i));
 }
 
 void addBlock(FluidState& f, const FluidBlockDef& b) {

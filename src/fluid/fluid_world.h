@@ -10,10 +10,10 @@
 
 namespace spindrift::fluid {
 
-/// Throws Error for block number `index` (1-based, for the message) that
-/// `def`'s fluid cannot hold.
+/// Throws FieldError (field "block[index]...", 0-based as in a scene file) for
+/// a block that `def`'s fluid cannot hold.
 void validateBlock(const FluidDef& def, const FluidBlockDef& block, std::size_t index);
-/// Throws Error for jet number `index` (1-based) that `def`'s fluid cannot run.
+/// Throws FieldError (field "jet[index]...") for a jet `def`'s fluid cannot run.
 void validateJet(const FluidDef& def, const FluidJetDef& jet, std::size_t index);
 /// The fluid's particles in creation order (readFluid).
 FluidSnapshot snapshotOf(const FluidState& f);

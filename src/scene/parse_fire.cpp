@@ -1,6 +1,7 @@
 // [[fire]]: a fire on a body, driving flame, smoke and steam emitters
 // (include/spindrift/fires.h).
 #include "scene/parse_internal.h"
+#include "world/fire_rules.h"
 
 namespace spindrift::scene {
 
@@ -17,9 +18,11 @@ FireDef parseFire(const Table& t, NameTable& names, const NameTable& bodies, con
     def.flames = emitter("flames");
     def.smoke = emitter("smoke");
     def.steam = emitter("steam");
-    def.strength = t.real("strength", def.strength, {0.0, 1.0, true, false});
-    def.dousePerStrike = t.real("douse_per_strike", def.dousePerStrike, Bounds::nonNegative());
-    def.steamPerStrike = t.real("steam_per_strike", def.steamPerStrike, Bounds::nonNegative());
+    // Type checks here; the ranges are validateFireDef's, checked once.
+    def.strength = t.real("strength", def.strength, fire_rules::kStrength);
+    def.dousePerStrike = t.real("douse_per_strike", def.dousePerStrike, fire_rules::kDousePerStrike);
+    def.steamPerStrike = t.real("steam_per_strike", def.steamPerStrike, fire_rules::kSteamPerStrike);
+    validateAt(t, [&] { validateFireDef(def); });
     return def;
 }
 

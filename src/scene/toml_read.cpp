@@ -9,16 +9,6 @@ namespace spindrift::scene {
 
 namespace {
 
-std::string formatNumber(double v) {
-    if (std::isnan(v)) {
-        return "nan";
-    }
-    if (std::isinf(v)) {
-        return v > 0 ? "inf" : "-inf";
-    }
-    return fmt::format("{}", v);
-}
-
 // A float written like an integer ("1e4" prints as 10000) is shown with ".0" so
 // "expected an integer, got 10000.0" makes sense.
 std::string formatFloatLiteral(double v) {
@@ -86,29 +76,6 @@ void fail(const ParseContext& ctx, const toml::source_region& region, const std:
           const std::string& message) {
     throw SceneError(ctx.file, static_cast<int>(region.begin.line),
                      static_cast<int>(region.begin.column), keyPath, message);
-}
-
-bool Bounds::contains(double v) const {
-    const bool lowOk = minOpen ? v > min : v >= min;
-    const bool highOk = maxOpen ? v < max : v <= max;
-    return lowOk && highOk;
-}
-
-std::string Bounds::describe(bool integer) const {
-    const std::string noun = integer ? "an integer" : "a number";
-    const bool hasMin = std::isfinite(min);
-    const bool hasMax = std::isfinite(max);
-    if (hasMin && hasMax) {
-        return fmt::format("{} in {}{}, {}{}", noun, minOpen ? "(" : "[", formatNumber(min),
-                           formatNumber(max), maxOpen ? ")" : "]");
-    }
-    if (hasMin) {
-        return fmt::format("{} {} {}", noun, minOpen ? ">" : ">=", formatNumber(min));
-    }
-    if (hasMax) {
-        return fmt::format("{} {} {}", noun, maxOpen ? "<" : "<=", formatNumber(max));
-    }
-    return noun;
 }
 
 std::string quotedList(const std::vector<std::string_view>& names) {
@@ -184,14 +151,30 @@ float Value::real(Bounds bounds) const {
 }
 
 std::int64_t Value::integer(Bounds bounds) const {
+    return integer(bounds, FieldRule::whole(bounds));
+}
+
+std::int64_t Value::integer(Bounds bounds, const FieldRule& wording) const {
     if (!node_->is_integer()) {
-        failExpected(bounds.describe(true));
+        failExpected(wording.describe());
     }
     const std::int64_t v = node_->as_integer()->get();
     if (!bounds.contains(static_cast<double>(v))) {
-        failExpected(bounds.describe(true));
+        failExpected(wording.describe());
     }
     return v;
+}
+
+float Value::real(const FieldRule& rule) const {
+    if (!node_->is_number()) {
+        failExpected(rule.describe());
+    }
+    const double v = node_->value<double>().value_or(0.0);
+    if (!std::isfinite(v)) {
+        fail(fmt::format("expected {}, got {} (NaN and infinity are not allowed)", rule.describe(),
+                         describeValue(*node_)));
+    }
+    return real();
 }
 
 bool Value::boolean() const {
@@ -277,6 +260,17 @@ FloatRange Value::range(Bounds bounds) const {
     return {lo, hi};
 }
 
+FloatRange Value::range(const FieldRule& rule) const {
+    if (node_->is_number()) {
+        const float v = real(rule);
+        return {v, v};
+    }
+    if (!node_->is_array() || node_->as_array()->size() != 2) {
+        failExpected("a number or [min, max] with each " + rule.describe());
+    }
+    return {element(0).real(rule), element(1).real(rule)};
+}
+
 // --- Table --------------------------------------------------------------------
 
 void Table::allowOnly(const std::vector<std::string_view>& allowed, const std::string& what) const {
@@ -331,6 +325,46 @@ void Table::failAtKey(std::string_view key, const std::string& message) const {
         }
     }
     scene::fail(*ctx_, table_->source(), joinPath(path_, key), message);
+}
+
+void Table::failAtField(std::string_view field, const std::string& message) const {
+    // Walk "key", "[index]" and ".key" parts down from this table as far as
+    // the file has them.
+    const toml::node* node = table_;
+    std::size_t found = 0;  // characters of `field` walked
+    std::size_t at = 0;
+    while (at < field.size()) {
+        const toml::node* next = nullptr;
+        std::size_t end = 0;
+        if (field[at] == '[') {
+            end = field.find(']', at);
+            if (end == std::string_view::npos) break;
+            const std::size_t index = std::stoul(std::string(field.substr(at + 1, end - at - 1)));
+            if (const toml::array* a = node->as_array(); a != nullptr && index < a->size()) next = a->get(index);
+            end += 1;
+        } else {
+            const std::size_t start = field[at] == '.' ? at + 1 : at;
+            end = std::min(field.find('.', start), field.find('[', start));
+            if (end == std::string_view::npos) end = field.size();
+            if (const toml::table* t = node->as_table()) next = t->get(field.substr(start, end - start));
+        }
+        if (next == nullptr) break;
+        node = next;
+        found = at = end;
+    }
+    // The path of what was found, or the whole field if the file has none of it.
+    const std::string_view where = found > 0 ? field.substr(0, found) : field;
+    scene::fail(*ctx_, node->source(), where.empty() ? path_ : joinPath(path_, where), message);
+}
+
+float Table::real(std::string_view key, float fallback, const FieldRule& rule) const {
+    std::optional<Value> v = find(key);
+    return v ? v->real(rule) : fallback;
+}
+
+FloatRange Table::range(std::string_view key, FloatRange fallback, const FieldRule& rule) const {
+    std::optional<Value> v = find(key);
+    return v ? v->range(rule) : fallback;
 }
 
 float Table::real(std::string_view key, float fallback, Bounds bounds) const {

@@ -1,9 +1,16 @@
-// Reading validated values out of a parsed TOML document.
+// Reading values out of a parsed TOML document.
 //
-// Every reader checks type, finiteness and range and, on the first problem,
-// throws a SceneError that points at the offending node (file, line, column,
-// key path) and says what was expected. Nothing here builds anything.
+// Every reader checks type and finiteness and, on the first problem, throws a
+// SceneError that points at the offending node (file, line, column, key path)
+// and says what was expected. A reader given a FieldRule (the API's rule of
+// the field, src/core/field_rules.h) checks the type only and words a type
+// error with the rule: the range is the API validator's to check, once, and
+// validateAt turns its FieldError into an error at the key. A reader given
+// Bounds checks the range itself: for values only a scene file has (run,
+// camera ...). Nothing here builds anything.
 #pragma once
+
+#include "core/field_rules.h"
 
 #include <spindrift/scene.h>
 
@@ -30,28 +37,6 @@ struct ParseContext {
 /// Throws the SceneError for `region` (line and column 1-based; 0 = unknown).
 [[noreturn]] void fail(const ParseContext& ctx, const toml::source_region& region,
                        const std::string& keyPath, const std::string& message);
-
-/// The accepted interval of a number. Bounds are inclusive unless open.
-struct Bounds {
-    double min = -std::numeric_limits<double>::infinity();
-    double max = std::numeric_limits<double>::infinity();
-    bool minOpen = false;
-    bool maxOpen = false;
-
-    static Bounds any() { return {}; }
-    static Bounds atLeast(double v) { return {v, std::numeric_limits<double>::infinity()}; }
-    static Bounds above(double v) {
-        return {v, std::numeric_limits<double>::infinity(), true, false};
-    }
-    static Bounds between(double lo, double hi) { return {lo, hi}; }
-    static Bounds positive() { return above(0.0); }
-    static Bounds nonNegative() { return atLeast(0.0); }
-    static Bounds unit() { return between(0.0, 1.0); }
-
-    bool contains(double v) const;
-    /// "a number > 0", "an integer in [1, 16]", "a number" ...
-    std::string describe(bool integer) const;
-};
 
 /// "\"a\", \"b\", \"c\"" for messages.
 std::string quotedList(const std::vector<std::string_view>& names);
@@ -83,6 +68,19 @@ public:
     double number(Bounds bounds = Bounds::any()) const;
     float real(Bounds bounds = Bounds::any()) const;  ///< number() that also fits a float
     std::int64_t integer(Bounds bounds) const;
+    /// A finite number that fits a float; the rule words a type error only.
+    float real(const FieldRule& rule) const;
+    /// An integer that fits T (a type check: the field's C++ type); the rule
+    /// words the error only.
+    template <class T>
+    T whole(const FieldRule& rule) const {
+        const std::int64_t v = integer(Bounds::any(), rule);
+        if (v < static_cast<std::int64_t>(std::numeric_limits<T>::min()) ||
+            static_cast<std::uint64_t>(v) > static_cast<std::uint64_t>(std::numeric_limits<T>::max())) {
+            failExpected(rule.describe());
+        }
+        return static_cast<T>(v);
+    }
     bool boolean() const;
     std::string string() const;  ///< non-empty
     /// An array of exactly `n` numbers (n = 2, 3, 4 ...), each within bounds.
@@ -92,6 +90,8 @@ public:
     glm::vec4 vec4(Bounds bounds = Bounds::any()) const;
     /// `x` or `[min, max]` with min <= max, each within bounds.
     FloatRange range(Bounds bounds = Bounds::any()) const;
+    /// `x` or `[min, max]`, type only; the rule (of each end) words a type error.
+    FloatRange range(const FieldRule& rule) const;
     const toml::array& array() const;
     Value element(std::size_t index) const;
 
@@ -112,6 +112,8 @@ public:
     }
 
 private:
+    std::int64_t integer(Bounds bounds, const FieldRule& wording) const;
+
     const ParseContext* ctx_;
     const toml::node* node_;
     std::string path_;
@@ -137,6 +139,11 @@ public:
     [[noreturn]] void fail(const std::string& message) const;
     /// Error at the key itself (not its value), for "not allowed here".
     [[noreturn]] void failAtKey(std::string_view key, const std::string& message) const;
+    /// Error at the value of `field`, a key path inside this table as a
+    /// FieldError names it ("jet[0].speed"); a part the file left out (a
+    /// default broke a rule with another key) is reported at the deepest part
+    /// present.
+    [[noreturn]] void failAtField(std::string_view field, const std::string& message) const;
 
     float real(std::string_view key, float fallback, Bounds bounds = Bounds::any()) const;
     std::int64_t integer(std::string_view key, std::int64_t fallback, Bounds bounds) const;
@@ -144,6 +151,14 @@ public:
     glm::vec3 vec3(std::string_view key, glm::vec3 fallback, Bounds bounds = Bounds::any()) const;
     glm::vec3 direction(std::string_view key, glm::vec3 fallback) const;
     FloatRange range(std::string_view key, FloatRange fallback, Bounds bounds) const;
+    /// Type-only readers: `rule` words a type error (see the top of this file).
+    float real(std::string_view key, float fallback, const FieldRule& rule) const;
+    template <class T>
+    T whole(std::string_view key, T fallback, const FieldRule& rule) const {
+        std::optional<Value> v = find(key);
+        return v ? v->whole<T>(rule) : fallback;
+    }
+    FloatRange range(std::string_view key, FloatRange fallback, const FieldRule& rule) const;
 
     const toml::table& raw() const { return *table_; }
     const std::string& path() const { return path_; }
@@ -154,6 +169,20 @@ private:
     const toml::table* table_;
     std::string path_;
 };
+
+/// Runs the API's validator of what `table` defined: a FieldError becomes an
+/// error at the field's value (Table::failAtField), any other Error one at the
+/// table. The one path from a rule to a located scene error.
+template <class Validate>
+void validateAt(const Table& table, Validate&& validate) {
+    try {
+        validate();
+    } catch (const FieldError& e) {
+        table.failAtField(e.field(), e.message());
+    } catch (const Error& e) {
+        table.fail(e.what());
+    }
+}
 
 /// The tables of an array of tables ([[emitter]]); empty if the key is absent.
 std::vector<Table> tableArray(const Table& root, std::string_view key);

@@ -4,6 +4,7 @@
 // strength and ride on the body.
 #include "world/fires.h"
 
+#include "world/fire_rules.h"
 #include "world/world.h"
 
 #include <fmt/format.h>
@@ -42,13 +43,16 @@ void carry(WorldId id, EmitterId emitter, const BodySnapshot& body, glm::vec2 of
 
 }  // namespace
 
+void validateFireDef(const FireDef& def) {
+    const FieldCheck check(objectLabel("fire", def.name));
+    check.number("strength", def.strength, fire_rules::kStrength);
+    check.number("douse_per_strike", def.dousePerStrike, fire_rules::kDousePerStrike);
+    check.number("steam_per_strike", def.steamPerStrike, fire_rules::kSteamPerStrike);
+}
+
 FireId createFire(WorldId id, const FireDef& def) {
     World& w = worldFromId(id);
-    if (!(def.strength > 0.0f && def.strength <= 1.0f) || !(def.dousePerStrike >= 0.0f) ||
-        !(def.steamPerStrike >= 0.0f) || !std::isfinite(def.dousePerStrike) || !std::isfinite(def.steamPerStrike)) {
-        throw Error(fmt::format("fire '{}': strength must be in (0, 1], douse and steam per strike finite and >= 0",
-                                def.name));
-    }
+    validateFireDef(def);
     for (EmitterId e : {def.flames, def.smoke, def.steam}) {
         if (e.index != 0 && (!hasEmitter(w, e) || w.emitters[e.index - 1]->def.stateless)) {
             throw Error(fmt::format("fire '{}': emitter {} does not exist or is stateless", def.name, e.index));

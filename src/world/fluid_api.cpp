@@ -75,7 +75,7 @@ FluidId createFluid(WorldId id, const FluidDef& def) {
 void addFluidBlock(WorldId id, FluidId fluidId, const FluidBlockDef& block) {
     World& w = worldFromId(id);
     fluid::FluidState& f = fluidFromId(w, fluidId);
-    fluid::validateBlock(f.def, block, f.def.blocks.size() + 1);
+    fluid::validateBlock(f.def, block, f.def.blocks.size());
     fluid::addBlock(f, block);
     f.def.blocks.push_back(block);
 }
@@ -83,7 +83,7 @@ void addFluidBlock(WorldId id, FluidId fluidId, const FluidBlockDef& block) {
 void addFluidJet(WorldId id, FluidId fluidId, const FluidJetDef& jet) {
     World& w = worldFromId(id);
     fluid::FluidState& f = fluidFromId(w, fluidId);
-    fluid::validateJet(f.def, jet, f.def.jets.size() + 1);
+    fluid::validateJet(f.def, jet, f.def.jets.size());
     coupling::checkJetBody(w.bodies.get(), jet);
     f.jets.push_back(fluid::Jet{jet, w.time, 0.0, 0});
     f.def.jets.push_back(jet);

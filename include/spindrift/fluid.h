@@ -1,7 +1,8 @@
 // spindrift public API: constraint fluids (Sprinkle style). Each fluid particle
 // is a velocity constraint that keeps the density around it at rest; fluids
-// live in a world and stepWorld() steps them with the emitters. CPU backend only
-// for now.
+// live in a world and stepWorld() steps them with the emitters. The solver runs
+// on the CPU in either backend's world (a Vulkan world's fluids too), as the
+// README says.
 #pragma once
 
 #include <spindrift/export.h>

@@ -3,19 +3,9 @@
 # (install_package.cmake), then checks what the program printed.
 #   cmake -DSOURCE_DIR=<repo> -DPREFIX=<installed> -DWORK_DIR=<scratch> -DNAME=<example>
 #         -DGENERATOR=<gen> -DCXX=<compiler> -DBUILD_TYPE=<type> [-DLAUNCHER=<ccache>] -P example.cmake
-foreach(var SOURCE_DIR PREFIX WORK_DIR NAME GENERATOR CXX)
-    if(NOT DEFINED ${var})
-        message(FATAL_ERROR "example.cmake: pass -D${var}=...")
-    endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
+require_vars(example.cmake SOURCE_DIR PREFIX WORK_DIR NAME GENERATOR CXX)
 
-function(run what)
-    execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-    if(NOT rc EQUAL 0)
-        message(FATAL_ERROR "${NAME}: ${what} failed (${rc}):\n${out}")
-    endif()
-    set(output "${out}" PARENT_SCOPE)
-endfunction()
 
 set(example ${SOURCE_DIR}/examples/${NAME})
 set(build ${WORK_DIR}/${NAME})
@@ -27,21 +17,21 @@ endif()
 if(LAUNCHER)
     list(APPEND options -DCMAKE_CXX_COMPILER_LAUNCHER=${LAUNCHER})
 endif()
-run(configure ${CMAKE_COMMAND} -S ${example} -B ${build} ${options})
+run("${NAME}: configure" ${CMAKE_COMMAND} -S ${example} -B ${build} ${options})
 # The package found must be the one just installed, not another on the system.
 file(STRINGS ${build}/CMakeCache.txt found REGEX "^spindrift_DIR:")
 file(REAL_PATH ${PREFIX} real_prefix)
 if(NOT found MATCHES "=${real_prefix}/|=${PREFIX}/")
     message(FATAL_ERROR "${NAME}: found spindrift elsewhere than ${PREFIX}: ${found}")
 endif()
-run(build ${CMAKE_COMMAND} --build ${build})
+run("${NAME}: build" ${CMAKE_COMMAND} --build ${build})
 
 # Run it (render_png: with its own scene, writing into the build folder).
 if(NAME STREQUAL "render_png")
     set(png ${build}/frame.png)
-    run(run ${build}/${NAME} ${example}/scene.toml ${png})
+    run("${NAME}: run" ${build}/${NAME} ${example}/scene.toml ${png})
 else()
-    run(run ${build}/${NAME})
+    run("${NAME}: run" ${build}/${NAME})
 endif()
 message(STATUS "${NAME} printed:\n${output}")
 

@@ -5,11 +5,8 @@
 # export no internal namespace.
 #   cmake -DBUILD_DIR=<build> -DSOURCE_DIR=<repo> -DPREFIX=<dir> -DLIBDIR=<lib dir>
 #         -DVERSION=<x.y.z> [-DTOOL=ON] -P install_package.cmake
-foreach(var BUILD_DIR SOURCE_DIR PREFIX LIBDIR VERSION)
-    if(NOT DEFINED ${var})
-        message(FATAL_ERROR "install_package.cmake: pass -D${var}=...")
-    endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
+require_vars(install_package.cmake BUILD_DIR SOURCE_DIR PREFIX LIBDIR VERSION)
 
 file(REMOVE_RECURSE ${PREFIX})
 execute_process(COMMAND ${CMAKE_COMMAND} --install ${BUILD_DIR} --prefix ${PREFIX}

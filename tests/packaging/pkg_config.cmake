@@ -3,11 +3,8 @@
 # static library), runs it and checks its summary line.
 #   cmake -DSOURCE_DIR=<repo> -DPREFIX=<installed> -DLIBDIR=<lib dir> -DWORK_DIR=<scratch>
 #         -DCXX=<compiler> -P pkg_config.cmake
-foreach(var SOURCE_DIR PREFIX LIBDIR WORK_DIR CXX)
-    if(NOT DEFINED ${var})
-        message(FATAL_ERROR "pkg_config.cmake: pass -D${var}=...")
-    endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
+require_vars(pkg_config.cmake SOURCE_DIR PREFIX LIBDIR WORK_DIR CXX)
 find_program(PKG_CONFIG pkg-config REQUIRED)
 
 set(ENV{PKG_CONFIG_PATH} ${PREFIX}/${LIBDIR}/pkgconfig)

@@ -6,19 +6,9 @@
 # link and run the program.
 #   cmake -DSOURCE_DIR=<repo> -DWORK_DIR=<scratch> -DCXX=<compiler> [-DLAUNCHER=<ccache>] [-DLINK=ON]
 #         -P subdirectory.cmake
-foreach(var SOURCE_DIR WORK_DIR CXX)
-    if(NOT DEFINED ${var})
-        message(FATAL_ERROR "subdirectory.cmake: pass -D${var}=...")
-    endif()
-endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/common.cmake)
+require_vars(subdirectory.cmake SOURCE_DIR WORK_DIR CXX)
 
-function(run what)
-    execute_process(COMMAND ${ARGN} RESULT_VARIABLE rc OUTPUT_VARIABLE out ERROR_VARIABLE out)
-    if(NOT rc EQUAL 0)
-        message(FATAL_ERROR "${what} failed (${rc}):\n${out}")
-    endif()
-    set(output "${out}" PARENT_SCOPE)
-endfunction()
 
 set(build ${WORK_DIR}/subdirectory)
 file(REMOVE_RECURSE ${build})

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include <utility>
+
 namespace spindrift::scene {
 
 namespace {
@@ -18,9 +20,23 @@ FluidBlockDef parseBlock(const Table& t) {
     return b;
 }
 
+/// Where `key` stands in the file, as (line, column); t has the key.
+std::pair<std::uint32_t, std::uint32_t> keyPosition(const Table& t, std::string_view key) {
+    for (auto&& [k, node] : t.raw()) {
+        if (k.str() == key) return {k.source().begin.line, k.source().begin.column};
+    }
+    return {0, 0};
+}
+
 FluidJetDef parseJet(const Table& t, const NameTable& bodies) {
     t.allowOnly({"position", "direction", "speed", "rate", "radius", "start", "duration", "aim", "body"},
                 "a [[fluid.jet]]");
+    // Both set the direction: one would be silently unused. The error points
+    // at whichever of the two comes second in the file.
+    if (t.has("aim") && t.has("direction")) {
+        const std::string_view second = keyPosition(t, "aim") > keyPosition(t, "direction") ? "aim" : "direction";
+        t.failAtKey(second, "give either `direction` or `aim` (the direction over time), not both");
+    }
     FluidJetDef j;
     j.position = t.require("position", "[x, y, z] (m), the nozzle").vec3();
     j.direction = t.direction("direction", j.direction);

@@ -145,6 +145,20 @@ TEST(CouplingSceneErrors, JetAimRunsBackwards) {
                 {6, 20, "fluid[0].jet[0].aim[1]", "not before the previous key's"});
 }
 
+// `aim` and `direction` both set a jet's direction: whichever comes second in
+// the file is the error, and the message names both.
+TEST(CouplingSceneErrors, JetWithAimAndDirectionNamesBoth) {
+    expectError("[[fluid]]\nname = \"f\"\n\n[[fluid.jet]]\nposition = [0, 0, 0]\ndirection = [1, 0, 0]\n"
+                "aim = [[0.0, 0.5]]\n",
+                {7, 1, "fluid[0].jet[0].aim", "either `direction` or `aim`"});
+    expectError("[[fluid]]\nname = \"f\"\n\n[[fluid.jet]]\nposition = [0, 0, 0]\naim = [[0.0, 0.5]]\n"
+                "direction = [1, 0, 0]\n",
+                {7, 1, "fluid[0].jet[0].direction", "either `direction` or `aim`"});
+    // One line: the column decides which is second.
+    expectError("[[fluid]]\nname = \"f\"\njet = [{ position = [0, 0, 0], aim = [[0.0, 0.5]], direction = [1, 0, 0] }]\n",
+                {3, 52, "fluid[0].jet[0].direction", "either `direction` or `aim`"});
+}
+
 TEST(CouplingSceneErrors, BodyGravityNeedsTwoNumbers) {
     expectError("[world]\nbody_gravity = [0, -9.81, 0]\n", {2, 16, "world.body_gravity", "an array of 2 numbers"});
 }

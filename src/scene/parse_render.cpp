@@ -15,7 +15,7 @@ constexpr double kMaxFrameSide = 16384;
 std::vector<std::string_view> backgroundKeys(BackgroundKind kind) {
     switch (kind) {
         case BackgroundKind::Colour:
-            return {"kind", "colour"};
+            return {"kind", "color"};
         case BackgroundKind::Gradient:
             return {"kind", "top", "bottom"};
         case BackgroundKind::Image:
@@ -26,11 +26,11 @@ std::vector<std::string_view> backgroundKeys(BackgroundKind kind) {
 
 BackgroundDef parseBackground(const Table& t) {
     BackgroundDef def;
-    const Value kind = t.require("kind", "\"colour\", \"gradient\" or \"image\"");
+    const Value kind = t.require("kind", "\"color\", \"gradient\" or \"image\"");
     def.kind = kind.choice<BackgroundKind>(
-        {{"colour", BackgroundKind::Colour}, {"gradient", BackgroundKind::Gradient}, {"image", BackgroundKind::Image}});
+        {{"color", BackgroundKind::Colour}, {"gradient", BackgroundKind::Gradient}, {"image", BackgroundKind::Image}});
     t.allowOnly(backgroundKeys(def.kind), fmt::format("a background of kind \"{}\"", kind.string()));
-    def.colour = t.vec3("colour", def.colour, Bounds::nonNegative());
+    def.colour = t.vec3("color", def.colour, Bounds::nonNegative());
     def.top = t.vec3("top", def.top, Bounds::nonNegative());
     def.bottom = t.vec3("bottom", def.bottom, Bounds::nonNegative());
     if (def.kind == BackgroundKind::Image) {
@@ -40,7 +40,7 @@ BackgroundDef parseBackground(const Table& t) {
 }
 
 FluidRenderDef parseFluidRender(const Table& t) {
-    t.allowOnly({"colour", "opacity", "radius_scale", "steps", "size_from_density", "stretch", "refraction", "edges",
+    t.allowOnly({"color", "opacity", "radius_scale", "steps", "size_from_density", "stretch", "refraction", "edges",
                  "splashes", "bubbles"},
                 "[render.fluid]");
     FluidRenderDef def;
@@ -56,7 +56,7 @@ FluidRenderDef parseFluidRender(const Table& t) {
         def.splashes = preset.splashes;
         def.bubbles = preset.bubbles;
     }
-    def.colour = t.vec3("colour", def.colour, Bounds::nonNegative());
+    def.colour = t.vec3("color", def.colour, Bounds::nonNegative());
     def.opacity = t.real("opacity", def.opacity, {0.0, 1.0, true, false});
     def.radiusScale = t.real("radius_scale", def.radiusScale, Bounds::positive());
     def.sizeFromDensity = t.boolean("size_from_density", def.sizeFromDensity);

@@ -126,6 +126,13 @@ void Value::failExpected(const std::string& what) const {
     fail(fmt::format("expected {}, got {}", what, describeValue(*node_)));
 }
 
+void Value::failChoice(const std::vector<std::string_view>& names) const {
+    const std::string_view best = node_->is_string() ? closestMatch(node_->value_or(std::string_view()), names)
+                                                     : std::string_view();
+    const std::string hint = best.empty() ? std::string() : fmt::format(" (did you mean \"{}\"?)", best);
+    fail(fmt::format("expected one of {}, got {}{}", quotedList(names), describeValue(*node_), hint));
+}
+
 double Value::number(Bounds bounds) const {
     if (!node_->is_number()) {
         failExpected(bounds.describe(false));

@@ -108,8 +108,11 @@ public:
         for (const auto& option : options) {
             names.push_back(option.first);
         }
-        failExpected("one of " + quotedList(names));
+        failChoice(names);
     }
+    /// "expected one of <names>, got <value>", with a "did you mean" hint
+    /// when the value is a likely typo of one of them.
+    [[noreturn]] void failChoice(const std::vector<std::string_view>& names) const;
 
 private:
     std::int64_t integer(Bounds bounds, const FieldRule& wording) const;

@@ -58,6 +58,19 @@ TEST(SceneErrors, UnknownEmitterKeyWithSuggestion) {
                 {3, 1, "emitter[0].capacty", "did you mean \"capacity\""});
 }
 
+// Scene files spell it `color` (as the bundled scenes do); `colour`, in keys
+// and in the background's kind, is a typo with a hint, wherever it appears.
+TEST(SceneErrors, ColourIsAMisspellingOfColor) {
+    expectError(kEmitter + "colour = [1, 1, 1, 1]\n", {3, 1, "emitter[0].colour", "did you mean \"color\""});
+    expectError(kEmitter + "colour_over_life = []\n",
+                {3, 1, "emitter[0].colour_over_life", "did you mean \"color_over_life\""});
+    expectError("[render.fluid]\ncolour = [1, 1, 1]\n", {2, 1, "render.fluid.colour", "did you mean \"color\""});
+    expectError("[render.background]\nkind = \"color\"\ncolour = [1, 1, 1]\n",
+                {3, 1, "render.background.colour", "did you mean \"color\""});
+    expectError("[render.background]\nkind = \"colour\"\n",
+                {2, 8, "render.background.kind", "did you mean \"color\""});
+}
+
 TEST(SceneErrors, UnknownKeyInNestedShapeTable) {
     expectError(kEmitter + "[emitter.shape]\nkind = \"sphere\"\nraduis = 1\n",
                 {5, 1, "emitter[0].shape.raduis", "did you mean \"radius\""});

@@ -491,7 +491,7 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         "color_over_life", "size_over_life", "bursts", "stateless = true", "duration",
         "kill = true", "life_loss", "[world]", "[camera]", "[run]",
         // drawing
-        "[render]", "kind = \"colour\"", "kind = \"gradient\"", "kind = \"image\"", "[render.fluid]", "steps = ",
+        "[render]", "kind = \"color\"", "kind = \"gradient\"", "kind = \"image\"", "[render.fluid]", "steps = ",
         "[emitter.sprite]", "blend = \"alpha\"", "texture = ",
         // data sources
         "generate = \"curl_noise\"", "generate = \"uniform\"", "generate = \"vortex\"",

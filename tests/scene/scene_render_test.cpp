@@ -50,7 +50,7 @@ sun = [0, 2, 0]
 kind = "image"
 image = "data/sky.png"
 [render.fluid]
-colour = [0.2, 0.5, 0.9]
+color = [0.2, 0.5, 0.9]
 opacity = 0.5
 radius_scale = 2
 size_from_density = false
@@ -78,7 +78,7 @@ bubbles = false
 }
 
 TEST(SceneRender, ColourAndGradientBackgrounds) {
-    const auto colour = parse("[render.background]\nkind = \"colour\"\ncolour = [1, 0.5, 0]\n").render.background;
+    const auto colour = parse("[render.background]\nkind = \"color\"\ncolor = [1, 0.5, 0]\n").render.background;
     EXPECT_EQ(colour.kind, BackgroundKind::Colour);
     EXPECT_EQ(colour.colour, glm::vec3(1, 0.5f, 0));
     const auto gradient =
@@ -136,13 +136,13 @@ TEST(SceneRender, BadRenderKeys) {
 }
 
 TEST(SceneRender, BadBackgrounds) {
-    expectError("[render.background]\ncolour = [1, 1, 1]\n",
+    expectError("[render.background]\ncolor = [1, 1, 1]\n",
                 {1, 1, "render.background.kind", "required key is missing"});
     expectError("[render.background]\nkind = \"sky\"\n", {2, 8, "render.background.kind", "\"gradient\""});
-    expectError("[render.background]\nkind = \"colour\"\ntop = [1, 1, 1]\n",
-                {3, 1, "render.background.top", "a background of kind \"colour\""});
-    expectError("[render.background]\nkind = \"colour\"\ncolour = [1, -1, 1]\n",
-                {3, 14, "render.background.colour[1]", ">= 0"});
+    expectError("[render.background]\nkind = \"color\"\ntop = [1, 1, 1]\n",
+                {3, 1, "render.background.top", "a background of kind \"color\""});
+    expectError("[render.background]\nkind = \"color\"\ncolor = [1, -1, 1]\n",
+                {3, 13, "render.background.color[1]", ">= 0"});
     expectError("[render.background]\nkind = \"image\"\n", {1, 1, "render.background.image", "a PNG file path"});
     expectError("[render.background]\nkind = \"image\"\nimage = \"data/no-such.png\"\n",
                 {3, 9, "render.background.image", "cannot read"});

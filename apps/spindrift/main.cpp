@@ -153,9 +153,20 @@ private:
 
 int validateCommand(const std::string& path) {
     const SceneDef scene = loadScene(path);
-    const std::string fluids = scene.fluids.empty() ? std::string() : fmt::format(", fluids: {}", scene.fluids.size());
+    std::size_t jets = 0;
+    for (const FluidDef& fluid : scene.fluids) jets += fluid.jets.size();
+    // Emitters, forces and colliders are always counted; the kinds an effect
+    // scene has none of are left out to keep its line short.
+    std::string others;
+    const std::pair<const char*, std::size_t> counts[] = {{"fluids", scene.fluids.size()}, {"jets", jets},
+                                                          {"bodies", scene.bodies.size()},
+                                                          {"joints", scene.joints.size()},
+                                                          {"fires", scene.fires.size()}};
+    for (const auto& [kind, count] : counts) {
+        if (count > 0) others += fmt::format(", {}: {}", kind, count);
+    }
     fmt::print("{}: ok (emitters: {}, forces: {}, colliders: {}{})\n", path, scene.emitters.size(),
-               scene.forces.size(), scene.colliders.size(), fluids);
+               scene.forces.size(), scene.colliders.size(), others);
     return 0;
 }
 

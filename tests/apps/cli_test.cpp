@@ -162,6 +162,80 @@ TEST_F(CliTest, ValidateFountainCountsItsParts) {
     EXPECT_EQ(r.out, expected.str());
 }
 
+/// Writes `text` to DIR/name and returns the path.
+fs::path writeScene(const fs::path& dir, const std::string& name, const std::string& text) {
+    const fs::path path = dir / name;
+    std::ofstream(path) << text;
+    return path;
+}
+
+TEST_F(CliTest, ValidateCountsFluidsJetsBodiesJointsAndFires) {
+    // Counted by hand: 2 fluids with 2 + 1 jets, 3 bodies, 1 joint, 1 fire.
+    const fs::path scene = writeScene(dir(), "parts.toml", R"(
+[[emitter]]
+name = "flames"
+
+[[fluid]]
+name = "water"
+dimension = 2
+[[fluid.jet]]
+position = [0, 1, 0]
+[[fluid.jet]]
+position = [1, 1, 0]
+aim = [[0.0, 0.5]]
+
+[[fluid]]
+name = "oil"
+dimension = 2
+[[fluid.block]]
+min = [0, 0, 0]
+max = [0.2, 0.2, 0]
+[[fluid.jet]]
+position = [2, 1, 0]
+
+[[body]]
+name = "floor"
+type = "static"
+shape = [{ box = [2.0, 0.1] }]
+[[body]]
+name = "gate"
+position = [1.0, 0.5]
+shape = [{ box = [0.05, 0.4] }]
+[[body]]
+name = "log"
+position = [2.0, 0.5]
+shape = [{ circle = 0.1 }]
+
+[[joint]]
+name = "hinge"
+kind = "revolute"
+body_a = "floor"
+body_b = "gate"
+anchor = [1.0, 0.9]
+
+[[fire]]
+name = "bonfire"
+body = "log"
+flames = "flames"
+)");
+    const Result r = cli("validate " + quoted(scene));
+    EXPECT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(r.out, scene.string() + ": ok (emitters: 1, forces: 0, colliders: 0, fluids: 2, jets: 3, bodies: 3, "
+                                      "joints: 1, fires: 1)\n");
+}
+
+TEST_F(CliTest, ValidateJetWithAimAndDirectionNamesBothAtTheSecond) {
+    const fs::path scene = writeScene(dir(), "jet.toml",
+                                      "[[fluid]]\nname = \"water\"\ndimension = 2\n\n[[fluid.jet]]\n"
+                                      "position = [0, 1, 0]\naim = [[0.0, 0.5]]\ndirection = [1, 0, 0]\n");
+    const Result r = cli("validate " + quoted(scene));
+    EXPECT_EQ(r.code, 1);
+    EXPECT_TRUE(r.err.starts_with(scene.string() + ":8:1: fluid[0].jet[0].direction: ")) << r.err;
+    EXPECT_NE(r.err.find("`direction`"), std::string::npos) << r.err;
+    EXPECT_NE(r.err.find("`aim`"), std::string::npos) << r.err;
+    EXPECT_EQ(r.out, "");
+}
+
 // run -----------------------------------------------------------------------------------------
 
 TEST_F(CliTest, RunFountainWritesCachesAndSummary) {

@@ -225,6 +225,20 @@ std::vector<std::string> fluidStems(WorldId world, const std::vector<std::string
     return stems;
 }
 
+/// File stem of the rigid bodies' caches: "bodies", unless an emitter's or a
+/// fluid's file already has that name; then "rigid_bodies", then with a number.
+std::string bodyStem(const std::vector<std::string>& emitterStems, const std::vector<std::string>& fluidStems) {
+    std::set<std::string> used;
+    for (const auto* stems : {&emitterStems, &fluidStems}) {
+        for (const std::string& stem : *stems) used.insert(io::cacheFileName(stem, 0, io::CacheFormat::Csv));
+    }
+    std::string stem = "bodies";
+    for (int n = 1; used.count(io::cacheFileName(stem, 0, io::CacheFormat::Csv)) > 0; ++n) {
+        stem = n == 1 ? std::string("rigid_bodies") : fmt::format("rigid_bodies_{}", n);
+    }
+    return stem;
+}
+
 std::vector<io::CacheFormat> cacheFormats(const std::vector<std::string>& names) {
     std::set<std::string> seen;
     std::vector<io::CacheFormat> formats;
@@ -235,22 +249,38 @@ std::vector<io::CacheFormat> cacheFormats(const std::vector<std::string>& names)
     return formats;
 }
 
-/// Writes every emitter's particles in every format; returns files written.
-std::uint64_t dumpCaches(WorldId world, const fs::path& dir, std::uint64_t step,
-                         const std::vector<std::string>& stems, const std::vector<std::string>& fluids,
+/// The file stems of one run's caches: one per emitter and per fluid (index i
+/// = id i + 1), and the bodies' (empty: the world has no bodies).
+struct CacheStems {
+    std::vector<std::string> emitters;
+    std::vector<std::string> fluids;
+    std::string bodies;
+};
+
+/// Writes every emitter's and fluid's particles and the bodies in every
+/// format; returns files written.
+std::uint64_t dumpCaches(WorldId world, const fs::path& dir, io::BodyCacheStep at, const CacheStems& stems,
                          const std::vector<io::CacheFormat>& formats) {
+    const std::uint64_t step = at.step;
     std::uint64_t files = 0;
-    for (std::uint32_t i = 0; i < fluids.size(); ++i) {
+    for (std::uint32_t i = 0; i < stems.fluids.size(); ++i) {
         const FluidSnapshot particles = readFluid(world, FluidId{i + 1});
         for (io::CacheFormat format : formats) {
-            io::writeFluidCache(dir / io::cacheFileName(fluids[i], step, format), particles, format);
+            io::writeFluidCache(dir / io::cacheFileName(stems.fluids[i], step, format), particles, format);
             ++files;
         }
     }
-    for (std::uint32_t i = 0; i < stems.size(); ++i) {
+    for (std::uint32_t i = 0; i < stems.emitters.size(); ++i) {
         const ParticleSnapshot particles = readParticles(world, EmitterId{i + 1});
         for (io::CacheFormat format : formats) {
-            io::writeCache(dir / io::cacheFileName(stems[i], step, format), particles, format);
+            io::writeCache(dir / io::cacheFileName(stems.emitters[i], step, format), particles, format);
+            ++files;
+        }
+    }
+    if (!stems.bodies.empty()) {
+        const std::vector<BodySnapshot> bodies = readBodies(world);
+        for (io::CacheFormat format : formats) {
+            io::writeBodyCache(dir / io::cacheFileName(stems.bodies, step, format), bodies, at, format);
             ++files;
         }
     }
@@ -280,6 +310,7 @@ io::RunSummary startSummary(const RunOptions& o, const SceneDef& scene, WorldId 
     for (std::uint32_t i = 0; i < emitterCount(world); ++i) s.emitterNames.push_back(emitterDef(world, EmitterId{i + 1}).name);
     for (const ColliderDef& c : scene.colliders) s.colliderNames.push_back(c.name);
     for (const FluidDef& f : scene.fluids) s.fluidNames.push_back(f.name);
+    for (const BodyDef& b : scene.bodies) s.bodyNames.push_back(b.name);
     return s;
 }
 
@@ -298,15 +329,17 @@ double secondsSince(std::chrono::steady_clock::time_point start) {
 }
 
 /// Steps the world, dumping caches every `every` steps and after the last;
-/// fills summary.steps, wallSeconds and cacheFiles. Without --out no summary
-/// is written, so only the last step's stats are kept: memory stays flat
-/// however long the run.
+/// fills summary.steps, wallSeconds, cacheFiles and finalBodies. Without
+/// --out no summary is written, so only the last step's stats are kept:
+/// memory stays flat however long the run.
 void simulate(WorldId world, const SceneDef& scene, const RunOptions& o, io::RunSummary& summary) {
     const std::uint64_t total = scene.run.steps;
     const bool dump = !o.out.empty();
     if (dump) summary.steps.reserve(std::min<std::uint64_t>(total, 1u << 20));
-    const auto stems = cacheStems(world);
-    const auto fluids = fluidStems(world, stems);
+    CacheStems stems;
+    stems.emitters = cacheStems(world);
+    stems.fluids = fluidStems(world, stems.emitters);
+    if (bodyCount(world) > 0) stems.bodies = bodyStem(stems.emitters, stems.fluids);
     const auto formats = cacheFormats(o.formats);
     io::ProgressReporter::Options progressOptions;
     progressOptions.terminal = isatty(STDERR_FILENO) != 0;
@@ -314,15 +347,17 @@ void simulate(WorldId world, const SceneDef& scene, const RunOptions& o, io::Run
     const auto start = std::chrono::steady_clock::now();
     for (std::uint64_t done = 1; done <= total; ++done) {
         StepStats stats = stepWorld(world, scene.run.dt);
+        const io::BodyCacheStep at{done, stats.time};
         if (!dump) summary.steps.clear();
         summary.steps.push_back(std::move(stats));
         if (dump && (done % o.every == 0 || done == total)) {
-            summary.cacheFiles += dumpCaches(world, o.out, done, stems, fluids, formats);
+            summary.cacheFiles += dumpCaches(world, o.out, at, stems, formats);
             if (fluidCount(world) > 0) summary.numberDensity.push_back(measureNumberDensity(world, done));
         }
         if (!o.quiet) progress.update(done, summary.steps.back().alive, secondsSince(start));
     }
     summary.wallSeconds = secondsSince(start);
+    summary.finalBodies = readBodies(world);
     const std::uint64_t alive = summary.steps.empty() ? 0 : summary.steps.back().alive;
     if (!o.quiet) progress.finish(total, alive, summary.wallSeconds);
 }

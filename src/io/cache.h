@@ -1,5 +1,6 @@
-// Particle caches: one file per emitter per dumped step, for Houdini, Blender,
-// ParaView, MeshLab or a spreadsheet to load.
+// Particle caches: one file per emitter (and per fluid, and one for the rigid
+// bodies) per dumped step, for Houdini, Blender, ParaView, MeshLab, pandas or
+// a spreadsheet to load.
 #pragma once
 
 #include <spindrift/world.h>
@@ -65,5 +66,32 @@ void writeFluidPly(std::ostream& out, const FluidSnapshot& particles);
 
 /// Writes a fluid's particles to `path` atomically; throws spindrift::Error.
 void writeFluidCache(const std::filesystem::path& path, const FluidSnapshot& particles, CacheFormat format);
+
+/// Which state a body cache holds: after `step` steps (1-based, as "step" of
+/// summary.json's per_step), at simulated time `time` (s).
+struct BodyCacheStep {
+    std::uint64_t step = 0;
+    double time = 0.0;
+};
+
+/// Rigid body cache CSV columns, in order. Every row carries its step and
+/// time, so the per-step files of a run concatenate into one table.
+inline constexpr std::string_view kBodyCsvHeader = "step,time,id,name,x,y,angle,vx,vy,angular_velocity";
+
+/// `text` as one CSV field: as it is, or in double quotes with its quotes
+/// doubled (RFC 4180) when it holds a comma, a quote or a line break.
+std::string csvField(std::string_view text);
+
+/// Header row, then one row per body in the given (id) order.
+void writeBodyCsv(std::ostream& out, const std::vector<BodySnapshot>& bodies, BodyCacheStep at);
+
+/// PLY 1.0, binary_little_endian; one vertex per body with float x y z (z =
+/// 0) angle vx vy angular_velocity and int id; the step, time and each body's
+/// name in comment lines.
+void writeBodyPly(std::ostream& out, const std::vector<BodySnapshot>& bodies, BodyCacheStep at);
+
+/// Writes the bodies to `path` atomically; throws spindrift::Error.
+void writeBodyCache(const std::filesystem::path& path, const std::vector<BodySnapshot>& bodies, BodyCacheStep at,
+                    CacheFormat format);
 
 }  // namespace spindrift::io

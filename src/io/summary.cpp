@@ -55,6 +55,34 @@ void writeHeader(JsonWriter& json, const RunSummary& s) {
     writeNames(json, "emitters", s.emitterNames);
     writeNames(json, "colliders", s.colliderNames);
     if (!s.fluidNames.empty()) writeNames(json, "fluids", s.fluidNames);
+    if (!s.bodyNames.empty()) writeNames(json, "bodies", s.bodyNames);
+}
+
+/// Each body after the last step, with the members named as the body
+/// cache's CSV columns, so a row and an object compare key by key.
+void writeFinalBodies(JsonWriter& json, const std::vector<BodySnapshot>& bodies) {
+    json.beginArray();
+    for (const BodySnapshot& b : bodies) {
+        json.beginObject(true);
+        json.key("id");
+        json.value(b.id.index);
+        json.key("name");
+        json.value(b.name);
+        json.key("x");
+        json.value(b.position.x);
+        json.key("y");
+        json.value(b.position.y);
+        json.key("angle");
+        json.value(b.angle);
+        json.key("vx");
+        json.value(b.linearVelocity.x);
+        json.key("vy");
+        json.value(b.linearVelocity.y);
+        json.key("angular_velocity");
+        json.value(b.angularVelocity);
+        json.endObject();
+    }
+    json.endArray();
 }
 
 /// The frame measured after 1-based step `step`, or null.
@@ -227,6 +255,10 @@ void writeTotals(JsonWriter& json, const RunSummary& s) {
     if (!s.fluidNames.empty()) {
         json.key("fluids");
         writeFluidTotals(json, s);
+    }
+    if (!s.bodyNames.empty()) {
+        json.key("final_bodies");
+        writeFinalBodies(json, s.finalBodies);
     }
     json.endObject();
 }

@@ -25,6 +25,8 @@ struct RunSummary {
     std::vector<std::string> colliderNames;  ///< index i = collider id i + 1
     /// index i = fluid id i + 1; the "fluids" members appear only when non-empty.
     std::vector<std::string> fluidNames;
+    /// index i = body id i + 1; the "bodies" members appear only when non-empty.
+    std::vector<std::string> bodyNames;
     std::vector<StepStats> steps;            ///< in order, one per step taken
     /// The number-density ratio of every fluid (index i = fluid id i + 1),
     /// measured after some steps (`spindrift run`: each written frame).
@@ -33,6 +35,7 @@ struct RunSummary {
         std::vector<FluidNumberDensity> fluids;
     };
     std::vector<NumberDensityFrame> numberDensity;  ///< in step order
+    std::vector<BodySnapshot> finalBodies;  ///< every body after the last step, in id order
     double wallSeconds = 0.0;   ///< whole run, including cache writes
     std::uint64_t cacheFiles = 0;  ///< cache files written (summary.json not counted)
 };

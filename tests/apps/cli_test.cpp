@@ -4,6 +4,8 @@
 #include <stb/stb_image.h>
 
 #include "apps/app_test_util.h"
+#include "io/csv_check.h"
+#include "io/ply_check.h"
 
 #include <gtest/gtest.h>
 
@@ -11,6 +13,8 @@
 #include <unistd.h>
 
 #include <algorithm>
+#include <bit>
+#include <cmath>
 #include <cstdio>
 #include <cstdlib>
 #include <filesystem>
@@ -333,6 +337,163 @@ TEST_F(CliTest, RunOnVulkanFailsCleanlyOrWorks) {
     } else {
         EXPECT_TRUE(fs::exists(out / "summary.json"));
     }
+}
+
+// run: rigid bodies --------------------------------------------------------------------------
+
+/// A ball dropped from rest far from anything, and a static body whose name
+/// a CSV must quote, far below it.
+const char* kFallingBallScene = R"(
+[world]
+body_gravity = [0.0, -9.81]
+
+[run]
+dt = 0.01
+steps = 30
+
+[[body]]
+name = "ball"
+position = [0.5, 10.0]
+shape = [{ circle = 0.1 }]
+
+[[body]]
+name = "ground, far below"
+type = "static"
+position = [0.0, -100.0]
+shape = [{ box = [1.0, 0.1] }]
+)";
+
+using Rows = std::vector<std::vector<std::string>>;
+const std::vector<std::string> kBodyColumns{"step", "time", "id",  "name", "x",
+                                            "y",    "angle", "vx", "vy",   "angular_velocity"};
+
+float toFloat(const std::string& text) { return std::strtof(text.c_str(), nullptr); }
+
+TEST_F(CliTest, RunWritesTheBodiesAtEveryCacheStepInFreeFall) {
+    const fs::path scene = writeScene(dir(), "fall.toml", kFallingBallScene);
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(scene) + " --every 10 --format csv,ply --quiet --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(fileNames(out), (std::vector<std::string>{"bodies_000010.csv", "bodies_000010.ply", "bodies_000020.csv",
+                                                        "bodies_000020.ply", "bodies_000030.csv", "bodies_000030.ply",
+                                                        "summary.json"}));
+    const std::string json = readFile(out / "summary.json");
+    ASSERT_EQ(jsonError(json), "") << json;
+    EXPECT_EQ(jsonQuery(json, "totals/cache_files"), "6");
+
+    const double g = 9.81, dt = static_cast<double>(0.01f);
+    for (int n : {10, 20, 30}) {
+        char stem[32];
+        std::snprintf(stem, sizeof stem, "bodies_%06d", n);
+        const Rows rows = spindrift_test::readCsv(readFile(out / (std::string(stem) + ".csv")));
+        ASSERT_EQ(rows.size(), 3u) << stem;
+        EXPECT_EQ(rows[0], kBodyColumns);
+        const std::vector<std::string>& ball = rows[1];
+        const std::vector<std::string>& ground = rows[2];
+        EXPECT_EQ(ball[0], std::to_string(n));
+        // The state after n steps, at the time summary.json gives that step.
+        EXPECT_EQ(ball[1], jsonQuery(json, "per_step/" + std::to_string(n - 1) + "/time"));
+        EXPECT_EQ(ball[2], "1");
+        EXPECT_EQ(ball[3], "ball");
+        // From rest under g with Box2D's semi-implicit Euler (velocity first,
+        // then position with the new velocity): v_n = -g n dt and
+        // y_n = y0 - g dt^2 n (n + 1) / 2, not the continuous y0 - g t^2 / 2
+        // (0.015 m higher at n = 30).
+        const double vy = -g * dt * n, y = 10.0 - g * dt * dt * n * (n + 1) / 2.0;
+        EXPECT_EQ(toFloat(ball[4]), 0.5f);
+        EXPECT_NEAR(toFloat(ball[5]), y, 1e-4) << stem;
+        EXPECT_EQ(toFloat(ball[6]), 0.0f);
+        EXPECT_EQ(toFloat(ball[7]), 0.0f);
+        EXPECT_NEAR(toFloat(ball[8]), vy, 1e-4) << stem;
+        EXPECT_EQ(toFloat(ball[9]), 0.0f);
+        EXPECT_EQ(ground[2], "2");
+        EXPECT_EQ(ground[3], "ground, far below");
+        EXPECT_EQ(toFloat(ground[5]), -100.0f) << "a static body stays put";
+
+        // The PLY of the same step: a file a PLY reader takes, with the same values.
+        const auto ply = spindrift_test::readPlyFile(readFile(out / (std::string(stem) + ".ply")));
+        const auto& vertex = ply.element("vertex");
+        ASSERT_EQ(vertex.count, 2u);
+        const char* columns[] = {"x", "y", "angle", "vx", "vy", "angular_velocity"};
+        for (std::size_t k = 0; k < 6; ++k) {
+            for (std::size_t b = 0; b < 2; ++b) {
+                EXPECT_EQ(static_cast<float>(vertex.values.at(columns[k])[b]), toFloat(rows[b + 1][4 + k]))
+                    << stem << " body " << b + 1 << " " << columns[k];
+            }
+        }
+        EXPECT_EQ(vertex.values.at("id"), (std::vector<double>{1, 2}));
+        EXPECT_EQ(vertex.values.at("z"), (std::vector<double>{0, 0}));
+    }
+}
+
+TEST_F(CliTest, RunLastBodiesRowIsTheSummarysFinalStateAndTheLibrarys) {
+    const fs::path scene = writeScene(dir(), "fall.toml", kFallingBallScene);
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(scene) + " --every 7 --quiet --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    const std::string json = readFile(out / "summary.json");
+    ASSERT_EQ(jsonError(json), "") << json;
+    EXPECT_EQ(jsonQuery(json, "bodies/#"), "2");
+    EXPECT_EQ(jsonQuery(json, "bodies/1"), "ground, far below");
+    ASSERT_EQ(jsonQuery(json, "totals/final_bodies/#"), "2");
+
+    // The same scene stepped through the library, as a program would.
+    spindrift::SceneDef def = spindrift::loadScene(scene.string());
+    const spindrift::WorldId world = spindrift::buildWorld(def);
+    for (std::uint32_t i = 0; i < def.run.steps; ++i) spindrift::stepWorld(world, def.run.dt);
+    const std::vector<spindrift::BodySnapshot> library = spindrift::readBodies(world);
+    spindrift::destroyWorld(world);
+    ASSERT_EQ(library.size(), 2u);
+
+    // 30 steps every 7: the last step is written although 30 is no multiple of 7.
+    const Rows rows = spindrift_test::readCsv(readFile(out / "bodies_000030.csv"));
+    ASSERT_EQ(rows.size(), 3u);
+    for (std::size_t b = 0; b < 2; ++b) {
+        const std::vector<std::string>& row = rows[b + 1];
+        const std::string at = "totals/final_bodies/" + std::to_string(b) + "/";
+        EXPECT_EQ(row[0], "30");
+        for (std::size_t k = 2; k < kBodyColumns.size(); ++k) {
+            EXPECT_EQ(jsonQuery(json, at + kBodyColumns[k]), row[k]) << "body " << b + 1 << " " << kBodyColumns[k];
+        }
+        const spindrift::BodySnapshot& lib = library[b];
+        EXPECT_EQ(row[2], std::to_string(lib.id.index));
+        EXPECT_EQ(row[3], lib.name);
+        const float values[] = {lib.position.x,       lib.position.y,       lib.angle,
+                                lib.linearVelocity.x, lib.linearVelocity.y, lib.angularVelocity};
+        for (std::size_t k = 0; k < 6; ++k) {
+            EXPECT_EQ(std::bit_cast<std::uint32_t>(toFloat(row[4 + k])), std::bit_cast<std::uint32_t>(values[k]))
+                << "body " << b + 1 << " " << kBodyColumns[4 + k] << ": csv " << row[4 + k] << ", library "
+                << values[k];
+        }
+    }
+    EXPECT_LT(toFloat(rows[1][5]), 9.6f) << "the ball has fallen";
+}
+
+TEST_F(CliTest, RunBodyCachesGiveWayToAnEmitterCalledBodies) {
+    const fs::path scene = writeScene(dir(), "clash.toml", std::string(kFallingBallScene) + R"(
+[[emitter]]
+name = "bodies"
+rate = 10
+)");
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(scene) + " --steps 2 --every 2 --quiet --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(fileNames(out),
+              (std::vector<std::string>{"bodies_000002.csv", "rigid_bodies_000002.csv", "summary.json"}));
+    EXPECT_EQ(readFile(out / "rigid_bodies_000002.csv").substr(0, 5), "step,");
+    EXPECT_EQ(readFile(out / "bodies_000002.csv").substr(0, 2), "x,") << "the emitter keeps its name";
+}
+
+TEST_F(CliTest, RunWithoutBodiesWritesNoBodyFilesOrMembers) {
+    const fs::path scene = writeScene(dir(), "drops.toml", "[[emitter]]\nname = \"drops\"\nrate = 10\n");
+    const fs::path out = dir() / "cache";
+    const Result r = cli("run " + quoted(scene) + " --steps 2 --format csv,ply --quiet --out " + quoted(out));
+    ASSERT_EQ(r.code, 0) << r.err;
+    EXPECT_EQ(fileNames(out), (std::vector<std::string>{"drops_000001.csv", "drops_000001.ply", "drops_000002.csv",
+                                                        "drops_000002.ply", "summary.json"}));
+    const std::string json = readFile(out / "summary.json");
+    EXPECT_FALSE(jsonQuery(json, "bodies").has_value());
+    EXPECT_FALSE(jsonQuery(json, "totals/final_bodies").has_value());
 }
 
 // render ----------------------------------------------------------------------------------------

@@ -145,6 +145,39 @@ TEST(IoSummary, FluidNumberDensityOnTheMeasuredFramesAndInTheTotals) {
     EXPECT_EQ(query(json, "totals/fluids/0/max_number_density_p95"), "2.5");
 }
 
+TEST(IoSummary, BodiesByNameAndTheirFinalState) {
+    RunSummary s = makeSummary(3);
+    EXPECT_FALSE(jsonQuery(toJson(s), "bodies").has_value()) << "no bodies, no members";
+    EXPECT_FALSE(jsonQuery(toJson(s), "totals/final_bodies").has_value());
+    s.bodyNames = {"floor", "crate \"A\""};
+    spindrift::BodySnapshot floor, crate;
+    floor.id = {1};
+    floor.name = s.bodyNames[0];
+    crate.id = {2};
+    crate.name = s.bodyNames[1];
+    crate.position = {0.1f, -2.5f};
+    crate.angle = 1.0f / 3.0f;
+    crate.linearVelocity = {1e-7f, -9.81f};
+    crate.angularVelocity = -0.75f;
+    s.finalBodies = {floor, crate};
+    const std::string json = toJson(s);
+    ASSERT_EQ(jsonError(json), "") << json;
+    EXPECT_EQ(query(json, "bodies/#"), "2");
+    EXPECT_EQ(query(json, "bodies/1"), "crate \"A\"");
+    EXPECT_EQ(query(json, "totals/final_bodies/#"), "2");
+    EXPECT_EQ(query(json, "totals/final_bodies/0/x"), "0");
+    EXPECT_EQ(query(json, "totals/final_bodies/1/id"), "2");
+    EXPECT_EQ(query(json, "totals/final_bodies/1/name"), "crate \"A\"");
+    // Each float reads back to the same float: the CSV's text, digit for digit.
+    const std::pair<const char*, float> members[] = {{"x", 0.1f},  {"y", -2.5f},   {"angle", 1.0f / 3.0f},
+                                                     {"vx", 1e-7f}, {"vy", -9.81f}, {"angular_velocity", -0.75f}};
+    for (const auto& [name, value] : members) {
+        const std::string text = query(json, std::string("totals/final_bodies/1/") + name);
+        EXPECT_EQ(std::bit_cast<std::uint32_t>(std::strtof(text.c_str(), nullptr)), std::bit_cast<std::uint32_t>(value))
+            << name << " = " << text;
+    }
+}
+
 TEST(IoSummary, NumbersRoundTrip) {
     RunSummary s = makeSummary(2);
     s.steps[1].time = 0.1 + 0.2;  // 0.30000000000000004

@@ -383,7 +383,8 @@ PanelShown panel(Session& s, bool paused, const Playback& playback) {
     if (!s.emitters.empty() && ImGui::CollapsingHeader("Emitters")) emitterSettings(s);
     if (ImGui::CollapsingHeader("Keys")) {
         ImGui::TextWrapped("H hides this panel, Space pauses, N steps, R restarts, Esc quits. Drag to orbit or pan, "
-                           "scroll to zoom; the right button aims a 2D fluid jet.");
+                           "scroll to zoom; the right button aims a 2D fluid jet. In 2D: drag a body to move it; "
+                           "Shift + left pours fluid, Shift + right removes it.");
     }
     shown.shown = true;
     shown.pos = ImGui::GetWindowPos();
@@ -434,9 +435,10 @@ struct Drag {
     double x = 0.0, y = 0.0;
 };
 
-void applyCamera(Session& s, GLFWwindow* window, const Pointer& pointer, Drag& drag, Input& in) {
+/// `leftTaken`: the left button holds a body or the brush, not the camera.
+void applyCamera(Session& s, GLFWwindow* window, const Pointer& pointer, bool leftTaken, Drag& drag, Input& in) {
     const double x = pointer.x, y = pointer.y;
-    const bool down = pointer.left;
+    const bool down = pointer.left && !leftTaken;
     if (down && !drag.active && ImGui::GetIO().WantCaptureMouse) return;  // a drag that starts on the panel
     double dx = 0.0, dy = 0.0;
     if (down && drag.active) {
@@ -495,6 +497,57 @@ void aimWithMouse(Session& s, GLFWwindow* window, const Pointer& pointer) {
     const glm::vec2 d = *point - pose.nozzle;
     if (glm::length(d) < 1e-4f) return;
     aimFluidJet(s.world, jetFluid, 0, std::atan2(d.y, d.x) - pose.frameAngle);
+}
+
+/// The body the left button holds, if any.
+struct Hand {
+    bool holding = false;
+    GrabId grab{};
+};
+
+/// Brush radius in the fluid's spacings: a few particles across, so a
+/// stroke makes a stream, not a flood.
+constexpr float kBrushSpacings = 3.0f;
+
+/// Mouse on the world in orthographic views of 2D scenes: a left press on a
+/// dynamic body grabs it (createGrab) and drags it to the pointer until
+/// released; with Shift held the left button pours fluid into the first 2D
+/// fluid (pourFluid) and the right one removes it (removeFluid). Returns
+/// whether the left button was used here (then the camera leaves it).
+bool handOnWorld(Session& s, GLFWwindow* window, const Pointer& pointer, bool leftWasDown, Hand& hand) {
+    const std::optional<glm::vec2> at = pointerInWorld(s, window, pointer);
+    if (hand.holding) {
+        if (pointer.left && at) {
+            moveGrab(s.world, hand.grab, *at);
+        } else if (!pointer.left) {
+            destroyGrab(s.world, hand.grab);
+            hand = Hand{};
+        }
+        return true;
+    }
+    if (!at || ImGui::GetIO().WantCaptureMouse) return false;
+    if (pointer.shift) {
+        FluidId fluid{};
+        for (std::uint32_t f = 1; f <= fluidCount(s.world) && fluid.index == 0; ++f) {
+            if (fluidDef(s.world, FluidId{f}).dimension == 2) fluid = FluidId{f};
+        }
+        if (fluid.index == 0) return false;
+        const float radius = kBrushSpacings * fluidDef(s.world, fluid).spacing;
+        if (pointer.left) pourFluid(s.world, fluid, glm::vec3(*at, 0.0f), radius);
+        if (pointer.right) removeFluid(s.world, fluid, glm::vec3(*at, 0.0f), radius);
+        return pointer.left;
+    }
+    if (pointer.left && !leftWasDown) {  // a press, not a drag that began elsewhere
+        const BodyId body = bodyAt(s.world, *at);
+        if (body.index == 0) return false;
+        GrabDef def;
+        def.body = body;
+        def.point = *at;
+        hand.grab = createGrab(s.world, def);
+        hand.holding = true;
+        return true;
+    }
+    return false;
 }
 
 /// Records and submits one frame; false when the swapchain must be
@@ -653,6 +706,8 @@ int viewCommand(const ViewOptions& o) {
         playback.dt = scene.run.dt;
         std::string loadError;  // of the last reload that failed; empty once one loads
         PanelShown lastPanel;
+        Hand hand;
+        bool leftWasDown = false;
         const auto started = std::chrono::steady_clock::now();
         auto lastFrame = started;
 
@@ -671,6 +726,7 @@ int viewCommand(const ViewOptions& o) {
                 startSession(s, scene, window.handle);
             }
             setRenderCamera(s.renderer, camera);
+            hand = Hand{};  // its grab went with the old world
             playback.dt = scene.run.dt;
             resetPlayback(playback);
             lastFrame = std::chrono::steady_clock::now();
@@ -681,7 +737,7 @@ int viewCommand(const ViewOptions& o) {
             glfwGetWindowSize(window.handle, &ww, &wh);
             const CameraDef& c = render::rendererOf(s.renderer).def.camera;
             std::uint64_t particles = 0;
-            for (const FluidStepStats& f : s.last.fluids) particles += f.particles;
+            for (std::uint32_t f = 1; f <= fluidCount(s.world); ++f) particles += readFluid(s.world, FluidId{f}).count();
             fmt::print("report {} time: {:.6f}\n", frames, worldTime(s.world));
             fmt::print("report {} wall: {:.6f}\n", frames,
                        std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
@@ -695,6 +751,9 @@ int viewCommand(const ViewOptions& o) {
             fmt::print("report {} camera: {:.4f} {:.4f} {:.4f} {:.4f}\n", frames, c.eye.x, c.eye.y, c.eye.z,
                        c.orthoHeight);
             fmt::print("report {} fluid particles: {}\n", frames, particles);
+            for (const BodySnapshot& b : readBodies(s.world)) {
+                if (b.dynamic) fmt::print("report {} body {}: {:.4f} {:.4f}\n", frames, b.name, b.position.x, b.position.y);
+            }
             fmt::print("report {} error: {}\n", frames, loadError);
             std::fflush(stdout);
         };
@@ -753,7 +812,9 @@ int viewCommand(const ViewOptions& o) {
             // readParticles copies back from the device: a few times a second.
             if (frames % 15 == 0 || (paused && steps > 0)) refreshAlive(s);
 
-            applyCamera(s, window.handle, pointer, drag, in);
+            const bool leftTaken = handOnWorld(s, window.handle, pointer, leftWasDown, hand);
+            leftWasDown = pointer.left;
+            applyCamera(s, window.handle, pointer, leftTaken, drag, in);
             aimWithMouse(s, window.handle, pointer);
             ImGui_ImplVulkan_NewFrame();
             ImGui_ImplGlfw_NewFrame();

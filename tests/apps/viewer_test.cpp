@@ -196,4 +196,47 @@ TEST_F(ViewerTest, ReloadsTheSceneKeepingTheCameraAndShowsErrors) {
     EXPECT_EQ(numbers(reported(r, 16, "camera")), dragged);
 }
 
+// In fluid_boxes at 640x360 the orthographic camera shows 2 m of height
+// centred on (1.6, 0.8): a metre is 180 pixels, window x = 320 + 180 (x -
+// 1.6), y = 180 - 180 (y - 0.8). The light crate rests at (1.4, 0.1), window
+// (284, 306); dragging it 0.5 m up to window (284, 216) lifts it, held by
+// the grab's spring. Then Shift + right removes water at the floor at
+// (0.3, 0.1), window (86, 306), and Shift + left pours it back (the scene's
+// fluid is at its capacity before) into the empty air at (2.5, 1.4), window
+// (482, 72).
+TEST_F(ViewerTest, DragsABodyPoursAndRemovesFluid) {
+    const Result r = viewScripted("scenes/fluid_boxes.toml --frames 60 --width 640 --height 360",
+                                  "2 report\n"
+                                  "2 pointer 284 306\n"
+                                  "3 press left\n"
+                                  "4 pointer 284 216\n"
+                                  "30 report\n"
+                                  "30 release left\n"
+                                  "31 shift on\n"
+                                  "31 pointer 86 306\n"
+                                  "32 press right\n"
+                                  "36 release right\n"
+                                  "37 report\n"
+                                  "38 pointer 482 72\n"
+                                  "39 press left\n"
+                                  "43 release left\n"
+                                  "44 report\n");
+    ASSERT_EQ(r.code, 0) << r.out << r.err;
+    const std::vector<double> before = numbers(reported(r, 2, "body light crate"));
+    const std::vector<double> held = numbers(reported(r, 30, "body light crate"));
+    ASSERT_EQ(before.size(), 2u);
+    ASSERT_EQ(held.size(), 2u);
+    EXPECT_LT(before[1], 0.2);
+    EXPECT_GT(held[1], 0.4) << "the crate was not lifted toward y = 0.6";
+    EXPECT_NEAR(held[0], 1.4, 0.1);
+    // Camera untouched: the drag moved the crate, not the view.
+    EXPECT_EQ(reported(r, 30, "camera"), reported(r, 2, "camera"));
+
+    const double start = number(r, 30, "fluid particles");
+    const double erased = number(r, 37, "fluid particles");
+    const double poured = number(r, 44, "fluid particles");
+    EXPECT_LT(erased, start);
+    EXPECT_GT(poured, erased);
+}
+
 }  // namespace

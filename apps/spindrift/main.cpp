@@ -615,6 +615,8 @@ int main(int argc, char** argv) {
         ->check(CLI::Range(1u, 16384u));
     view->add_option("--backend,-b", viewOptions.backend, "cpu, vulkan or auto (default: the scene's)")
         ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
+    view->add_option("--script", viewOptions.script, "Tests: input and reports by frame (docs/cli.md)")
+        ->check(CLI::ExistingFile);
     RenderOptions renderOptions;
     CLI::App* render = app.add_subcommand("render", "Draw a scene into an MP4 video and/or PNG frames");
     addRenderOptions(*render, renderOptions);

@@ -1,17 +1,21 @@
-// `spindrift view`: the scene in a GLFW window. Each frame steps the world
-// (unless paused), records the renderer's offscreen frame, blits its colour
+// `spindrift view`: the scene in a GLFW window. Each frame steps the world by
+// the wall time since the last one, in whole steps of dt (playback.h), unless
+// paused; records the renderer's offscreen frame, blits its colour
 // target into the acquired swapchain image, draws a Dear ImGui panel over it in
 // a small render pass of its own, and presents. One frame in flight: the
 // renderer's host-visible buffers (uniforms, splats, sprite copies) are single,
 // so the host waits for the previous frame before it writes them again.
 //
-// Restart (R) rebuilds everything Vulkan from the scene: a CPU world's renderer
-// owns its device, so the surface, swapchain and ImGui's Vulkan objects die
-// with it. The window and ImGui's context live for the whole session.
+// Restart (R) and a reload of the changed scene file rebuild everything Vulkan
+// from the scene: a CPU world's renderer owns its device, so the surface,
+// swapchain and ImGui's Vulkan objects die with it. The window and ImGui's
+// context live for the whole session.
 #include "viewer.h"
 
+#include "playback.h"
 #include "presenter.h"
 #include "validation_report.h"
+#include "view_script.h"
 
 #include "fluid/fluid_rules.h"
 #include "gpu/device_settings.h"
@@ -39,6 +43,8 @@
 #include <cmath>
 #include <cstdio>
 #include <cstdlib>
+#include <filesystem>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -52,7 +58,7 @@ using gpu::vkStruct;
 
 /// What the callbacks saw since the last frame; consumed by the loop.
 struct Input {
-    bool togglePause = false, quit = false, restart = false;
+    bool togglePause = false, quit = false, restart = false, togglePanel = false;
     int steps = 0;         // single steps asked for while paused
     double scroll = 0.0;   // wheel notches, up positive
     bool resized = false;
@@ -60,20 +66,25 @@ struct Input {
 
 Input& inputOf(GLFWwindow* window) { return *static_cast<Input*>(glfwGetWindowUserPointer(window)); }
 
+/// A key pressed (`repeat`: held down), from GLFW or a test script.
+void pressKey(Input& in, int key, bool repeat) {
+    switch (key) {
+        case GLFW_KEY_ESCAPE: in.quit = true; break;
+        case GLFW_KEY_SPACE: if (!repeat) in.togglePause = true; break;
+        case GLFW_KEY_N:
+        case GLFW_KEY_RIGHT: ++in.steps; break;
+        case GLFW_KEY_R: if (!repeat) in.restart = true; break;
+        case GLFW_KEY_H: if (!repeat) in.togglePanel = true; break;
+        default: break;
+    }
+}
+
 // Installed before ImGui's, which chains to them: they see every event, and
 // skip those ImGui wants (typing in a field, scrolling the panel).
 void onKey(GLFWwindow* window, int key, int, int action, int) {
     if (action != GLFW_PRESS && action != GLFW_REPEAT) return;
     if (ImGui::GetCurrentContext() != nullptr && ImGui::GetIO().WantCaptureKeyboard) return;
-    Input& in = inputOf(window);
-    switch (key) {
-        case GLFW_KEY_ESCAPE: in.quit = true; break;
-        case GLFW_KEY_SPACE: if (action == GLFW_PRESS) in.togglePause = true; break;
-        case GLFW_KEY_N:
-        case GLFW_KEY_RIGHT: ++in.steps; break;
-        case GLFW_KEY_R: if (action == GLFW_PRESS) in.restart = true; break;
-        default: break;
-    }
+    pressKey(inputOf(window), key, action == GLFW_REPEAT);
 }
 
 void onScroll(GLFWwindow* window, double, double y) {
@@ -126,6 +137,7 @@ struct Session {
     Presenter presenter;
     std::vector<EmitterDef> emitters;     // as last applied (the panel edits copies)
     std::vector<std::uint64_t> alive;     // per emitter, refreshed now and then
+    std::vector<std::string> fireNames;   // per fire, as the scene names them
     StepStats last;                       // of the last step
     double simMs = 0.0, frameMs = 0.0;
 };
@@ -150,12 +162,46 @@ void startSession(Session& s, const SceneDef& scene, GLFWwindow* window) {
     }
     for (std::uint32_t i = 0; i < emitterCount(s.world); ++i) s.emitters.push_back(emitterDef(s.world, EmitterId{i + 1}));
     s.alive.assign(s.emitters.size(), 0);
+    for (const FireDef& fire : scene.fires) s.fireNames.push_back(fire.name);
 }
 
 void refreshAlive(Session& s) {
     for (std::uint32_t i = 0; i < s.emitters.size(); ++i) {
         s.alive[i] = readParticles(s.world, EmitterId{i + 1}).count();
     }
+}
+
+/// The scene file with the command line's overrides; throws SceneError.
+SceneDef loadViewScene(const ViewOptions& o) {
+    SceneDef scene = loadScene(o.scene);
+    if (!o.backend.empty()) {
+        scene.world.backend = o.backend == "vulkan" ? Backend::Vulkan : o.backend == "auto" ? Backend::Auto : Backend::Cpu;
+    }
+    if (o.width > 0) scene.render.width = o.width;
+    if (o.height > 0) scene.render.height = o.height;
+    validateRenderDef(scene.render);
+    return scene;
+}
+
+/// What identifies a version of the scene file on disk; a change of either
+/// (or the file vanishing, as while an editor renames its copy into place)
+/// makes the viewer load it again.
+struct FileStamp {
+    bool exists = false;
+    std::filesystem::file_time_type time{};
+    std::uintmax_t size = 0;
+    bool operator==(const FileStamp&) const = default;
+};
+
+FileStamp stampOf(const std::string& path) {
+    std::error_code error;
+    FileStamp stamp;
+    stamp.time = std::filesystem::last_write_time(path, error);
+    if (error) return FileStamp{};
+    stamp.size = std::filesystem::file_size(path, error);
+    if (error) return FileStamp{};
+    stamp.exists = true;
+    return stamp;
 }
 
 // Camera ---------------------------------------------------------------------------------
@@ -189,38 +235,37 @@ CameraDef moveCamera(CameraDef c, double dx, double dy, double scroll, double he
 
 // Panel ------------------------------------------------------------------------------------
 
-void panel(Session& s, bool paused, std::uint64_t frames) {
-    const RendererId rid = s.renderer;
-    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
-    ImGui::SetNextWindowBgAlpha(0.8f);
-    ImGui::Begin("spindrift", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
-    ImGui::Text("%s  t = %.3f s  frame %llu", paused ? "paused" : "running", worldTime(s.world),
-                static_cast<unsigned long long>(frames));
-    ImGui::TextDisabled("Space pause, N step, R restart, drag/scroll camera, right button aims the jet, Esc quit");
-    if (ImGui::CollapsingHeader("Statistics", ImGuiTreeNodeFlags_DefaultOpen)) {
-        const RenderStats rs = renderStats(rid);
-        ImGui::Text("sim %.2f ms/step   frame %.2f ms", s.simMs, s.frameMs);
-        ImGui::Text("render: device %.2f ms (fluid %.2f, sprites %.2f), host %.2f ms", rs.totalDeviceMs, rs.fluidMs,
-                    rs.spritesMs, rs.cpuMs);
-        ImGui::Text("sprites %llu  splats %llu", static_cast<unsigned long long>(rs.sprites),
-                    static_cast<unsigned long long>(rs.splats));
-        for (const FluidStepStats& f : s.last.fluids) {
-            ImGui::Text("fluid %u: %llu particles, density error mean %.2f%% max %.2f%%", f.fluid.index,
-                        static_cast<unsigned long long>(f.particles), 100.0 * f.meanDensityError,
-                        100.0 * f.maxDensityError);
-        }
+/// What the panel showed in the last frame, for a test script's report.
+struct PanelShown {
+    bool shown = false;
+    ImVec2 pos{}, size{};
+    std::vector<std::string> fires, bodies;  // names listed
+};
+
+/// A name as the scene gives it, or its kind and id when it has none.
+std::string nameOr(const std::string& name, const char* kind, std::uint32_t id) {
+    return name.empty() ? fmt::format("{} {}", kind, id) : name;
+}
+
+void statistics(Session& s) {
+    const RenderStats rs = renderStats(s.renderer);
+    ImGui::Text("sim %.2f ms/step", s.simMs);
+    ImGui::Text("frame %.2f ms", s.frameMs);
+    ImGui::TextWrapped("render: device %.2f ms (fluid %.2f, sprites %.2f), host %.2f ms", rs.totalDeviceMs, rs.fluidMs,
+                       rs.spritesMs, rs.cpuMs);
+    ImGui::Text("sprites %llu, splats %llu", static_cast<unsigned long long>(rs.sprites),
+                static_cast<unsigned long long>(rs.splats));
+    for (const FluidStepStats& f : s.last.fluids) {
+        ImGui::TextWrapped("%s: %llu particles, density error mean %.2f%%, max %.2f%%",
+                           nameOr(fluidDef(s.world, f.fluid).name, "fluid", f.fluid.index).c_str(),
+                           static_cast<unsigned long long>(f.particles), 100.0 * f.meanDensityError,
+                           100.0 * f.maxDensityError);
     }
-    if (fireCount(s.world) > 0 && ImGui::CollapsingHeader("Fires", ImGuiTreeNodeFlags_DefaultOpen)) {
-        for (std::uint32_t i = 1; i <= fireCount(s.world); ++i) {
-            const float strength = fireStrength(s.world, FireId{i});
-            const std::string label = fmt::format("fire {}: {} strikes", i, fireStrikes(s.world, FireId{i}));
-            ImGui::ProgressBar(strength, ImVec2(160.0f, 0.0f), strength > 0.0f ? nullptr : "out");
-            ImGui::SameLine();
-            ImGui::TextUnformatted(label.c_str());
-        }
-    }
-    if (!s.last.fluids.empty() && ImGui::CollapsingHeader("Fluid splats")) {
-        FluidRenderDef fluid = render::rendererOf(rid).def.fluid;
+}
+
+void fluidSettings(Session& s) {
+    if (ImGui::TreeNode("splats")) {
+        FluidRenderDef fluid = render::rendererOf(s.renderer).def.fluid;
         bool changed = false;
         changed |= ImGui::Checkbox("size from density", &fluid.sizeFromDensity);
         changed |= ImGui::Checkbox("stretch", &fluid.stretch);
@@ -229,14 +274,15 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
         changed |= ImGui::Checkbox("splashes", &fluid.splashes);
         changed |= ImGui::Checkbox("bubbles", &fluid.bubbles);
         changed |= ImGui::SliderFloat("opacity", &fluid.opacity, 0.05f, 1.0f);
-        changed |= ImGui::SliderFloat("radius scale", &fluid.radiusScale, 0.25f, 4.0f);
-        changed |= ImGui::ColorEdit3("colour", &fluid.colour.x);
-        if (changed) setFluidRender(rid, fluid);
+        changed |= ImGui::SliderFloat("radius", &fluid.radiusScale, 0.25f, 4.0f);
+        changed |= ImGui::ColorEdit3("colour", &fluid.colour.x, ImGuiColorEditFlags_NoInputs);
+        if (changed) setFluidRender(s.renderer, fluid);
+        ImGui::TreePop();
     }
     for (std::uint32_t f = 1; f <= fluidCount(s.world); ++f) {
         ImGui::PushID(int(1000 + f));
         const FluidDef& def = fluidDef(s.world, FluidId{f});
-        if (ImGui::CollapsingHeader(fmt::format("fluid {} '{}' solver", f, def.name).c_str())) {
+        if (ImGui::TreeNode(fmt::format("{} solver", nameOr(def.name, "fluid", f)).c_str())) {
             int iterations = int(def.iterations);
             float baumgarte = def.baumgarte;
             // The ranges of the rules setFluidSolver checks (fluid_rules.h),
@@ -247,16 +293,20 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
             changed |= ImGui::SliderFloat("baumgarte", &baumgarte, float(rules::kBaumgarte.bounds.min),
                                           float(rules::kBaumgarte.bounds.max));
             if (changed) setFluidSolver(s.world, FluidId{f}, std::uint32_t(iterations), baumgarte);
+            ImGui::TreePop();
         }
         ImGui::PopID();
     }
+}
+
+void emitterSettings(Session& s) {
     for (std::uint32_t i = 0; i < s.emitters.size(); ++i) {
         EmitterDef& e = s.emitters[i];
         ImGui::PushID(int(i));
-        const std::string title = fmt::format("emitter {} '{}': {} alive###emitter", i + 1, e.name, s.alive[i]);
-        if (ImGui::CollapsingHeader(title.c_str())) {
+        const std::string title = fmt::format("{}: {}###emitter", nameOr(e.name, "emitter", i + 1), s.alive[i]);
+        if (ImGui::TreeNode(title.c_str())) {
             if (e.stateless) {
-                ImGui::TextDisabled("stateless: its closed form is fixed at creation");
+                ImGui::TextWrapped("stateless: its closed form is fixed at creation");
             } else {
                 // Only what acts at birth is live (setEmitterRate/Speed): both
                 // backends then agree on every particle already alive.
@@ -265,19 +315,119 @@ void panel(Session& s, bool paused, std::uint64_t frames) {
                     setEmitterRate(s.world, EmitterId{i + 1}, e.rate);
                 }
                 FloatRange speed = e.speed;
-                if (ImGui::DragFloatRange2("speed m/s", &speed.min, &speed.max, 0.05f, 0.0f, 1e3f) &&
+                if (ImGui::DragFloatRange2("m/s", &speed.min, &speed.max, 0.05f, 0.0f, 1e3f) &&
                     speed.min <= speed.max) {
                     setEmitterSpeed(s.world, EmitterId{i + 1}, speed);
                     e.speed = speed;
                 }
             }
+            ImGui::TreePop();
         }
         ImGui::PopID();
     }
+}
+
+/// A narrow column at the left edge: its width a fifth of the window's
+/// (within 170 to 300 pixels, so text still fits and a large window is not
+/// crowded), its height what it holds, up to the window's, then it scrolls.
+/// The title bar collapses it; H hides it.
+PanelShown panel(Session& s, bool paused, const Playback& playback) {
+    PanelShown shown;
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    const float width = std::clamp(0.2f * display.x, 170.0f, 300.0f);
+    ImGui::SetNextWindowPos(ImVec2(8, 8), ImGuiCond_FirstUseEver);
+    ImGui::SetNextWindowSizeConstraints(ImVec2(width, 0.0f), ImVec2(width, std::max(display.y - 16.0f, 40.0f)));
+    ImGui::SetNextWindowBgAlpha(0.8f);
+    ImGui::Begin("spindrift", nullptr, ImGuiWindowFlags_AlwaysAutoResize);
+    ImGui::Text("%s  t %.2f s", paused ? "paused" : "running", worldTime(s.world));
+    if (paused) {
+        ImGui::TextDisabled("Space resumes");
+    } else if (playbackBehind(playback)) {
+        // Slower than the clock is said, not hidden: the steps a frame may
+        // take are capped so a slow machine does not fall ever further behind.
+        ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.7f, 0.2f, 1.0f));
+        ImGui::TextWrapped("%.2fx real time: this machine cannot keep up", playback.speed);
+        ImGui::PopStyleColor();
+    } else {
+        ImGui::TextDisabled("real time");
+    }
+    if (ImGui::CollapsingHeader("Statistics")) statistics(s);
+    if (fireCount(s.world) > 0 && ImGui::CollapsingHeader("Fires", ImGuiTreeNodeFlags_DefaultOpen)) {
+        for (std::uint32_t i = 1; i <= fireCount(s.world); ++i) {
+            const float strength = fireStrength(s.world, FireId{i});
+            const std::string name = nameOr(i <= s.fireNames.size() ? s.fireNames[i - 1] : "", "fire", i);
+            // One row per fire: the bar is its strength, the text on it its name.
+            const std::string label = fmt::format("{}: {}", name,
+                                                  strength > 0.0f ? fmt::format("{} strikes", fireStrikes(s.world, FireId{i}))
+                                                                  : std::string("out"));
+            ImGui::ProgressBar(strength, ImVec2(-1.0f, 0.0f), label.c_str());
+            shown.fires.push_back(name);
+        }
+    }
+    if (bodyCount(s.world) > 0 && ImGui::CollapsingHeader("Bodies", ImGuiTreeNodeFlags_DefaultOpen)) {
+        // Moving bodies a line each, with where they are; the fixed ones
+        // (scenery, kinematic ones too) share a line to keep the panel short.
+        std::string fixed;
+        for (const BodySnapshot& b : readBodies(s.world)) {
+            const std::string name = nameOr(b.name, "body", b.id.index);
+            if (b.dynamic) {
+                ImGui::Text("%s (%.2f, %.2f)", name.c_str(), b.position.x, b.position.y);
+            } else {
+                fixed += (fixed.empty() ? "fixed: " : ", ") + name;
+            }
+            shown.bodies.push_back(name);
+        }
+        if (!fixed.empty()) ImGui::TextWrapped("%s", fixed.c_str());
+    }
+    if (fluidCount(s.world) > 0 && ImGui::CollapsingHeader("Fluids")) fluidSettings(s);
+    if (!s.emitters.empty() && ImGui::CollapsingHeader("Emitters")) emitterSettings(s);
+    if (ImGui::CollapsingHeader("Keys")) {
+        ImGui::TextWrapped("H hides this panel, Space pauses, N steps, R restarts, Esc quits. Drag to orbit or pan, "
+                           "scroll to zoom; the right button aims a 2D fluid jet. In 2D: drag a body to move it; "
+                           "Shift + left pours fluid, Shift + right removes it.");
+    }
+    shown.shown = true;
+    shown.pos = ImGui::GetWindowPos();
+    shown.size = ImGui::GetWindowSize();
+    ImGui::End();
+    return shown;
+}
+
+/// A scene file that failed to load again, over the frame until it loads.
+void loadErrorBox(const std::string& error) {
+    const ImVec2 display = ImGui::GetIO().DisplaySize;
+    ImGui::SetNextWindowPos(ImVec2(0.5f * display.x, display.y - 8.0f), ImGuiCond_Always, ImVec2(0.5f, 1.0f));
+    ImGui::SetNextWindowSizeConstraints(ImVec2(0.0f, 0.0f), ImVec2(display.x - 16.0f, 0.5f * display.y));
+    ImGui::SetNextWindowBgAlpha(0.9f);
+    ImGui::Begin("scene error", nullptr,
+                 ImGuiWindowFlags_AlwaysAutoResize | ImGuiWindowFlags_NoCollapse | ImGuiWindowFlags_NoFocusOnAppearing);
+    ImGui::PushTextWrapPos(display.x - 32.0f);
+    ImGui::PushStyleColor(ImGuiCol_Text, ImVec4(1.0f, 0.45f, 0.4f, 1.0f));
+    ImGui::TextUnformatted(error.c_str());
+    ImGui::PopStyleColor();
+    ImGui::TextDisabled("The last scene that loaded keeps playing; saving the file again reloads it.");
+    ImGui::PopTextWrapPos();
     ImGui::End();
 }
 
 // Loop --------------------------------------------------------------------------------------
+
+/// The mouse as the loop reads it: from GLFW, or from a test script once
+/// the script has moved it (Xvfb has no mouse to press).
+struct Pointer {
+    double x = 0.0, y = 0.0;  // window units
+    bool left = false, right = false, middle = false, shift = false;
+};
+
+Pointer readPointer(GLFWwindow* window) {
+    Pointer p;
+    glfwGetCursorPos(window, &p.x, &p.y);
+    p.left = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+    p.right = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) == GLFW_PRESS;
+    p.middle = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_MIDDLE) == GLFW_PRESS;
+    p.shift = glfwGetKey(window, GLFW_KEY_LEFT_SHIFT) == GLFW_PRESS || glfwGetKey(window, GLFW_KEY_RIGHT_SHIFT) == GLFW_PRESS;
+    return p;
+}
 
 /// Mouse drag since the last frame, unless ImGui has the mouse.
 struct Drag {
@@ -285,10 +435,10 @@ struct Drag {
     double x = 0.0, y = 0.0;
 };
 
-void applyCamera(Session& s, GLFWwindow* window, Drag& drag, Input& in) {
-    double x = 0.0, y = 0.0;
-    glfwGetCursorPos(window, &x, &y);
-    const bool down = glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_LEFT) == GLFW_PRESS;
+/// `leftTaken`: the left button holds a body or the brush, not the camera.
+void applyCamera(Session& s, GLFWwindow* window, const Pointer& pointer, bool leftTaken, Drag& drag, Input& in) {
+    const double x = pointer.x, y = pointer.y;
+    const bool down = pointer.left && !leftTaken;
     if (down && !drag.active && ImGui::GetIO().WantCaptureMouse) return;  // a drag that starts on the panel
     double dx = 0.0, dy = 0.0;
     if (down && drag.active) {
@@ -304,31 +454,23 @@ void applyCamera(Session& s, GLFWwindow* window, Drag& drag, Input& in) {
     in.scroll = 0.0;
 }
 
-/// Right mouse button in an orthographic view: the first 2D fluid jet aims at
-/// the cursor (its aim keys are replaced from then on; aimFluidJet).
-void aimWithMouse(Session& s, GLFWwindow* window) {
-    if (glfwGetMouseButton(window, GLFW_MOUSE_BUTTON_RIGHT) != GLFW_PRESS || ImGui::GetIO().WantCaptureMouse) return;
+/// The world point (xy) under the pointer in an orthographic view (beyond
+/// the frame's edges too); none in a perspective one.
+std::optional<glm::vec2> pointerInWorld(const Session& s, GLFWwindow* window, const Pointer& pointer) {
     const render::Renderer& r = render::rendererOf(s.renderer);
     const CameraDef& c = r.def.camera;
-    if (!c.orthographic) return;
-    FluidId jetFluid{};
-    for (std::uint32_t f = 1; f <= fluidCount(s.world) && jetFluid.index == 0; ++f) {
-        const FluidDef& def = fluidDef(s.world, FluidId{f});
-        if (def.dimension == 2 && !def.jets.empty()) jetFluid = FluidId{f};
-    }
-    if (jetFluid.index == 0) return;
+    if (!c.orthographic) return std::nullopt;
     // Cursor (window units) to swapchain pixels, then into the letterboxed frame.
-    double x = 0.0, y = 0.0;
+    double x = pointer.x, y = pointer.y;
     int ww = 0, wh = 0;
-    glfwGetCursorPos(window, &x, &y);
     glfwGetWindowSize(window, &ww, &wh);
     const VkExtent2D extent = s.presenter.chain.extent;
-    if (ww <= 0 || wh <= 0) return;
+    if (ww <= 0 || wh <= 0) return std::nullopt;
     x *= double(extent.width) / ww;
     y *= double(extent.height) / wh;
     const VkOffset3D lo = fitted(r.target.width, r.target.height, extent, false);
     const VkOffset3D hi = fitted(r.target.width, r.target.height, extent, true);
-    if (hi.x <= lo.x || hi.y <= lo.y) return;
+    if (hi.x <= lo.x || hi.y <= lo.y) return std::nullopt;
     const float u = float((x - lo.x) / (hi.x - lo.x) * 2.0 - 1.0);
     const float v = float(1.0 - (y - lo.y) / (hi.y - lo.y) * 2.0);
     const glm::vec3 forward = glm::normalize(c.target - c.eye);
@@ -336,11 +478,76 @@ void aimWithMouse(Session& s, GLFWwindow* window) {
     const glm::vec3 up = glm::cross(right, forward);
     const float halfHeight = 0.5f * c.orthoHeight;
     const float aspect = float(r.target.width) / float(r.target.height);
-    const glm::vec3 point = c.target + right * (u * halfHeight * aspect) + up * (v * halfHeight);
+    return glm::vec2(c.target + right * (u * halfHeight * aspect) + up * (v * halfHeight));
+}
+
+/// Right mouse button in an orthographic view: the first 2D fluid jet aims at
+/// the cursor (its aim keys are replaced from then on; aimFluidJet).
+void aimWithMouse(Session& s, GLFWwindow* window, const Pointer& pointer) {
+    if (!pointer.right || pointer.shift || ImGui::GetIO().WantCaptureMouse) return;
+    FluidId jetFluid{};
+    for (std::uint32_t f = 1; f <= fluidCount(s.world) && jetFluid.index == 0; ++f) {
+        const FluidDef& def = fluidDef(s.world, FluidId{f});
+        if (def.dimension == 2 && !def.jets.empty()) jetFluid = FluidId{f};
+    }
+    if (jetFluid.index == 0) return;
+    const std::optional<glm::vec2> point = pointerInWorld(s, window, pointer);
+    if (!point) return;
     const FluidJetPose pose = fluidJetPose(s.world, jetFluid, 0);
-    const glm::vec2 d = glm::vec2(point) - pose.nozzle;
+    const glm::vec2 d = *point - pose.nozzle;
     if (glm::length(d) < 1e-4f) return;
     aimFluidJet(s.world, jetFluid, 0, std::atan2(d.y, d.x) - pose.frameAngle);
+}
+
+/// The body the left button holds, if any.
+struct Hand {
+    bool holding = false;
+    GrabId grab{};
+};
+
+/// Brush radius in the fluid's spacings: a few particles across, so a
+/// stroke makes a stream, not a flood.
+constexpr float kBrushSpacings = 3.0f;
+
+/// Mouse on the world in orthographic views of 2D scenes: a left press on a
+/// dynamic body grabs it (createGrab) and drags it to the pointer until
+/// released; with Shift held the left button pours fluid into the first 2D
+/// fluid (pourFluid) and the right one removes it (removeFluid). Returns
+/// whether the left button was used here (then the camera leaves it).
+bool handOnWorld(Session& s, GLFWwindow* window, const Pointer& pointer, bool leftWasDown, Hand& hand) {
+    const std::optional<glm::vec2> at = pointerInWorld(s, window, pointer);
+    if (hand.holding) {
+        if (pointer.left && at) {
+            moveGrab(s.world, hand.grab, *at);
+        } else if (!pointer.left) {
+            destroyGrab(s.world, hand.grab);
+            hand = Hand{};
+        }
+        return true;
+    }
+    if (!at || ImGui::GetIO().WantCaptureMouse) return false;
+    if (pointer.shift) {
+        FluidId fluid{};
+        for (std::uint32_t f = 1; f <= fluidCount(s.world) && fluid.index == 0; ++f) {
+            if (fluidDef(s.world, FluidId{f}).dimension == 2) fluid = FluidId{f};
+        }
+        if (fluid.index == 0) return false;
+        const float radius = kBrushSpacings * fluidDef(s.world, fluid).spacing;
+        if (pointer.left) pourFluid(s.world, fluid, glm::vec3(*at, 0.0f), radius);
+        if (pointer.right) removeFluid(s.world, fluid, glm::vec3(*at, 0.0f), radius);
+        return pointer.left;
+    }
+    if (pointer.left && !leftWasDown) {  // a press, not a drag that began elsewhere
+        const BodyId body = bodyAt(s.world, *at);
+        if (body.index == 0) return false;
+        GrabDef def;
+        def.body = body;
+        def.point = *at;
+        hand.grab = createGrab(s.world, def);
+        hand.holding = true;
+        return true;
+    }
+    return false;
 }
 
 /// Records and submits one frame; false when the swapchain must be
@@ -395,16 +602,82 @@ bool drawFrame(Session& s, GLFWwindow* window, bool& recreate) {
     return true;
 }
 
+/// The test script's input and checks at the start of `frame`.
+struct ScriptPlayer {
+    std::vector<ScriptLine> lines;
+    std::size_t next = 0;
+    std::optional<Pointer> pointer;  // set by the first pointer command
+
+    /// Runs the lines of `frame`; `report` is called for each `report`.
+    template <class Report>
+    void play(std::uint64_t frame, Input& in, Report&& report) {
+        for (; next < lines.size() && lines[next].frame <= frame; ++next) {
+            const ScriptLine& line = lines[next];
+            const auto need = [&](std::size_t n) {
+                if (line.args.size() != n) {
+                    throw Error(fmt::format("view script, frame {}: {} takes {} arguments", line.frame, line.command, n));
+                }
+            };
+            const auto button = [&](bool down) {
+                need(1);
+                Pointer& p = pointer ? *pointer : pointer.emplace();
+                const std::string& b = line.args[0];
+                if (b == "left") {
+                    p.left = down;
+                } else if (b == "right") {
+                    p.right = down;
+                } else if (b == "middle") {
+                    p.middle = down;
+                } else {
+                    throw Error(fmt::format("view script, frame {}: no button '{}' (left, right, middle)", line.frame, b));
+                }
+            };
+            if (line.command == "key") {
+                need(1);
+                const std::string& k = line.args[0];
+                const int key = k == "space" ? GLFW_KEY_SPACE : k == "n" ? GLFW_KEY_N : k == "r" ? GLFW_KEY_R
+                              : k == "h" ? GLFW_KEY_H : k == "escape" ? GLFW_KEY_ESCAPE : GLFW_KEY_UNKNOWN;
+                if (key == GLFW_KEY_UNKNOWN) throw Error(fmt::format("view script, frame {}: no key '{}'", line.frame, k));
+                pressKey(in, key, false);
+            } else if (line.command == "pointer") {
+                need(2);
+                Pointer& p = pointer ? *pointer : pointer.emplace();
+                p.x = std::stod(line.args[0]);
+                p.y = std::stod(line.args[1]);
+            } else if (line.command == "press") {
+                button(true);
+            } else if (line.command == "release") {
+                button(false);
+            } else if (line.command == "shift") {
+                need(1);
+                Pointer& p = pointer ? *pointer : pointer.emplace();
+                p.shift = line.args[0] == "on";
+            } else if (line.command == "copy") {
+                need(2);
+                std::filesystem::copy_file(line.args[0], line.args[1],
+                                           std::filesystem::copy_options::overwrite_existing);
+            } else if (line.command == "report") {
+                report();
+            } else {
+                throw Error(fmt::format("view script, frame {}: unknown command '{}'", line.frame, line.command));
+            }
+        }
+    }
+};
+
+std::string joined(const std::vector<std::string>& names) {
+    std::string text;
+    for (const std::string& n : names) text += (text.empty() ? "" : ", ") + n;
+    return text;
+}
+
 }  // namespace
 
 int viewCommand(const ViewOptions& o) {
-    SceneDef scene = loadScene(o.scene);  // before any window: a bad file is just an error
-    if (!o.backend.empty()) {
-        scene.world.backend = o.backend == "vulkan" ? Backend::Vulkan : o.backend == "auto" ? Backend::Auto : Backend::Cpu;
-    }
-    if (o.width > 0) scene.render.width = o.width;
-    if (o.height > 0) scene.render.height = o.height;
-    validateRenderDef(scene.render);
+    SceneDef scene = loadViewScene(o);  // before any window: a bad file is just an error
+    FileStamp stamp = stampOf(o.scene);
+    ScriptPlayer script;
+    if (!o.script.empty()) script.lines = loadViewScript(o.script);
 
     Window window(scene.render.width, scene.render.height, "spindrift - " + o.scene);
     requestPresentation();
@@ -426,20 +699,97 @@ int viewCommand(const ViewOptions& o) {
     std::uint64_t frames = 0;
     try {
         startSession(s, scene, window.handle);
-        bool paused = false, recreate = false, submitted = false;
+        bool paused = false, recreate = false, submitted = false, panelShown = true;
         Drag drag;
         Input& in = window.input;
+        Playback playback;
+        playback.dt = scene.run.dt;
+        std::string loadError;  // of the last reload that failed; empty once one loads
+        PanelShown lastPanel;
+        Hand hand;
+        bool leftWasDown = false;
+        const auto started = std::chrono::steady_clock::now();
+        auto lastFrame = started;
+
+        // Rebuilds world, renderer and presenter from `next`, keeping the
+        // camera as the user left it; on a failure to build, the scene that
+        // ran before comes back.
+        const auto rebuild = [&](const SceneDef& next) {
+            const CameraDef camera = render::rendererOf(s.renderer).def.camera;
+            stopSession(s);
+            try {
+                startSession(s, next, window.handle);
+                scene = next;
+                loadError.clear();
+            } catch (const Error& e) {
+                loadError = e.what();
+                startSession(s, scene, window.handle);
+            }
+            setRenderCamera(s.renderer, camera);
+            hand = Hand{};  // its grab went with the old world
+            playback.dt = scene.run.dt;
+            resetPlayback(playback);
+            lastFrame = std::chrono::steady_clock::now();
+            submitted = false;
+        };
+        const auto report = [&] {
+            int ww = 0, wh = 0;
+            glfwGetWindowSize(window.handle, &ww, &wh);
+            const CameraDef& c = render::rendererOf(s.renderer).def.camera;
+            std::uint64_t particles = 0;
+            for (std::uint32_t f = 1; f <= fluidCount(s.world); ++f) particles += readFluid(s.world, FluidId{f}).count();
+            fmt::print("report {} time: {:.6f}\n", frames, worldTime(s.world));
+            fmt::print("report {} wall: {:.6f}\n", frames,
+                       std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count());
+            fmt::print("report {} speed: {:.4f}\n", frames, playback.speed);
+            fmt::print("report {} paused: {}\n", frames, paused ? 1 : 0);
+            fmt::print("report {} window: {} {}\n", frames, ww, wh);
+            fmt::print("report {} panel: {} {:.0f} {:.0f} {:.0f} {:.0f}\n", frames, lastPanel.shown ? 1 : 0,
+                       lastPanel.pos.x, lastPanel.pos.y, lastPanel.size.x, lastPanel.size.y);
+            fmt::print("report {} fires: {}\n", frames, joined(lastPanel.fires));
+            fmt::print("report {} bodies: {}\n", frames, joined(lastPanel.bodies));
+            fmt::print("report {} camera: {:.4f} {:.4f} {:.4f} {:.4f}\n", frames, c.eye.x, c.eye.y, c.eye.z,
+                       c.orthoHeight);
+            fmt::print("report {} fluid particles: {}\n", frames, particles);
+            for (const BodySnapshot& b : readBodies(s.world)) {
+                if (b.dynamic) fmt::print("report {} body {}: {:.4f} {:.4f}\n", frames, b.name, b.position.x, b.position.y);
+            }
+            fmt::print("report {} error: {}\n", frames, loadError);
+            std::fflush(stdout);
+        };
+
         while (glfwWindowShouldClose(window.handle) == GLFW_FALSE && !in.quit && (o.frames == 0 || frames < o.frames)) {
             glfwPollEvents();
+            script.play(frames, in, report);
+            const Pointer pointer = script.pointer ? *script.pointer : readPointer(window.handle);
+
+            // The scene file changed on disk (checked every frame: one stat).
+            if (const FileStamp now = stampOf(o.scene); !(now == stamp)) {
+                stamp = now;
+                std::optional<SceneDef> next;
+                try {
+                    next = loadViewScene(o);
+                } catch (const Error& e) {
+                    loadError = e.what();  // the scene that runs keeps running
+                }
+                if (next) {
+                    rebuild(*next);
+                    in = Input{};
+                    continue;
+                }
+            }
             if (in.restart) {
-                stopSession(s);
-                startSession(s, scene, window.handle);
+                rebuild(scene);
                 in = Input{};
-                submitted = false;
                 continue;
             }
-            if (in.togglePause) paused = !paused;
+            if (in.togglePause) {
+                paused = !paused;
+                resetPlayback(playback);  // time spent paused is not owed
+            }
             in.togglePause = false;
+            if (in.togglePanel) panelShown = !panelShown;
+            in.togglePanel = false;
 
             // The previous frame: done before its buffers are written again.
             Presenter& p = s.presenter;
@@ -451,7 +801,9 @@ int viewCommand(const ViewOptions& o) {
             }
 
             const auto frameStart = std::chrono::steady_clock::now();
-            const int steps = paused ? in.steps : 1;
+            const double wall = std::chrono::duration<double>(frameStart - lastFrame).count();
+            lastFrame = frameStart;
+            const int steps = paused ? in.steps : advancePlayback(playback, wall);
             in.steps = 0;
             for (int i = 0; i < steps; ++i) {
                 s.last = stepWorld(s.world, scene.run.dt);
@@ -460,12 +812,24 @@ int viewCommand(const ViewOptions& o) {
             // readParticles copies back from the device: a few times a second.
             if (frames % 15 == 0 || (paused && steps > 0)) refreshAlive(s);
 
-            applyCamera(s, window.handle, drag, in);
-            aimWithMouse(s, window.handle);
+            const bool leftTaken = handOnWorld(s, window.handle, pointer, leftWasDown, hand);
+            leftWasDown = pointer.left;
+            applyCamera(s, window.handle, pointer, leftTaken, drag, in);
+            aimWithMouse(s, window.handle, pointer);
             ImGui_ImplVulkan_NewFrame();
             ImGui_ImplGlfw_NewFrame();
+            if (script.pointer) {
+                // ImGui sees the scripted pointer too, so the panel takes
+                // what lands on it as a user's click would be.
+                ImGuiIO& io = ImGui::GetIO();
+                io.MousePos = ImVec2(float(pointer.x), float(pointer.y));
+                io.MouseDown[0] = pointer.left;
+                io.MouseDown[1] = pointer.right;
+                io.MouseDown[2] = pointer.middle;
+            }
             ImGui::NewFrame();
-            panel(s, paused, frames);
+            lastPanel = panelShown ? panel(s, paused, playback) : PanelShown{};
+            if (!loadError.empty()) loadErrorBox(loadError);
             ImGui::Render();
 
             if (!drawFrame(s, window.handle, recreate)) {

@@ -13,6 +13,7 @@ struct ViewOptions {
     std::uint32_t width = 0;   ///< 0: the scene's render width
     std::uint32_t height = 0;  ///< 0: the scene's render height
     std::string backend;       ///< empty: the scene's; else cpu, vulkan or auto
+    std::string script;        ///< tests: input and reports by frame (view_script.h); empty: none
 };
 
 /// Opens the window and runs until it closes, Esc, or `frames` frames.

@@ -31,6 +31,8 @@ namespace spindrift {
 struct BodyId { std::uint32_t index = 0; };
 /// 1-based creation serial of a joint in its world; 0 is no joint.
 struct JointId { std::uint32_t index = 0; };
+/// 1-based creation serial of a grab in its world; 0 is no grab.
+struct GrabId { std::uint32_t index = 0; };
 
 enum class BodyType : std::uint32_t {
     Static = 0,     ///< never moves (walls, floors, tanks)
@@ -102,6 +104,19 @@ struct JointDef {
     bool collideConnected = false;
 };
 
+/// A hand on a dynamic body (Box2D's mouse joint): the body's point that was
+/// at `point` when grabbed is pulled toward a target (moveGrab) by a damped
+/// spring, as a mouse drags a body.
+struct GrabDef {
+    BodyId body;
+    glm::vec2 point{0.0f};     ///< m, world point on the body held; the first target
+    /// N, the most force the spring pulls with; 0: 1000 x the body's mass,
+    /// as Box2D's testbed (lifts it against 100 g).
+    float maxForce = 0.0f;
+    float frequency = 5.0f;    ///< Hz of the spring with the body's mass, > 0
+    float dampingRatio = 0.7f; ///< >= 0; 1 is critical
+};
+
 /// A shape as drawn, in world coordinates. Circle: centre and radius; Polygon:
 /// vertices counter-clockwise; Edge: 2 vertices; Chain: vertices and loop flag.
 struct BodyShapeView {
@@ -142,6 +157,18 @@ SPINDRIFT_API void setBodyVelocity(WorldId world, BodyId body, glm::vec2 linearV
 SPINDRIFT_API void applyBodyImpulse(WorldId world, BodyId body, glm::vec2 impulse, glm::vec2 point);
 /// Mass (kg) of a body: 0 for static and kinematic ones.
 SPINDRIFT_API float bodyMass(WorldId world, BodyId body);
+
+/// Grabs a dynamic body; throws Error for a body that is not one or a bad
+/// definition. Destroying the body lets go of it.
+SPINDRIFT_API GrabId createGrab(WorldId world, const GrabDef& def);
+/// Where the grab pulls its point to now (m, world).
+SPINDRIFT_API void moveGrab(WorldId world, GrabId grab, glm::vec2 target);
+/// Lets go; a grab whose body was destroyed is already gone and this does
+/// nothing. Throws Error for an id never created.
+SPINDRIFT_API void destroyGrab(WorldId world, GrabId grab);
+/// The dynamic body with a shape over `point` (m, world), the last created
+/// when several are; index 0 when none is.
+SPINDRIFT_API BodyId bodyAt(WorldId world, glm::vec2 point);
 
 /// Bodies that exist now (created and not destroyed).
 SPINDRIFT_API std::uint32_t bodyCount(WorldId world);

@@ -192,6 +192,18 @@ SPINDRIFT_API void addFluidBlock(WorldId world, FluidId fluid, const FluidBlockD
 /// Adds a jet; its start time is world time.
 SPINDRIFT_API void addFluidJet(WorldId world, FluidId fluid, const FluidJetDef& jet);
 
+/// Removes the particles within `radius` m of `centre` (2D: in the xy plane)
+/// now, the viewer's eraser; returns how many. The others keep their ids, so
+/// readFluid's ids may then skip values.
+SPINDRIFT_API std::uint32_t removeFluid(WorldId world, FluidId fluid, glm::vec3 centre, float radius);
+/// Adds particles now, moving at `velocity`, at the points within `radius` m
+/// of `centre` of the lattice a block from the origin would fill, except
+/// where a particle is nearer than one spacing: pouring where the fluid
+/// already is adds nothing (the viewer's brush). Stops at the capacity.
+/// Returns how many were added. Throws Error for a radius over 100 spacings.
+SPINDRIFT_API std::uint32_t pourFluid(WorldId world, FluidId fluid, glm::vec3 centre, float radius,
+                                      glm::vec3 velocity = glm::vec3(0.0f));
+
 /// Changes a fluid's solver settings from the next step on (the viewer's
 /// panel): iterations (kFluidMinIterations to kFluidMaxIterations) and
 /// baumgarte (in [0, 1]) as in FluidDef.

@@ -383,9 +383,73 @@ void destroyBody(BodyWorld* bodies, BodyId bodyId) {
             j.joint = nullptr;
         }
     }
+    for (b2MouseJoint*& grab : bodies->grabs) {
+        if (grab != nullptr && grab->GetBodyB() == slot.body) grab = nullptr;
+    }
     bodies->world.DestroyBody(slot.body);
     slot.body = nullptr;
     bodies->alive -= 1;
+}
+
+GrabId createGrab(BodyWorld* bodies, const GrabDef& def) {
+    if (!bodies) throw Error(fmt::format("grab: body id {} does not exist in this world", def.body.index));
+    b2Body* body = coupling::bodyFromId(*bodies, def.body).body;
+    if (body->GetType() != b2_dynamicBody) throw Error(fmt::format("grab: body id {} is not dynamic", def.body.index));
+    if (!std::isfinite(def.point.x) || !std::isfinite(def.point.y) || !(def.maxForce >= 0.0f) ||
+        !std::isfinite(def.maxForce) || !(def.frequency > 0.0f) || !std::isfinite(def.frequency) ||
+        !(def.dampingRatio >= 0.0f) || !std::isfinite(def.dampingRatio)) {
+        throw Error("grab: expected a finite point, max_force >= 0, frequency > 0 and damping_ratio >= 0");
+    }
+    if (bodies->ground == nullptr) {
+        b2BodyDef ground;
+        bodies->ground = bodies->world.CreateBody(&ground);
+    }
+    b2MouseJointDef jd;
+    jd.bodyA = bodies->ground;
+    jd.bodyB = body;
+    jd.target = coupling::toB2(def.point);
+    // Box2D's testbed pulls with 1000 times the mass: strong enough to lift
+    // and swing a body against gravity, bounded so a heavy one lags.
+    jd.maxForce = def.maxForce > 0.0f ? def.maxForce : 1000.0f * body->GetMass();
+    b2LinearStiffness(jd.stiffness, jd.damping, def.frequency, def.dampingRatio, jd.bodyA, jd.bodyB);
+    body->SetAwake(true);
+    bodies->grabs.push_back(static_cast<b2MouseJoint*>(bodies->world.CreateJoint(&jd)));
+    return {static_cast<std::uint32_t>(bodies->grabs.size())};
+}
+
+namespace {
+b2MouseJoint* grabFromId(BodyWorld* bodies, GrabId id) {
+    if (!bodies || id.index == 0 || id.index > bodies->grabs.size()) {
+        throw Error(fmt::format("grab id {} does not exist in this world", id.index));
+    }
+    return bodies->grabs[id.index - 1];  // null: gone with its body
+}
+}  // namespace
+
+void moveGrab(BodyWorld* bodies, GrabId id, glm::vec2 target) {
+    if (!std::isfinite(target.x) || !std::isfinite(target.y)) throw Error("grab: the target is not finite");
+    if (b2MouseJoint* grab = grabFromId(bodies, id)) grab->SetTarget(coupling::toB2(target));
+}
+
+void destroyGrab(BodyWorld* bodies, GrabId id) {
+    if (b2MouseJoint* grab = grabFromId(bodies, id)) {
+        bodies->world.DestroyJoint(grab);
+        bodies->grabs[id.index - 1] = nullptr;
+    }
+}
+
+BodyId bodyAt(const BodyWorld* bodies, glm::vec2 point) {
+    if (!bodies) return {};
+    // The last created first: of bodies that overlap, the one made later is
+    // usually the one placed on top.
+    for (std::size_t i = bodies->bodies.size(); i-- > 0;) {
+        const b2Body* body = bodies->bodies[i].body;
+        if (body == nullptr || body->GetType() != b2_dynamicBody) continue;
+        for (const b2Fixture* f = body->GetFixtureList(); f != nullptr; f = f->GetNext()) {
+            if (f->TestPoint(coupling::toB2(point))) return {static_cast<std::uint32_t>(i + 1)};
+        }
+    }
+    return {};
 }
 
 JointId createJoint(BodyWorld* bodies, const JointDef& def) {

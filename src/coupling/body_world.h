@@ -40,6 +40,11 @@ struct BodyWorld {
     glm::vec2 gravity;  // m/s^2
     std::vector<BodySlot> bodies;
     std::vector<JointSlot> joints;
+    /// Grabs (Box2D mouse joints), null once destroyed, with their body or on
+    /// their own; their fixed end is `ground`, a body without fixtures made
+    /// with the first grab, so nothing collides with it or sees it.
+    std::vector<b2MouseJoint*> grabs;
+    b2Body* ground = nullptr;
     std::uint32_t alive = 0;
     /// Scratch of the fluid step being solved (one fluid at a time).
     fluid::FluidBodyStep fluidStep;
@@ -74,6 +79,10 @@ void setBodyTransform(BodyWorld* bodies, BodyId body, glm::vec2 position, float 
 void setBodyVelocity(BodyWorld* bodies, BodyId body, glm::vec2 linearVelocity, float angularVelocity);
 void applyBodyImpulse(BodyWorld* bodies, BodyId body, glm::vec2 impulse, glm::vec2 point);
 float bodyMass(BodyWorld* bodies, BodyId body);
+GrabId createGrab(BodyWorld* bodies, const GrabDef& def);
+void moveGrab(BodyWorld* bodies, GrabId grab, glm::vec2 target);
+void destroyGrab(BodyWorld* bodies, GrabId grab);
+BodyId bodyAt(const BodyWorld* bodies, glm::vec2 point);
 std::uint32_t bodyCount(const BodyWorld* bodies);
 std::vector<BodySnapshot> readBodies(const BodyWorld* bodies);
 

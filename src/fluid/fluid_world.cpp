@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <numeric>
 
 namespace spindrift::fluid {
 namespace {
@@ -161,16 +162,25 @@ void push(FluidState& f, glm::vec3 x, glm::vec3 v) {
 }
 
 template <int D>
-void copyOut(const Particles<D>& p, FluidSnapshot& s) {
+void copyOut(const Particles<D>& p, std::uint32_t serials, FluidSnapshot& s) {
     const std::size_t n = p.size();
     s.position.resize(n);
     s.velocity.resize(n);
     s.density.resize(n);
     s.pressure.resize(n);
     s.id.resize(n);
-    // Creation order: ids are 0..n-1 (nothing dies), so id is the output slot.
+    // Creation order. While none was removed, ids are 0..n-1 and each is its
+    // output slot; after removeFluid a particle's slot is its rank by id.
+    std::vector<std::uint32_t> slot;
+    if (n != serials) {
+        std::vector<std::uint32_t> byId(n);
+        std::iota(byId.begin(), byId.end(), 0u);
+        std::sort(byId.begin(), byId.end(), [&](std::uint32_t a, std::uint32_t b) { return p.id[a] < p.id[b]; });
+        slot.resize(n);
+        for (std::size_t rank = 0; rank < n; ++rank) slot[byId[rank]] = static_cast<std::uint32_t>(rank);
+    }
     for (std::size_t i = 0; i < n; ++i) {
-        const std::size_t o = p.id[i];
+        const std::size_t o = slot.empty() ? p.id[i] : slot[i];
         if constexpr (D == 2) {
             s.position[o] = glm::vec3(p.position[i], 0.0f);
             s.velocity[o] = glm::vec3(p.velocity[i], 0.0f);
@@ -188,8 +198,88 @@ void copyOut(const Particles<D>& p, FluidSnapshot& s) {
 
 FluidSnapshot snapshotOf(const FluidState& f) {
     FluidSnapshot s;
-    if (f.def.dimension == 2) copyOut<2>(f.p2, s); else copyOut<3>(f.p3, s);
+    if (f.def.dimension == 2) copyOut<2>(f.p2, f.nextSerial, s); else copyOut<3>(f.p3, f.nextSerial, s);
     return s;
+}
+
+namespace {
+
+template <int D>
+Vec<D> inDimension(glm::vec3 x) {
+    if constexpr (D == 2) return glm::vec2(x); else return x;
+}
+
+template <int D>
+std::uint32_t removeWithin(Particles<D>& p, glm::vec3 centre, float radius) {
+    const Vec<D> c = inDimension<D>(centre);
+    std::size_t kept = 0;
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        const Vec<D> d = p.position[i] - c;
+        if (glm::dot(d, d) <= radius * radius) continue;
+        p.position[kept] = p.position[i];
+        p.velocity[kept] = p.velocity[i];
+        p.pressure[kept] = p.pressure[i];
+        p.density[kept] = p.density[i];
+        p.id[kept] = p.id[i];
+        p.anchor[kept] = p.anchor[i];
+        p.still[kept] = p.still[i];
+        ++kept;
+    }
+    const auto removed = static_cast<std::uint32_t>(p.size() - kept);
+    p.position.resize(kept);
+    p.velocity.resize(kept);
+    p.pressure.resize(kept);
+    p.density.resize(kept);
+    p.id.resize(kept);
+    p.anchor.resize(kept);
+    p.still.resize(kept);
+    if (p.pseudo.size() > kept) p.pseudo.resize(kept);  // refilled every step
+    return removed;
+}
+
+template <int D>
+std::uint32_t pourWithin(FluidState& f, glm::vec3 centre, float radius, glm::vec3 velocity) {
+    const float s = f.def.spacing;
+    const Vec<D> c = inDimension<D>(centre);
+    // Lattice points (k + 1/2) x spacing per axis, as a block from the origin
+    // places them, within the radius.
+    glm::ivec3 lo(0), hi(0);
+    for (int a = 0; a < D; ++a) {
+        lo[a] = static_cast<int>(std::floor((c[a] - radius) / s - 0.5f));
+        hi[a] = static_cast<int>(std::ceil((c[a] + radius) / s - 0.5f));
+    }
+    const Particles<D>& p = f.particles<D>();
+    std::uint32_t added = 0;
+    for (int k = lo[2]; k <= hi[2]; ++k) {
+        for (int j = lo[1]; j <= hi[1]; ++j) {
+            for (int i = lo[0]; i <= hi[0]; ++i) {
+                const Vec<D> x = inDimension<D>((glm::vec3(float(i), float(j), float(k)) + 0.5f) * s);
+                if (glm::dot(x - c, x - c) > radius * radius || f.size() >= f.capacity) continue;
+                bool free = true;
+                for (std::size_t n = 0; n < p.size() && free; ++n) {
+                    const Vec<D> d = p.position[n] - x;
+                    free = glm::dot(d, d) >= 0.99f * s * s;  // a lattice neighbour, rounded, is room
+                }
+                if (!free) continue;
+                glm::vec3 at(0.0f);
+                for (int a = 0; a < D; ++a) at[a] = x[a];
+                push(f, at, velocity);
+                ++added;
+            }
+        }
+    }
+    return added;
+}
+
+}  // namespace
+
+std::uint32_t removeParticles(FluidState& f, glm::vec3 centre, float radius) {
+    return f.def.dimension == 2 ? removeWithin<2>(f.p2, centre, radius) : removeWithin<3>(f.p3, centre, radius);
+}
+
+std::uint32_t pourParticles(FluidState& f, glm::vec3 centre, float radius, glm::vec3 velocity) {
+    return f.def.dimension == 2 ? pourWithin<2>(f, centre, radius, velocity)
+                                : pourWithin<3>(f, centre, radius, velocity);
 }
 
 void validateFluidDef(const FluidDef& def) {

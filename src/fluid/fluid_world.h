@@ -17,5 +17,8 @@ void validateBlock(const FluidDef& def, const FluidBlockDef& block, std::size_t 
 void validateJet(const FluidDef& def, const FluidJetDef& jet, std::size_t index);
 /// The fluid's particles in creation order (readFluid).
 FluidSnapshot snapshotOf(const FluidState& f);
+/// removeFluid and pourFluid (fluid.h) on one fluid.
+std::uint32_t removeParticles(FluidState& f, glm::vec3 centre, float radius);
+std::uint32_t pourParticles(FluidState& f, glm::vec3 centre, float radius, glm::vec3 velocity);
 
 }  // namespace spindrift::fluid

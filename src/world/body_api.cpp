@@ -35,6 +35,16 @@ void applyBodyImpulse(WorldId id, BodyId body, glm::vec2 impulse, glm::vec2 poin
 
 float bodyMass(WorldId id, BodyId body) { return coupling::bodyMass(worldFromId(id).bodies.get(), body); }
 
+GrabId createGrab(WorldId id, const GrabDef& def) { return coupling::createGrab(worldFromId(id).bodies.get(), def); }
+
+void moveGrab(WorldId id, GrabId grab, glm::vec2 target) {
+    coupling::moveGrab(worldFromId(id).bodies.get(), grab, target);
+}
+
+void destroyGrab(WorldId id, GrabId grab) { coupling::destroyGrab(worldFromId(id).bodies.get(), grab); }
+
+BodyId bodyAt(WorldId id, glm::vec2 point) { return coupling::bodyAt(worldFromId(id).bodies.get(), point); }
+
 std::uint32_t bodyCount(WorldId id) { return coupling::bodyCount(worldFromId(id).bodies.get()); }
 
 std::vector<BodySnapshot> readBodies(WorldId id) { return coupling::readBodies(worldFromId(id).bodies.get()); }

@@ -143,6 +143,27 @@ float fluidRestDensity(WorldId id, FluidId fluidId) {
     return fluidFromId(worldFromId(id), fluidId).restDensity;
 }
 
+std::uint32_t removeFluid(WorldId id, FluidId fluidId, glm::vec3 centre, float radius) {
+    fluid::FluidState& f = fluidFromId(worldFromId(id), fluidId);
+    if (!(radius >= 0.0f) || !std::isfinite(radius) || !std::isfinite(centre.x) || !std::isfinite(centre.y) ||
+        !std::isfinite(centre.z)) {
+        throw Error("removeFluid: expected a finite centre and radius >= 0");
+    }
+    return fluid::removeParticles(f, centre, radius);
+}
+
+std::uint32_t pourFluid(WorldId id, FluidId fluidId, glm::vec3 centre, float radius, glm::vec3 velocity) {
+    fluid::FluidState& f = fluidFromId(worldFromId(id), fluidId);
+    // The radius is bounded so one call is a brush, not a flood: at most
+    // about 200^D lattice points are looked at.
+    if (!(radius >= 0.0f) || !(radius <= 100.0f * f.def.spacing) || !std::isfinite(centre.x) ||
+        !std::isfinite(centre.y) || !std::isfinite(centre.z) || !std::isfinite(velocity.x) ||
+        !std::isfinite(velocity.y) || !std::isfinite(velocity.z)) {
+        throw Error("pourFluid: expected a finite centre and velocity and a radius from 0 to 100 spacings");
+    }
+    return fluid::pourParticles(f, centre, radius, velocity);
+}
+
 FluidSnapshot readFluid(WorldId id, FluidId fluidId) {
     return fluid::snapshotOf(fluidFromId(worldFromId(id), fluidId));
 }

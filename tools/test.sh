@@ -3,12 +3,12 @@
 # as errors, then the same tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Exits non-zero on any failure.
 #
-# The sanitizer pass leaves out six tests (the asan test preset's filter in
+# The sanitizer pass leaves out nine tests (the asan test preset's filter in
 # CMakePresets.json), which would put CI (2 cores) over its 30 minutes:
-# - the 2D and 3D resting tanks, the 2D and 3D volume tanks and the showcase
-#   played to its end: each steps thousands of particles for 5 to 8 simulated
-#   seconds to measure a physical outcome, 1.5 to 4 minutes apiece under the
-#   sanitizers;
+# - the 2D and 3D resting tanks, the 2D and 3D volume tanks, the three
+#   floating boxes and the showcase played to its end: each steps thousands
+#   of particles for 5 to 8 simulated seconds to measure a physical outcome,
+#   0.5 to 4 minutes apiece under the sanitizers;
 # - every bundled scene at one and at two threads compared bit for bit (4
 #   minutes under the sanitizers).
 # They run in the optimised pass. Under the sanitizers every code path they

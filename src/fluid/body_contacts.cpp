@@ -183,7 +183,7 @@ void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float
     }
 }
 
-void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const FluidState& f, const Grid<2>& g,
+void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const Grid<2>& g,
                       float dt) {
     const Particles<2>& p = f.p2;
     const std::size_t chunks = WorkerPool::chunkCount(p.size(), kParticleChunk);
@@ -218,6 +218,12 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const FluidState& f, c
                 c.particle = static_cast<std::uint32_t>(i);
                 c.body = shape.body;
                 (b.invMass > 0.0f ? dynamic : fixed).push_back(c);
+                // Water touching a dynamic body does not fall asleep: a box
+                // floating on sleeping water rocked by 2 to 3 cm/s, reversing
+                // its velocity every step (each step it pressed water whose
+                // solved velocity stayed under the wake speed and was zeroed;
+                // docs/fluid.md).
+                if (b.invMass > 0.0f) f.p2.still[i] = 0.0f;
                 // An impact: reaching the surface this substep, fast. The
                 // solve then removes the approach, so one strike is one event.
                 const float approach = -glm::dot(rel, n);

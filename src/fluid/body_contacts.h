@@ -92,8 +92,9 @@ struct FluidBodyStep {
 
 /// Shapes at the bodies' current poses, binned into the substep's grid cells.
 void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& grid, float dt);
-/// Contacts of every particle with the shapes of its grid cell.
-void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, const FluidState& f, const Grid<2>& grid,
+/// Contacts of every particle with the shapes of its grid cell; a particle
+/// touching a dynamic body is kept awake (FluidDef::sleepSpeed).
+void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const Grid<2>& grid,
                       float dt);
 /// One sweep over the contacts (after each sweep of the fluid constraints).
 void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float dt);

@@ -90,6 +90,36 @@ TEST(CouplingBuoyancy, TwiceDenseBoxSinksToTheFloor) {
     EXPECT_LT(glm::length(b.linearVelocity), 0.05f);
 }
 
+// A box floating in a 1.6 m tank stops bobbing: after 5 s its vertical speed
+// stays below 1 cm/s for a second (issue 12, item 5). A box resting on
+// sleeping water rocked by 2 to 3 cm/s, reversing its velocity every step
+// (the water under it pressed, its velocity zeroed by sleep, every step).
+class FloatingBox : public ::testing::TestWithParam<float> {};
+
+TEST_P(FloatingBox, StopsBobbing) {
+    const float ratio = GetParam();
+    test::BodyTestWorld w;
+    constexpr float kWidth = 1.6f;
+    test::staticTank(w.id, kWidth, 1.0f);
+    const FluidId water = createFluid(w.id, test::waterBlock(0.02f, {0.0f, 0.0f}, {kWidth, 0.5f}));
+    // 0.4 x 0.2 m (20 particles wide), dropped from 1 cm above the surface.
+    const BodyId box =
+        createBody(w.id, test::crate("float", {0.5f * kWidth, 0.61f}, {0.2f, 0.1f}, ratio * 1000.0f));
+    run(w.id, 300);
+    float fastest = 0.0f;
+    for (int i = 0; i < 60; ++i) {
+        stepWorld(w.id, kDt);
+        fastest = std::max(fastest, std::abs(test::findBody(w.id, box).linearVelocity.y));
+    }
+    const BodySnapshot b = test::findBody(w.id, box);
+    const float level = waterLevel(readFluid(w.id, water), 0.02f, kWidth, b.position.x - 0.25f, b.position.x + 0.25f);
+    RecordProperty("submerged_fraction", std::to_string((level - (b.position.y - 0.1f)) / 0.2f));
+    RecordProperty("fastest", std::to_string(fastest));
+    EXPECT_LT(fastest, 0.01f) << "density ratio " << ratio;
+}
+
+INSTANTIATE_TEST_SUITE_P(CouplingBuoyancy, FloatingBox, ::testing::Values(0.25f, 0.5f, 0.75f));
+
 // (b) A jet's momentum pushes a crate along the floor, in the jet's direction.
 TEST(CouplingJet, PushesACrateAlongTheFloor) {
     test::BodyTestWorld w;

@@ -98,6 +98,21 @@ CLI::Validator positiveFinite() {
         "POSITIVE");
 }
 
+/// CLI11 validator for a step the world takes: kMinStep to kMaxStep seconds,
+/// the same range as the scene's run.dt.
+CLI::Validator stepLength() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            double value = 0.0;
+            const auto [end, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+            if (ec != std::errc() || end != text.data() + text.size() || !(value >= kMinStep && value <= kMaxStep)) {
+                return fmt::format("must be a time step of {} to {} s, got '{}'", kMinStep, kMaxStep, text);
+            }
+            return {};
+        },
+        "SECONDS");
+}
+
 std::string backendName(Backend backend) {
     switch (backend) {
         case Backend::Cpu: return "cpu";
@@ -513,7 +528,7 @@ void addRunOptions(CLI::App& run, RunOptions& o) {
     auto* seconds = run.add_option("--seconds,-s", o.seconds, "Simulated time in seconds, rounded up to whole steps")
                         ->check(positiveFinite());
     steps->excludes(seconds);
-    run.add_option("--dt", o.dt, "Time step in seconds (default: the scene's run.dt)")->check(positiveFinite());
+    run.add_option("--dt", o.dt, "Time step in seconds (default: the scene's run.dt)")->check(stepLength());
     run.add_option("--backend,-b", o.backend, "cpu, vulkan or auto (default: the scene's)")
         ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
     run.add_option("--threads,-j", o.threads, "CPU worker threads, 0 = all (default: the scene's)");

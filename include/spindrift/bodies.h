@@ -61,6 +61,17 @@ SPINDRIFT_API BodyShapeDef polygonShape(std::vector<glm::vec2> vertices);
 SPINDRIFT_API BodyShapeDef edgeShape(glm::vec2 a, glm::vec2 b);
 SPINDRIFT_API BodyShapeDef chainShape(std::vector<glm::vec2> points, bool loop);
 
+/// Largest coordinate or length (m) a body may have: positions, vertices,
+/// offsets, half extents and radii. Box2D computes in single precision and
+/// resolves contacts to 5 mm; at 10 km a float's step is 1 mm, and a circle
+/// of radius 1e18 m overflowed its inertia and fired Box2D's assertion.
+inline constexpr float kBodyMaxLength = 1.0e4f;
+/// Largest density (kg/m^2) of a dynamic body: with kBodyMaxLength, its mass
+/// and inertia stay finite in single precision.
+inline constexpr float kBodyMaxDensity = 1.0e6f;
+/// Largest speed (m/s) and angular speed (rad/s) a body may be given.
+inline constexpr float kBodyMaxSpeed = 1.0e4f;
+
 struct BodyDef {
     std::string name;
     BodyType type = BodyType::Dynamic;
@@ -68,7 +79,8 @@ struct BodyDef {
     float angle = 0.0f;              ///< rad
     glm::vec2 linearVelocity{0.0f};  ///< m/s
     float angularVelocity = 0.0f;    ///< rad/s
-    /// kg/m^2, > 0 for a dynamic body (ignored for static and kinematic ones).
+    /// kg/m^2, in (0, kBodyMaxDensity] for a dynamic body (ignored for
+    /// static and kinematic ones).
     float density = 1000.0f;
     float friction = 0.6f;           ///< Coulomb coefficient against bodies, >= 0
     float restitution = 0.0f;        ///< bounce against bodies, in [0, 1]

@@ -33,10 +33,21 @@ struct WorldDef {
     /// without the CPU ever waiting on the GPU in the loop (see
     /// StepStats::countedSteps and flushWorld). The CPU backend ignores it.
     std::uint32_t framesInFlight = 2;
-    /// m/s^2, gravity of the rigid bodies (bodies.h). Each fluid has its own
-    /// (FluidDef::gravity), so a scene may float bodies without gravity.
+    /// m/s^2, gravity of the rigid bodies (bodies.h), each component within
+    /// kMaxBodyGravity. Each fluid has its own (FluidDef::gravity), so a
+    /// scene may float bodies without gravity.
     glm::vec2 bodyGravity{0.0f, -9.81f};
 };
+
+/// Shortest and longest step (s) stepWorld takes. Under a microsecond the
+/// fluid's substep arithmetic underflows in single precision (a step of
+/// 1e-45 s made NaN grid cells); over a second births owed for the step and
+/// the solver's substeps stop meaning anything for a real-time engine.
+inline constexpr double kMinStep = 1.0e-6;
+inline constexpr double kMaxStep = 1.0;
+/// Largest body gravity component (m/s^2), a thousand g: 3e38 turned the
+/// bodies' bounds into infinities the fluid's grid could not bin.
+inline constexpr float kMaxBodyGravity = 1.0e4f;
 
 /// Collision events of one step, per collider.
 struct ColliderStepStats {

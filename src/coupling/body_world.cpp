@@ -70,23 +70,32 @@ std::vector<glm::vec2> convexPolygon(const BodyDef& def, std::size_t index, cons
     return ccw;
 }
 
+/// Finite and within kBodyMaxLength of 0 in each coordinate.
+bool inWorld(glm::vec2 p) { return std::abs(p.x) <= kBodyMaxLength && std::abs(p.y) <= kBodyMaxLength; }
+bool inWorld(float length) { return std::abs(length) <= kBodyMaxLength; }
+
 void validateShape(const BodyDef& def, std::size_t index, const BodyShapeDef& s) {
     for (glm::vec2 p : s.vertices) {
-        if (!finite(p)) throw Error(fmt::format("{}: shape {}: vertices must be finite", label(def), index));
+        if (!inWorld(p)) {
+            throw Error(fmt::format("{}: shape {}: vertices must be finite and within {} m", label(def), index,
+                                    kBodyMaxLength));
+        }
     }
-    if (!finite(s.offset) || !std::isfinite(s.angle)) {
-        throw Error(fmt::format("{}: shape {}: offset and angle must be finite", label(def), index));
+    if (!inWorld(s.offset) || !std::isfinite(s.angle)) {
+        throw Error(fmt::format("{}: shape {}: offset and angle must be finite, the offset within {} m", label(def),
+                                index, kBodyMaxLength));
     }
     switch (s.kind) {
     case BodyShapeKind::Box:
-        if (!(s.halfExtents.x >= kMinVertexGap && s.halfExtents.y >= kMinVertexGap) || !finite(s.halfExtents)) {
-            throw Error(fmt::format("{}: shape {}: box half extents must be at least {} m", label(def), index,
-                                    kMinVertexGap));
+        if (!(s.halfExtents.x >= kMinVertexGap && s.halfExtents.y >= kMinVertexGap) || !inWorld(s.halfExtents)) {
+            throw Error(fmt::format("{}: shape {}: box half extents must be {} to {} m", label(def), index,
+                                    kMinVertexGap, kBodyMaxLength));
         }
         break;
     case BodyShapeKind::Circle:
-        if (!(s.radius > 0.0f) || !std::isfinite(s.radius)) {
-            throw Error(fmt::format("{}: shape {}: circle radius must be > 0 m", label(def), index));
+        if (!(s.radius >= kMinVertexGap) || !inWorld(s.radius)) {
+            throw Error(fmt::format("{}: shape {}: circle radius must be {} to {} m", label(def), index, kMinVertexGap,
+                                    kBodyMaxLength));
         }
         break;
     case BodyShapeKind::Polygon: convexPolygon(def, index, s.vertices); break;
@@ -339,12 +348,17 @@ void validateBodyDef(const BodyDef& def) {
     if (def.type != BodyType::Static && def.type != BodyType::Kinematic && def.type != BodyType::Dynamic) {
         throw Error(fmt::format("{}: unknown body type", label(def)));
     }
-    if (!coupling::finite(def.position) || !std::isfinite(def.angle) || !coupling::finite(def.linearVelocity) ||
-        !std::isfinite(def.angularVelocity)) {
-        throw Error(fmt::format("{}: position, angle and velocities must be finite", label(def)));
+    if (!coupling::inWorld(def.position) || !std::isfinite(def.angle)) {
+        throw Error(fmt::format("{}: position and angle must be finite, the position within {} m", label(def),
+                                kBodyMaxLength));
     }
-    if (def.type == BodyType::Dynamic && (!(def.density > 0.0f) || !std::isfinite(def.density))) {
-        throw Error(fmt::format("{}: a dynamic body needs a density > 0 kg/m^2, got {}", label(def), def.density));
+    if (!(glm::length(def.linearVelocity) <= kBodyMaxSpeed) || !(std::abs(def.angularVelocity) <= kBodyMaxSpeed)) {
+        throw Error(fmt::format("{}: velocities must be finite and at most {} m/s and rad/s", label(def),
+                                kBodyMaxSpeed));
+    }
+    if (def.type == BodyType::Dynamic && !(def.density > 0.0f && def.density <= kBodyMaxDensity)) {
+        throw Error(fmt::format("{}: a dynamic body needs a density in (0, {}] kg/m^2, got {}", label(def),
+                                kBodyMaxDensity, def.density));
     }
     if (!(def.friction >= 0.0f) || !std::isfinite(def.friction) ||
         !(def.restitution >= 0.0f && def.restitution <= 1.0f)) {

@@ -76,11 +76,17 @@ glm::vec4 boundsOf(const kernels::FluidBodyShape& s) {
     return glm::vec4(lo, hi);
 }
 
+/// A coordinate clamped into [0, cells - 1]; NaN goes to 0 (std::clamp
+/// passes NaN through, and casting it to int is undefined: a body with
+/// infinite bounds overflowed the cell arrays).
+int clampCell(float c, int cells) {
+    return c >= 0.0f ? static_cast<int>(std::min(c, static_cast<float>(cells - 1))) : 0;
+}
+
 glm::ivec2 cellCoords(const Grid<2>& g, glm::vec2 x) {
     const float inv = 0.5f / g.h;  // cells are 2h wide
     const glm::vec2 c = glm::floor((x - g.origin) * inv);
-    return {static_cast<int>(std::clamp(c.x, 0.0f, static_cast<float>(g.cells[0] - 1))),
-            static_cast<int>(std::clamp(c.y, 0.0f, static_cast<float>(g.cells[1] - 1)))};
+    return {clampCell(c.x, g.cells[0]), clampCell(c.y, g.cells[1])};
 }
 
 /// One visit of a contact (see the file comment for who calls it how).

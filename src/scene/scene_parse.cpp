@@ -26,7 +26,7 @@ WorldDef parseWorld(const Table& t) {
     def.seed =
         static_cast<std::uint32_t>(t.integer("seed", def.seed, Bounds::between(0, 4294967295.0)));
     if (auto v = t.find("body_gravity")) {
-        const std::vector<float> g = v->numbers(2);
+        const std::vector<float> g = v->numbers(2, Bounds::between(-kMaxBodyGravity, kMaxBodyGravity));
         def.bodyGravity = {g[0], g[1]};
     }
     return def;
@@ -58,7 +58,7 @@ CameraDef parseCamera(const Table& t) {
 RunDef parseRun(const Table& t) {
     t.allowOnly({"dt", "steps"}, "[run]");
     RunDef def;
-    def.dt = t.real("dt", def.dt, {0.0, 1.0, true, false});
+    def.dt = t.real("dt", def.dt, Bounds::between(kMinStep, kMaxStep));
     def.steps = static_cast<std::uint32_t>(
         t.integer("steps", def.steps, Bounds::between(1, static_cast<double>(kMaxSteps))));
     return def;

@@ -107,6 +107,10 @@ EmitterState& emitterFromId(World& world, EmitterId id) {
 }
 
 WorldId createWorld(const WorldDef& def) {
+    if (!(std::abs(def.bodyGravity.x) <= kMaxBodyGravity && std::abs(def.bodyGravity.y) <= kMaxBodyGravity)) {
+        throw Error(fmt::format("WorldDef::bodyGravity must be finite, each component within {} m/s^2",
+                                kMaxBodyGravity));
+    }
     if (def.framesInFlight < 1 || def.framesInFlight > gpu::kMaxFramesInFlight) {
         throw Error(fmt::format("WorldDef::framesInFlight must be 1 to {}, got {}", gpu::kMaxFramesInFlight,
                                 def.framesInFlight));
@@ -325,8 +329,8 @@ void stepEmitters(World& w, float dt, StepStats& stats) {
 
 StepStats stepWorld(WorldId id, float dt) {
     World& w = worldFromId(id);
-    if (!(dt > 0.0f) || !std::isfinite(dt)) {
-        throw Error(fmt::format("stepWorld: dt must be a finite time > 0 s, got {}", dt));
+    if (!(dt >= kMinStep && dt <= kMaxStep)) {
+        throw Error(fmt::format("stepWorld: dt must be {} to {} s, got {}", kMinStep, kMaxStep, dt));
     }
     auto start = std::chrono::steady_clock::now();
     StepStats stats = emptyStats(w);

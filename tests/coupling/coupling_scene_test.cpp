@@ -163,5 +163,21 @@ TEST(CouplingSceneErrors, BodyGravityNeedsTwoNumbers) {
     expectError("[world]\nbody_gravity = [0, -9.81, 0]\n", {2, 16, "world.body_gravity", "an array of 2 numbers"});
 }
 
+// Issue 14's fuzz findings: values that reached Box2D or the fluid's grid
+// as infinities are refused where they enter, with their location.
+TEST(CouplingSceneErrors, AHugeCircleIsRefusedBeforeBox2DSeesIt) {
+    // Radius 1e18 overflowed the inertia and fired b2Body::ResetMassData's
+    // assertion m_I > 0.
+    expectError("[[body]]\nname = \"b\"\nshape = [{ circle = 1e18 }]\n", {1, 1, "body[0]", "circle radius must be"});
+}
+
+TEST(CouplingSceneErrors, BodyGravityOfAThousandGAtMost) {
+    expectError("[world]\nbody_gravity = [3e38, 3e38]\n", {2, 17, "world.body_gravity[0]", "10000"});
+}
+
+TEST(CouplingSceneErrors, AStepUnderAMicrosecondIsRefused) {
+    expectError("[run]\ndt = 1e-45\n", {2, 6, "run.dt", "1e-06"});
+}
+
 }  // namespace
 }  // namespace spindrift

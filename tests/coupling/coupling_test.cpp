@@ -318,6 +318,21 @@ TEST(CouplingBodies, BadDefinitionsAreRejected) {
     BodyDef edge = test::crate("edge", {0, 0}, {0.1f, 0.1f}, 100.0f);
     edge.shapes[0] = edgeShape({0, 0}, {1, 0});  // dynamic, no area
     EXPECT_THROW(createBody(w.id, edge), Error);
+    // Beyond what Box2D resolves in single precision (kBodyMaxLength): a
+    // huge circle, a box, a position; a density whose mass overflows.
+    BodyDef huge = test::crate("huge", {0, 0}, {0.1f, 0.1f}, 100.0f);
+    huge.shapes[0] = circleShape(1.0e18f);
+    EXPECT_THROW(createBody(w.id, huge), Error);
+    huge.shapes[0] = boxShape({1.0e20f, 1.0f});
+    EXPECT_THROW(createBody(w.id, huge), Error);
+    BodyDef far = test::crate("far", {2.0f * kBodyMaxLength, 0}, {0.1f, 0.1f}, 100.0f);
+    EXPECT_THROW(createBody(w.id, far), Error);
+    BodyDef dense = test::crate("dense", {0, 0}, {0.1f, 0.1f}, 2.0f * kBodyMaxDensity);
+    EXPECT_THROW(createBody(w.id, dense), Error);
+    // At the limits it is accepted: a 10 km circle of the densest material.
+    BodyDef big = test::crate("big", {0, 0}, {0.1f, 0.1f}, kBodyMaxDensity);
+    big.shapes[0] = circleShape(kBodyMaxLength);
+    EXPECT_NO_THROW(createBody(w.id, big));
     JointDef j;
     j.bodyA = {1};
     j.bodyB = {2};

@@ -58,7 +58,8 @@ kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what
 
 void validateEmitterDef(const EmitterDef& d) {
     std::string who = label("emitter", d.name);
-    require(d.capacity >= 1 && d.capacity <= (1u << 24), who, "capacity", "1 to 16777216 slots");
+    require(d.capacity >= 1 && d.capacity <= kEmitterMaxCapacity, who, "capacity",
+            fmt::format("1 to {} slots", kEmitterMaxCapacity));
     require(std::isfinite(d.rate) && d.rate >= 0.0f, who, "rate", "a finite rate >= 0 per second");
     requireRange(d.speed, who, "speed");
     requireRange(d.lifetime, who, "lifetime");
@@ -77,7 +78,8 @@ void validateEmitterDef(const EmitterDef& d) {
     require(s.spreadAngle >= 0.0f && s.spreadAngle <= 3.14159266f, who, "shape.spread", "an angle in [0, 180] degrees");
     for (const BurstDef& b : d.bursts) {
         require(std::isfinite(b.time) && b.time >= 0.0f, who, "bursts.time", "a time >= 0 s");
-        require(b.count < (1u << 20), who, "bursts.count", "fewer than 1048576 particles per burst");
+        require(b.count <= kEmitterMaxBurstCount, who, "bursts.count",
+                fmt::format("at most {} particles per burst", kEmitterMaxBurstCount));
     }
 }
 

@@ -162,7 +162,7 @@ void readSpawning(const Table& t, EmitterDef& def) {
             v->choice<Lifecycle>({{"spawn", Lifecycle::Spawn}, {"recycle", Lifecycle::Recycle}});
     }
     def.capacity = static_cast<std::uint32_t>(
-        t.integer("capacity", def.capacity, Bounds::between(1, static_cast<double>(kMaxCapacity))));
+        t.integer("capacity", def.capacity, Bounds::between(1, kEmitterMaxCapacity)));
     // Recycle mode re-births every slot as it dies: there is nothing to pace.
     if (def.lifecycle == Lifecycle::Recycle && !def.stateless) {
         for (std::string_view key : {"rate", "bursts"}) {

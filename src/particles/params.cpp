@@ -4,6 +4,7 @@
 #include "particles/emitter_rules.h"
 
 #include "kernels/random.glsl"
+#include "kernels/stateless.glsl"
 
 #include <fmt/format.h>
 
@@ -33,6 +34,9 @@ std::string label(const char* kind, const std::string& name) {
 static_assert(kMaxCurveKeys == static_cast<int>(kernels::SD_MAX_CURVE_KEYS));
 static_assert(sizeof(kernels::CurveParams::values) / sizeof(kernels::CurveParams::values[0]) ==
               kernels::SD_MAX_CURVE_KEYS);
+// Burst b's particles get serials b * SD_BURST_SERIAL_STRIDE + j
+// (src/kernels/stateless.glsl): a larger burst would run into the next one's.
+static_assert(kEmitterMaxBurstCount == kernels::SD_BURST_SERIAL_STRIDE - 1);
 
 }  // namespace
 

@@ -68,6 +68,12 @@ struct SpawnShapeDef {
     float spreadAngle = 0.0f;
 };
 
+/// Most slots an emitter may have (EmitterDef::capacity); also the limit of a
+/// fluid (kFluidMaxCapacity). The API and scene files check against it.
+inline constexpr std::uint32_t kEmitterMaxCapacity = 16 * 1024 * 1024;
+/// Most particles one burst of the API may ask for (BurstDef::count).
+inline constexpr std::uint32_t kEmitterMaxBurstCount = (1u << 20) - 1;
+
 struct BurstDef {
     float time = 0.0f;         ///< s since the emitter started
     std::uint32_t count = 0;   ///< particles born at that time

@@ -81,7 +81,7 @@ inline constexpr std::uint32_t kFluidMaxSubsteps = 16;
 /// Neighbours kept per particle (FluidDef::maxNeighbours).
 inline constexpr std::uint32_t kFluidMaxNeighbours = 1024;
 /// Most particles a fluid may ask for (FluidDef::capacity), as an emitter.
-inline constexpr std::uint32_t kFluidMaxCapacity = 16 * 1024 * 1024;
+inline constexpr std::uint32_t kFluidMaxCapacity = kEmitterMaxCapacity;
 
 struct FluidDef {
     std::string name;

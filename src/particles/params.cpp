@@ -1,6 +1,10 @@
 #include "particles/params.h"
 
+#include "core/field_rules.h"
+#include "particles/emitter_rules.h"
+
 #include "kernels/random.glsl"
+#include "kernels/stateless.glsl"
 
 #include <fmt/format.h>
 
@@ -21,11 +25,6 @@ void require(bool ok, const std::string& object, const char* field, const std::s
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
-void requireRange(const FloatRange& r, const std::string& object, const char* field) {
-    require(std::isfinite(r.min) && std::isfinite(r.max) && r.min <= r.max, object, field,
-            "a finite range with min <= max");
-}
-
 std::string label(const char* kind, const std::string& name) {
     return name.empty() ? std::string(kind) : fmt::format("{} '{}'", kind, name);
 }
@@ -35,6 +34,9 @@ std::string label(const char* kind, const std::string& name) {
 static_assert(kMaxCurveKeys == static_cast<int>(kernels::SD_MAX_CURVE_KEYS));
 static_assert(sizeof(kernels::CurveParams::values) / sizeof(kernels::CurveParams::values[0]) ==
               kernels::SD_MAX_CURVE_KEYS);
+// Burst b's particles get serials b * SD_BURST_SERIAL_STRIDE + j
+// (src/kernels/stateless.glsl): a larger burst would run into the next one's.
+static_assert(kEmitterMaxBurstCount == kernels::SD_BURST_SERIAL_STRIDE - 1);
 
 }  // namespace
 
@@ -57,28 +59,31 @@ kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what
 }
 
 void validateEmitterDef(const EmitterDef& d) {
-    std::string who = label("emitter", d.name);
-    require(d.capacity >= 1 && d.capacity <= (1u << 24), who, "capacity", "1 to 16777216 slots");
-    require(std::isfinite(d.rate) && d.rate >= 0.0f, who, "rate", "a finite rate >= 0 per second");
-    requireRange(d.speed, who, "speed");
-    requireRange(d.lifetime, who, "lifetime");
-    require(d.lifetime.min > 0.0f, who, "lifetime", "lifetimes > 0 s");
-    requireRange(d.size, who, "size");
-    require(d.size.min >= 0.0f, who, "size", "sizes >= 0 m");
-    requireRange(d.rotation, who, "rotation");
-    requireRange(d.angularVelocity, who, "angular_velocity");
-    require(std::isfinite(d.mass) && d.mass > 0.0f, who, "mass", "a mass > 0 kg");
-    require(d.collision.lifeLossOnCollision >= 0.0f && d.collision.lifeLossOnCollision <= 1.0f, who,
-            "collision.life_loss", "a fraction in [0, 1]");
-    const SpawnShapeDef& s = d.shape;
-    require(finite(s.center) && finite(s.halfExtents) && std::isfinite(s.radius) && s.radius >= 0.0f, who, "shape",
-            "finite centre and extents, radius >= 0");
-    require(finite(s.direction) && glm::length(s.direction) > 0.0f, who, "shape.direction", "a non-zero direction");
-    require(s.spreadAngle >= 0.0f && s.spreadAngle <= 3.14159266f, who, "shape.spread", "an angle in [0, 180] degrees");
-    for (const BurstDef& b : d.bursts) {
-        require(std::isfinite(b.time) && b.time >= 0.0f, who, "bursts.time", "a time >= 0 s");
-        require(b.count < (1u << 20), who, "bursts.count", "fewer than 1048576 particles per burst");
+    // Each field against its rule (emitter_rules.h), named as a scene file
+    // spells its key, so the scene loader can point at it (validateAt).
+    namespace rules = emitter_rules;
+    const FieldCheck check(objectLabel("emitter", d.name));
+    check.number("capacity", d.capacity, rules::kCapacity);
+    check.number("rate", d.rate, rules::kRate);
+    for (std::size_t i = 0; i < d.bursts.size(); ++i) {
+        check.number(fieldPath("bursts", i, "time"), d.bursts[i].time, rules::kBurstTime);
+        check.number(fieldPath("bursts", i, "count"), d.bursts[i].count, rules::kBurstCount);
     }
+    const SpawnShapeDef& s = d.shape;
+    check.finite("shape.center", s.center);
+    check.number("shape.radius", s.radius, rules::kShapeRadius);
+    check.finite("shape.half_extents", s.halfExtents);
+    check.finite("shape.direction", s.direction);
+    check.expect(glm::length(s.direction) > 0.0f, "shape.direction", "a non-zero direction",
+                 fmt::format("[{}, {}, {}]", s.direction.x, s.direction.y, s.direction.z));
+    check.number("shape.spread", s.spreadAngle, rules::kSpread);
+    check.range("speed", d.speed, rules::kSpeed);
+    check.range("lifetime", d.lifetime, rules::kLifetime);
+    check.range("size", d.size, rules::kSize);
+    check.range("rotation", d.rotation, rules::kRotation);
+    check.range("angular_velocity", d.angularVelocity, rules::kAngularVelocity);
+    check.number("mass", d.mass, rules::kMass);
+    check.number("collision.life_loss", d.collision.lifeLossOnCollision, rules::kLifeLoss);
 }
 
 kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,

@@ -8,7 +8,6 @@
 
 namespace spindrift::scene {
 
-inline constexpr std::int64_t kMaxCapacity = 16 * 1024 * 1024;  ///< particles per emitter
 /// Emitters select colliders and forces with 32-bit masks on the GPU
 /// (src/kernels/layout.glsl).
 inline constexpr std::size_t kMaxColliders = kernels::SD_MAX_COLLIDERS;

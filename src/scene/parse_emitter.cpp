@@ -1,7 +1,14 @@
 // [[emitter]]: spawning, launch shape, per-particle ranges, curves, forces,
 // collisions, the stateless closed form and the sprite it is drawn with.
 // Angles in the file are degrees.
-#include "scene/limits.h"
+//
+// Fields that have an EmitterDef rule (src/particles/emitter_rules.h) are
+// read with type checks only and checked once by validateEmitterDef through
+// validateAt. What is checked here is what only a file says: degrees, a
+// duration left out for "forever", a burst that fits the capacity, a radius
+// the shape needs, colours and curves as written.
+#include "particles/emitter_rules.h"
+#include "particles/params.h"
 #include "scene/parse_internal.h"
 
 #include <fmt/format.h>
@@ -136,7 +143,11 @@ Curve readCurve(const Value& v, bool colorValues) {
 
 // --- Spawning ----------------------------------------------------------------
 
-// Bursts of at most `capacity` particles: a larger one could never be born whole.
+// Bursts of at most `capacity` particles: a larger one could never be born
+// whole. A type error is worded with that range; the range itself is checked
+// after the capacity (checkBurstCounts).
+FieldRule burstCountRule(std::uint32_t capacity) { return FieldRule::whole(Bounds::between(1, capacity)); }
+
 std::vector<BurstDef> readBursts(const Value& v, std::uint32_t capacity) {
     std::vector<BurstDef> bursts;
     for (std::size_t i = 0; i < v.array().size(); ++i) {
@@ -147,10 +158,8 @@ std::vector<BurstDef> readBursts(const Value& v, std::uint32_t capacity) {
         const Table t(item.context(), *item.node().as_table(), item.path());
         t.allowOnly({"time", "count"}, "a burst");
         BurstDef burst;
-        burst.time = t.require("time", "a number >= 0 (s)").real(Bounds::nonNegative());
-        burst.count = static_cast<std::uint32_t>(
-            t.require("count", "an integer >= 1")
-                .integer(Bounds::between(1, static_cast<double>(capacity))));
+        burst.time = t.require("time", "a number >= 0 (s)").real(emitter_rules::kBurstTime);
+        burst.count = t.require("count", "an integer >= 1").whole<std::uint32_t>(burstCountRule(capacity));
         bursts.push_back(burst);
     }
     return bursts;
@@ -161,8 +170,7 @@ void readSpawning(const Table& t, EmitterDef& def) {
         def.lifecycle =
             v->choice<Lifecycle>({{"spawn", Lifecycle::Spawn}, {"recycle", Lifecycle::Recycle}});
     }
-    def.capacity = static_cast<std::uint32_t>(
-        t.integer("capacity", def.capacity, Bounds::between(1, static_cast<double>(kMaxCapacity))));
+    def.capacity = t.whole<std::uint32_t>("capacity", def.capacity, emitter_rules::kCapacity);
     // Recycle mode re-births every slot as it dies: there is nothing to pace.
     if (def.lifecycle == Lifecycle::Recycle && !def.stateless) {
         for (std::string_view key : {"rate", "bursts"}) {
@@ -174,7 +182,7 @@ void readSpawning(const Table& t, EmitterDef& def) {
             }
         }
     }
-    def.rate = t.real("rate", def.rate, Bounds::nonNegative());
+    def.rate = t.real("rate", def.rate, emitter_rules::kRate);
     if (auto v = t.find("bursts")) {
         def.bursts = readBursts(*v, def.capacity);
     }
@@ -186,8 +194,8 @@ void readSpawning(const Table& t, EmitterDef& def) {
 
 void readParticleRanges(const Table& t, EmitterDef& def) {
     def.speed = t.range("speed", def.speed, Bounds::nonNegative());
-    def.lifetime = t.range("lifetime", def.lifetime, Bounds::positive());
-    def.size = t.range("size", def.size, Bounds::nonNegative());
+    def.lifetime = t.range("lifetime", def.lifetime, emitter_rules::kLifetime);
+    def.size = t.range("size", def.size, emitter_rules::kSize);
     if (auto v = t.find("rotation")) {
         def.rotation = toRadians(v->range());
     }
@@ -197,7 +205,7 @@ void readParticleRanges(const Table& t, EmitterDef& def) {
     if (auto v = t.find("color")) {
         def.color = readColorRange(*v);
     }
-    def.mass = t.real("mass", def.mass, Bounds::positive());
+    def.mass = t.real("mass", def.mass, emitter_rules::kMass);
     if (auto v = t.find("color_over_life")) {
         def.colorOverLife = readCurve(*v, true);
     }
@@ -238,7 +246,7 @@ CollisionResponseDef readCollision(const Table& t, const NameTable& colliders) {
         def.colliders = readReferences<ColliderId>(*v, colliders, "collider");
     }
     def.killOnCollision = t.boolean("kill", def.killOnCollision);
-    def.lifeLossOnCollision = t.real("life_loss", def.lifeLossOnCollision, Bounds::unit());
+    def.lifeLossOnCollision = t.real("life_loss", def.lifeLossOnCollision, emitter_rules::kLifeLoss);
     return def;
 }
 
@@ -278,6 +286,18 @@ void readDynamics(const Table& t, EmitterDef& def, const NameTable& forces,
     }
 }
 
+// Checked after validateEmitterDef, so a bad capacity is reported as such and
+// not as every burst being too large for it.
+void checkBurstCounts(const Table& t, const EmitterDef& def) {
+    const FieldRule rule = burstCountRule(def.capacity);
+    for (std::size_t i = 0; i < def.bursts.size(); ++i) {
+        if (!rule.bounds.contains(def.bursts[i].count)) {
+            t.failAtField(fieldPath("bursts", i, "count"),
+                          fmt::format("expected {}, got {}", rule.describe(), def.bursts[i].count));
+        }
+    }
+}
+
 // --- Drawing -------------------------------------------------------------------
 
 SpriteDef readSprite(const Table& t) {
@@ -310,6 +330,8 @@ EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& force
     if (auto sprite = t.subTable("sprite")) {
         def.sprite = readSprite(*sprite);
     }
+    validateAt(t, [&] { validateEmitterDef(def); });
+    checkBurstCounts(t, def);
     return def;
 }
 

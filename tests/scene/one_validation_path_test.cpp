@@ -6,6 +6,8 @@
 #include <spindrift/fluid.h>
 #include <spindrift/scene.h>
 
+#include "particles/params.h"  // validateEmitterDef, what createEmitter checks
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -115,6 +117,149 @@ TEST(OneValidationPath, FireStrengthReadsTheSameFromTheApiAndAFile) {
         EXPECT_EQ(scene.line(), 7);
         EXPECT_EQ(scene.keyPath(), "fire[0].douse_per_strike");
     }
+}
+
+// --- Emitters ------------------------------------------------------------------
+
+// A valid emitter in a file, the line `line` added on line 3.
+std::string emitterScene(const std::string& line) {
+    std::string text = "[[emitter]]\nname = \"e\"\n";
+    text.append(line).append("\n");
+    return text;
+}
+
+EmitterDef emitterDef() {
+    EmitterDef def;
+    def.name = std::string("e");
+    return def;
+}
+
+FieldError emitterApiError(const EmitterDef& def) {
+    try {
+        validateEmitterDef(def);
+    } catch (const FieldError& e) {
+        return e;
+    }
+    ADD_FAILURE() << "the API accepted it";
+    return FieldError("", "", "");
+}
+
+// One past the limit is refused with the same words from the API and from a
+// file (the file's error at its line 3, at `column`); returns the API error.
+FieldError expectSameError(const EmitterDef& def, const std::string& line, int column, const std::string& keyPath) {
+    const FieldError api = emitterApiError(def);
+    const SceneError scene = sceneError(emitterScene(line));
+    EXPECT_EQ(scene.message(), api.message());
+    EXPECT_EQ(scene.line(), 3);
+    EXPECT_EQ(scene.column(), column);
+    EXPECT_EQ(scene.keyPath(), keyPath);
+    return api;
+}
+
+// The value at the limit is accepted by both.
+void expectAccepted(const EmitterDef& def, const std::string& line) {
+    EXPECT_NO_THROW(validateEmitterDef(def));
+    EXPECT_NO_THROW(parseScene(emitterScene(line), "ok.toml")) << line;
+}
+
+TEST(OneValidationPath, EmitterCapacityHasOneLimit) {
+    EmitterDef def = emitterDef();
+    def.capacity = kEmitterMaxCapacity;
+    expectAccepted(def, "capacity = 16777216");
+    def.capacity = kEmitterMaxCapacity + 1;
+    const FieldError api = expectSameError(def, "capacity = 16777217", 12, "emitter[0].capacity");
+    EXPECT_EQ(api.field(), "capacity");
+    EXPECT_EQ(api.message(), "expected an integer in [1, 16777216], got 16777217");
+    EXPECT_STREQ(api.what(), "emitter 'e': capacity: expected an integer in [1, 16777216], got 16777217");
+
+    def.capacity = 1;
+    expectAccepted(def, "capacity = 1");
+    def.capacity = 0;
+    expectSameError(def, "capacity = 0", 12, "emitter[0].capacity");
+}
+
+TEST(OneValidationPath, EmitterRateMayBeZeroButNotNegative) {
+    EmitterDef def = emitterDef();
+    def.rate = 0.0f;
+    expectAccepted(def, "rate = 0");
+    def.rate = -1.0f;
+    const FieldError api = expectSameError(def, "rate = -1", 8, "emitter[0].rate");
+    EXPECT_EQ(api.message(), "expected a number >= 0, got -1");
+}
+
+TEST(OneValidationPath, EmitterLifetimeEndsMustBePositive) {
+    EmitterDef def = emitterDef();
+    def.lifetime = {0.0f, 1.0f};
+    const FieldError api = expectSameError(def, "lifetime = [0, 1]", 13, "emitter[0].lifetime[0]");
+    EXPECT_EQ(api.field(), "lifetime[0]");
+    EXPECT_EQ(api.message(), "expected a number > 0, got 0");
+    def.lifetime = {2.0f, 1.0f};
+    expectSameError(def, "lifetime = [2, 1]", 12, "emitter[0].lifetime");
+}
+
+TEST(OneValidationPath, EmitterSizeMayBeZeroButNotNegative) {
+    EmitterDef def = emitterDef();
+    def.size = {0.0f, 0.0f};
+    expectAccepted(def, "size = 0");
+    def.size = {-0.5f, -0.5f};
+    const FieldError api = expectSameError(def, "size = -0.5", 8, "emitter[0].size");
+    EXPECT_EQ(api.message(), "expected a number >= 0, got -0.5");
+}
+
+TEST(OneValidationPath, EmitterMassMustBePositive) {
+    EmitterDef def = emitterDef();
+    def.mass = 0.0f;
+    const FieldError api = expectSameError(def, "mass = 0", 8, "emitter[0].mass");
+    EXPECT_EQ(api.message(), "expected a number > 0, got 0");
+}
+
+TEST(OneValidationPath, EmitterLifeLossIsAFraction) {
+    EmitterDef def = emitterDef();
+    def.collision.lifeLossOnCollision = 1.0f;
+    EXPECT_NO_THROW(validateEmitterDef(def));
+    EXPECT_NO_THROW(parseScene(emitterScene("[emitter.collision]\nlife_loss = 1"), "ok.toml"));
+
+    def.collision.lifeLossOnCollision = 1.5f;
+    const FieldError api = emitterApiError(def);
+    EXPECT_EQ(api.field(), "collision.life_loss");
+    EXPECT_EQ(api.message(), "expected a number in [0, 1], got 1.5");
+    const SceneError scene = sceneError(emitterScene("[emitter.collision]\nlife_loss = 1.5"));
+    EXPECT_EQ(scene.message(), api.message());
+    EXPECT_EQ(scene.line(), 4);
+    EXPECT_EQ(scene.column(), 13);
+    EXPECT_EQ(scene.keyPath(), "emitter[0].collision.life_loss");
+}
+
+TEST(OneValidationPath, EmitterBurstTimeMayBeZeroButNotNegative) {
+    EmitterDef def = emitterDef();
+    def.bursts.push_back({0.0f, 1});
+    expectAccepted(def, "bursts = [{ time = 0, count = 1 }]");
+    def.bursts[0].time = -1.0f;
+    const FieldError api = expectSameError(def, "bursts = [{ time = -1, count = 1 }]", 20, "emitter[0].bursts[0].time");
+    EXPECT_EQ(api.field(), "bursts[0].time");
+    EXPECT_EQ(api.message(), "expected a number >= 0, got -1");
+}
+
+TEST(OneValidationPath, ABurstOfTheApiHasOneLimit) {
+    // A file's bursts fit the capacity instead (SceneErrors tests), which is
+    // below this limit only for capacities under it.
+    EmitterDef def = emitterDef();
+    def.bursts.push_back({0.0f, kEmitterMaxBurstCount});
+    EXPECT_NO_THROW(validateEmitterDef(def));
+    def.bursts[0].count = kEmitterMaxBurstCount + 1;
+    const FieldError api = emitterApiError(def);
+    EXPECT_EQ(api.field(), "bursts[0].count");
+    EXPECT_EQ(api.message(), "expected an integer in [0, 1048575], got 1048576");
+}
+
+TEST(OneValidationPath, AFileBurstMustFitAValidCapacity) {
+    // The capacity is checked first: a bad one is reported, not the burst.
+    const SceneError bad = sceneError(emitterScene("capacity = 0\nbursts = [{ time = 0, count = 5 }]"));
+    EXPECT_EQ(bad.keyPath(), "emitter[0].capacity");
+    const SceneError big = sceneError(emitterScene("capacity = 4\nbursts = [{ time = 0, count = 5 }]"));
+    EXPECT_EQ(big.keyPath(), "emitter[0].bursts[0].count");
+    EXPECT_EQ(big.message(), "expected an integer in [1, 4], got 5");
+    EXPECT_NO_THROW(parseScene(emitterScene("capacity = 4\nbursts = [{ time = 0, count = 4 }]"), "ok.toml"));
 }
 
 }  // namespace

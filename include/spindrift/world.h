@@ -39,11 +39,12 @@ struct WorldDef {
     glm::vec2 bodyGravity{0.0f, -9.81f};
 };
 
-/// Shortest and longest step (s) stepWorld takes. Under a microsecond the
-/// fluid's substep arithmetic underflows in single precision (a step of
-/// 1e-45 s made NaN grid cells); over a second births owed for the step and
-/// the solver's substeps stop meaning anything for a real-time engine.
-inline constexpr double kMinStep = 1.0e-6;
+/// Shortest and longest step (s) stepWorld takes. Under a nanosecond the
+/// square of a fluid substep leaves single precision's normal range (a step
+/// of 1e-45 s made NaN grid cells); tests spawn particles without moving
+/// them with 1e-9 s steps. Over a second births owed for the step and the
+/// fluid's substeps stop meaning anything for a real-time engine.
+inline constexpr double kMinStep = 1.0e-9;
 inline constexpr double kMaxStep = 1.0;
 /// Largest body gravity component (m/s^2), a thousand g: 3e38 turned the
 /// bodies' bounds into infinities the fluid's grid could not bin.

@@ -329,7 +329,7 @@ void stepEmitters(World& w, float dt, StepStats& stats) {
 
 StepStats stepWorld(WorldId id, float dt) {
     World& w = worldFromId(id);
-    if (!(dt >= kMinStep && dt <= kMaxStep)) {
+    if (!(dt >= static_cast<float>(kMinStep) && dt <= static_cast<float>(kMaxStep))) {
         throw Error(fmt::format("stepWorld: dt must be {} to {} s, got {}", kMinStep, kMaxStep, dt));
     }
     auto start = std::chrono::steady_clock::now();

@@ -175,8 +175,8 @@ TEST(CouplingSceneErrors, BodyGravityOfAThousandGAtMost) {
     expectError("[world]\nbody_gravity = [3e38, 3e38]\n", {2, 17, "world.body_gravity[0]", "10000"});
 }
 
-TEST(CouplingSceneErrors, AStepUnderAMicrosecondIsRefused) {
-    expectError("[run]\ndt = 1e-45\n", {2, 6, "run.dt", "1e-06"});
+TEST(CouplingSceneErrors, AStepUnderANanosecondIsRefused) {
+    expectError("[run]\ndt = 1e-45\n", {2, 6, "run.dt", "1e-09"});
 }
 
 }  // namespace

@@ -47,6 +47,18 @@ struct Particles {
     std::vector<Vec<D>> pseudo;
 
     std::size_t size() const { return position.size(); }
+    /// Calls fn(array) for every array kept in particle order (all but
+    /// pseudo), so a pass that reorders or removes particles misses none.
+    template <class Fn>
+    void forEachKept(Fn&& fn) {
+        fn(position);
+        fn(velocity);
+        fn(pressure);
+        fn(density);
+        fn(id);
+        fn(anchor);
+        fn(still);
+    }
     void push(Vec<D> x, Vec<D> v, std::uint32_t serial) {
         position.push_back(x);
         velocity.push_back(v);

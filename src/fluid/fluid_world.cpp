@@ -212,27 +212,21 @@ Vec<D> inDimension(glm::vec3 x) {
 template <int D>
 std::uint32_t removeWithin(Particles<D>& p, glm::vec3 centre, float radius) {
     const Vec<D> c = inDimension<D>(centre);
+    std::vector<std::uint8_t> keep(p.size());
     std::size_t kept = 0;
     for (std::size_t i = 0; i < p.size(); ++i) {
         const Vec<D> d = p.position[i] - c;
-        if (glm::dot(d, d) <= radius * radius) continue;
-        p.position[kept] = p.position[i];
-        p.velocity[kept] = p.velocity[i];
-        p.pressure[kept] = p.pressure[i];
-        p.density[kept] = p.density[i];
-        p.id[kept] = p.id[i];
-        p.anchor[kept] = p.anchor[i];
-        p.still[kept] = p.still[i];
-        ++kept;
+        keep[i] = glm::dot(d, d) > radius * radius;
+        kept += keep[i];
     }
     const auto removed = static_cast<std::uint32_t>(p.size() - kept);
-    p.position.resize(kept);
-    p.velocity.resize(kept);
-    p.pressure.resize(kept);
-    p.density.resize(kept);
-    p.id.resize(kept);
-    p.anchor.resize(kept);
-    p.still.resize(kept);
+    p.forEachKept([&](auto& array) {
+        std::size_t to = 0;
+        for (std::size_t i = 0; i < keep.size(); ++i) {
+            if (keep[i]) array[to++] = array[i];
+        }
+        array.resize(kept);
+    });
     if (p.pseudo.size() > kept) p.pseudo.resize(kept);  // refilled every step
     return removed;
 }

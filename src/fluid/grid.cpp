@@ -4,6 +4,7 @@
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
+#include <type_traits>
 #include <cmath>
 #include <limits>
 
@@ -128,13 +129,16 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
             });
             array.swap(sorted);
         };
-        gather(p.position, g.scratchVec);
-        gather(p.velocity, g.scratchVec);
-        gather(p.pressure, g.scratchFloat);
-        gather(p.density, g.scratchFloat);
-        gather(p.id, g.scratchUint);
-        gather(p.anchor, g.scratchVec);
-        gather(p.still, g.scratchFloat);
+        p.forEachKept([&](auto& array) {
+            using Array = std::decay_t<decltype(array)>;
+            if constexpr (std::is_same_v<Array, std::vector<float>>) {
+                gather(array, g.scratchFloat);
+            } else if constexpr (std::is_same_v<Array, std::vector<std::uint32_t>>) {
+                gather(array, g.scratchUint);
+            } else {
+                gather(array, g.scratchVec);
+            }
+        });
         gather(g.key, g.scratchUint);
     }
 

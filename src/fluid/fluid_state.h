@@ -126,6 +126,12 @@ struct Constraints {
     /// the unit direction into the wall, summed).
     std::vector<float> wallDensity;
     std::vector<glm::vec3> wallGradient;
+    /// Warm start (solver.cpp), gathered by the setup: the velocity change
+    /// the previous pressure, scaled by warmFraction, gives each particle,
+    /// and whether it could be gathered (every list symmetric: no overflow).
+    std::vector<glm::vec3> warmVelocity;
+    float warmFraction = 0.0f;
+    bool warmGathered = false;
 };
 
 /// Neighbour lists of one step, compact (no fixed stride, so no overflow and

@@ -164,7 +164,9 @@ float closingSpeed(const ApproachHistogram& h) {
 ///   per substep (2D tanks released at rest, 1 substep of 1/60 s: 20 layers
 ///   at 2.5 cm spacing (0.74) rest; 20 layers at 1 cm (1.85) and 60 at 2.5 cm
 ///   (2.2) collapse; 60 at 1 cm (5.6) collapses at 2 substeps and rests at
-///   4);
+///   4). At one iteration the solver holds half that depth (the 20-layer
+///   tank at 2.5 cm kept moving at 0.1 to 0.2 m/s at one substep and rests
+///   at two);
 /// - compression, the backstop: a step that ended more than
 ///   kCompressionLimit over rest density asks for the count that would have
 ///   brought it to kAim (the error falls about as 1 / substeps^2); that count
@@ -175,7 +177,7 @@ float closingSpeed(const ApproachHistogram& h) {
 int automaticSubsteps(FluidState& f, float dt) {
     constexpr float kCourant = 0.4f;
     constexpr float kCompressionLimit = 0.01f;
-    constexpr float kDepthNumber = 0.8f;
+    const float depthNumber = f.def.iterations >= 2 ? 0.8f : 0.4f;
     constexpr float kAim = 0.005f;
     constexpr std::uint32_t kHoldSteps = 10;
     constexpr int kMaxSubsteps = static_cast<int>(kFluidMaxSubsteps);
@@ -184,7 +186,7 @@ int automaticSubsteps(FluidState& f, float dt) {
     const float bySpeed = std::ceil(reach / (kCourant * f.h));  // NaN or inf after a blow-up: the most
     const float depth = f.def.dimension == 2 ? pressedDepth<2>(f, f.p2) : pressedDepth<3>(f, f.p3);
     const float layers = depth / f.def.spacing;
-    const float byDepth = std::ceil(std::sqrt(layers * glm::length(f.def.gravity) * dt * dt / (kDepthNumber * f.h)));
+    const float byDepth = std::ceil(std::sqrt(layers * glm::length(f.def.gravity) * dt * dt / (depthNumber * f.h)));
     // The compression of a step falls about as 1 / substeps^2 (each substep
     // lets the fluid sink by g dt^2 / substeps^2 before the pressure answers):
     // the count that would have brought the last step's error to kAim.

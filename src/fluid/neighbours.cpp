@@ -81,6 +81,11 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     c.invMass.resize(n);
     c.count.resize(n);
     c.first.resize(n);
+    c.warmVelocity.resize(n);
+    // The warm start's scale (solver.cpp): the pressure is an impulse per
+    // substep, so it scales with the substep's length.
+    c.warmFraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
+    const float warmFraction = c.warmFraction;
 
     const float h2 = f.h * f.h;
     const float invH2 = 1.0f / h2;
@@ -127,6 +132,13 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             float mass = 0.0f;
             float fastest = 0.0f;  // m/s, the fastest closing speed of a neighbour
             Vec<D> gSum(0.0f);
+            // The warm start of the pairs, gathered: i's own constraint gives
+            // i -g lambda_i per neighbour, neighbour j's gives it -g lambda_j
+            // (g of the pair seen from j is -g), so i gains -g (lambda_i +
+            // lambda_j) from each pair, the same sum the scattered warm start
+            // makes when every list is symmetric.
+            const float lambdaI = p.pressure[i] * warmFraction;
+            Vec<D> warm(0.0f);
             std::uint32_t count = 0;
             for (std::size_t k = 0; k < nearCount; ++k) {
                 const Candidate<D>& cand = near[k];
@@ -144,6 +156,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                 // substeps (fluid_step.cpp).
                 fastest = std::max(fastest, glm::dot(vi - p.velocity[cand.index], cand.offset) * invR);
                 out.push_back(Neighbour<D>{gj, cand.index});
+                warm -= gj * (lambdaI + p.pressure[cand.index] * warmFraction);
                 mass += w * w;
                 gSum += gj;
                 count += 1;
@@ -155,6 +168,10 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             // own Jacobian entry, -(sum g + wall).
             density += c.wallDensity[i];
             gSum += Vec<D>(c.wallGradient[i]);
+            if (count != 0) warm -= Vec<D>(c.wallGradient[i]) * lambdaI;  // the ghosts take no impulse
+            glm::vec3 warm3(0.0f);
+            for (int a = 0; a < D; ++a) warm3[a] = warm[a];
+            c.warmVelocity[i] = warm3;
             // Effective mass of the Jacobian (g_n for each neighbour, -sum g for
             // the particle itself): sum |g|^2 + |sum g|^2. The slides' A =
             // sum 2 w^2 is exact for one neighbour only; at a wall or a free
@@ -167,6 +184,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             const float relative = density * invRest;
             p.density[i] = relative;
             s.errorSum += std::max(relative - 1.0f, 0.0f);
+
             s.maxError = std::max<double>(s.maxError, relative - 1.0f);
             s.neighbourSum += count;
         }
@@ -181,12 +199,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
         all.neighbourSum += s.neighbourSum;
         all.overflows += s.overflows;
     }
+
     const double count = static_cast<double>(std::max<std::size_t>(n, 1));
     stats.meanDensityError = all.errorSum / count;
     stats.maxDensityError = n > 0 ? all.maxError : 0.0;
     for (std::size_t b = 0; b < all.approach.size(); ++b) f.approach[b] += all.approach[b];
     stats.meanNeighbours = static_cast<double>(all.neighbourSum) / count;
     stats.neighbourOverflows += all.overflows;  // summed over the substeps
+    c.warmGathered = all.overflows == 0;
 }
 
 template void setupConstraints<2>(WorkerPool&, FluidState&, float, FluidStepStats&);

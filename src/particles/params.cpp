@@ -68,14 +68,22 @@ void validateEmitterDef(const EmitterDef& d) {
     const FieldCheck check(objectLabel("emitter", d.name));
     check.number("capacity", d.capacity, rules::kCapacity);
     check.number("rate", d.rate, rules::kRate);
+    check.number("duration", d.duration, rules::kDuration);
     for (std::size_t i = 0; i < d.bursts.size(); ++i) {
         check.number(fieldPath("bursts", i, "time"), d.bursts[i].time, rules::kBurstTime);
         check.number(fieldPath("bursts", i, "count"), d.bursts[i].count, rules::kBurstCount);
     }
     const SpawnShapeDef& s = d.shape;
     check.finite("shape.center", s.center);
-    check.number("shape.radius", s.radius, rules::kShapeRadius);
-    check.finite("shape.half_extents", s.halfExtents);
+    const bool rim = s.kind == SpawnShapeKind::Disk || s.kind == SpawnShapeKind::Cone;
+    if (rim || s.kind == SpawnShapeKind::Sphere) {
+        check.number("shape.radius", s.radius, rim ? rules::kRimRadius : rules::kSphereRadius);
+    }
+    if (s.kind == SpawnShapeKind::Box) {
+        for (std::size_t a = 0; a < 3; ++a) {
+            check.number(fieldPath("shape.half_extents", a), s.halfExtents[static_cast<int>(a)], rules::kHalfExtent);
+        }
+    }
     check.finite("shape.direction", s.direction);
     check.expect(glm::length(s.direction) > 0.0f, "shape.direction", "a non-zero direction",
                  fmt::format("[{}, {}, {}]", s.direction.x, s.direction.y, s.direction.z));

@@ -264,6 +264,35 @@ TEST(OneValidationPath, AFileBurstMustFitAValidCapacity) {
     EXPECT_NO_THROW(parseScene(emitterScene("capacity = 4\nbursts = [{ time = 0, count = 4 }]"), "ok.toml"));
 }
 
+TEST(OneValidationPath, EmitterSpeedIsAMagnitudeForBoth) {
+    EmitterDef def = emitterDef();
+    def.speed = {-1.0f, 2.0f};
+    const FieldError api = expectSameError(def, "speed = [-1, 2]", 10, "emitter[0].speed[0]");
+    EXPECT_EQ(api.message(), "expected a number >= 0, got -1");
+}
+
+TEST(OneValidationPath, AFilesDegreesAreCheckedAsTheApisRadians) {
+    // 180 degrees converts to the float pi, the rule's top; more is refused
+    // by the API's rule on the converted value.
+    EXPECT_NO_THROW(parseScene(emitterScene("[emitter.shape]\nkind = \"point\"\nspread = 180"), "ok.toml"));
+    const SceneError scene = sceneError(emitterScene("[emitter.shape]\nkind = \"point\"\nspread = 200"));
+    EXPECT_EQ(scene.keyPath(), "emitter[0].shape.spread");
+    EXPECT_EQ(scene.line(), 5);
+    EXPECT_EQ(scene.message().rfind("expected a number in [0, 3.1415927], got 3.49", 0), 0u) << scene.message();
+}
+
+TEST(OneValidationPath, ADiskNeedsARimForBoth) {
+    EmitterDef def = emitterDef();
+    def.shape.kind = SpawnShapeKind::Disk;
+    def.shape.radius = 0.0f;
+    const FieldError api = emitterApiError(def);
+    EXPECT_EQ(api.field(), "shape.radius");
+    const SceneError scene = sceneError(emitterScene("[emitter.shape]\nkind = \"disk\"\nradius = 0"));
+    EXPECT_EQ(scene.message(), api.message());
+    EXPECT_EQ(scene.line(), 5);
+    EXPECT_EQ(scene.keyPath(), "emitter[0].shape.radius");
+}
+
 // --- Forces, colliders, flow fields, bodies, joints, render ---------------------
 
 // What `validate` throws for a def the API refuses.

@@ -124,7 +124,7 @@ TEST(SceneErrors, UnknownEnumName) {
 
 TEST(SceneErrors, NegativeShapeRadius) {
     expectError(kEmitter + "[emitter.shape]\nkind = \"sphere\"\nradius = -1\n",
-                {5, 10, "emitter[0].shape.radius", "expected a number > 0, got -1"});
+                {5, 10, "emitter[0].shape.radius", "expected a number >= 0, got -1"});
 }
 
 TEST(SceneErrors, CapacityAboveSixteenMillion) {
@@ -174,7 +174,7 @@ TEST(SceneErrors, LifeLossOutsideUnitInterval) {
 
 TEST(SceneErrors, SpreadAboveHalfTurn) {
     expectError(kEmitter + "shape = {kind = \"point\", spread = 200}\n",
-                {3, 35, "emitter[0].shape.spread", "in [0, 180]"});
+                {3, 35, "emitter[0].shape.spread", "in [0, 3.1415927]"});
 }
 
 TEST(SceneErrors, NanNumber) {

@@ -20,6 +20,8 @@
 #include "fluid/fluid_rules.h"
 #include "gpu/device_settings.h"
 #include "gpu/vulkan_device.h"
+#include "particles/emitter_rules.h"
+#include "render/render_rules.h"
 #include "render/render_target.h"
 #include "render/renderer.h"
 
@@ -273,8 +275,12 @@ void fluidSettings(Session& s) {
         changed |= ImGui::Checkbox("edges", &fluid.edges);
         changed |= ImGui::Checkbox("splashes", &fluid.splashes);
         changed |= ImGui::Checkbox("bubbles", &fluid.bubbles);
-        changed |= ImGui::SliderFloat("opacity", &fluid.opacity, 0.05f, 1.0f);
-        changed |= ImGui::SliderFloat("radius", &fluid.radiusScale, 0.25f, 4.0f);
+        // The ranges of the rules setFluidRender checks (render_rules.h); an
+        // open or unbounded end is the panel's choice, inside the rule.
+        constexpr SliderSpan opacity = sliderSpan(render_rules::kFluidOpacity, 0.05, 1.0);
+        constexpr SliderSpan radius = sliderSpan(render_rules::kFluidRadiusScale, 0.25, 4.0);
+        changed |= ImGui::SliderFloat("opacity", &fluid.opacity, opacity.min, opacity.max);
+        changed |= ImGui::SliderFloat("radius", &fluid.radiusScale, radius.min, radius.max);
         changed |= ImGui::ColorEdit3("colour", &fluid.colour.x, ImGuiColorEditFlags_NoInputs);
         if (changed) setFluidRender(s.renderer, fluid);
         ImGui::TreePop();
@@ -287,11 +293,10 @@ void fluidSettings(Session& s) {
             float baumgarte = def.baumgarte;
             // The ranges of the rules setFluidSolver checks (fluid_rules.h),
             // so a slider never offers a value the API refuses.
-            namespace rules = fluid::rules;
-            bool changed = ImGui::SliderInt("iterations", &iterations, int(rules::kIterations.bounds.min),
-                                            int(rules::kIterations.bounds.max));
-            changed |= ImGui::SliderFloat("baumgarte", &baumgarte, float(rules::kBaumgarte.bounds.min),
-                                          float(rules::kBaumgarte.bounds.max));
+            constexpr SliderSpan iterationSpan = sliderSpan(fluid::rules::kIterations, 0, 0);
+            constexpr SliderSpan baumgarteSpan = sliderSpan(fluid::rules::kBaumgarte, 0, 0);
+            bool changed = ImGui::SliderInt("iterations", &iterations, int(iterationSpan.min), int(iterationSpan.max));
+            changed |= ImGui::SliderFloat("baumgarte", &baumgarte, baumgarteSpan.min, baumgarteSpan.max);
             if (changed) setFluidSolver(s.world, FluidId{f}, std::uint32_t(iterations), baumgarte);
             ImGui::TreePop();
         }
@@ -310,12 +315,16 @@ void emitterSettings(Session& s) {
             } else {
                 // Only what acts at birth is live (setEmitterRate/Speed): both
                 // backends then agree on every particle already alive.
-                if (e.lifecycle == Lifecycle::Spawn && ImGui::DragFloat("rate /s", &e.rate, 1.0f, 0.0f, 1e6f)) {
-                    e.rate = std::max(e.rate, 0.0f);
+                // The ranges of the rules setEmitterRate/Speed check
+                // (emitter_rules.h); an unbounded top is the panel's choice.
+                constexpr SliderSpan rate = sliderSpan(emitter_rules::kRate, 0.0, 1e6);
+                constexpr SliderSpan speedSpan = sliderSpan(emitter_rules::kSpeed, 0.0, 1e3);
+                if (e.lifecycle == Lifecycle::Spawn && ImGui::DragFloat("rate /s", &e.rate, 1.0f, rate.min, rate.max)) {
+                    e.rate = std::max(e.rate, rate.min);
                     setEmitterRate(s.world, EmitterId{i + 1}, e.rate);
                 }
                 FloatRange speed = e.speed;
-                if (ImGui::DragFloatRange2("m/s", &speed.min, &speed.max, 0.05f, 0.0f, 1e3f) &&
+                if (ImGui::DragFloatRange2("m/s", &speed.min, &speed.max, 0.05f, speedSpan.min, speedSpan.max) &&
                     speed.min <= speed.max) {
                     setEmitterSpeed(s.world, EmitterId{i + 1}, speed);
                     e.speed = speed;

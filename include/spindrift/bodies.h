@@ -71,6 +71,8 @@ inline constexpr float kBodyMaxLength = 1.0e4f;
 inline constexpr float kBodyMaxDensity = 1.0e6f;
 /// Largest speed (m/s) and angular speed (rad/s) a body may be given.
 inline constexpr float kBodyMaxSpeed = 1.0e4f;
+/// Most points of a chain shape.
+inline constexpr std::uint32_t kBodyMaxChainPoints = 4096;
 
 struct BodyDef {
     std::string name;
@@ -150,8 +152,12 @@ struct BodySnapshot {
     std::vector<BodyShapeView> shapes;
 };
 
-/// Throws Error, saying what is wrong, for a body createBody would reject.
+/// Throws FieldError, naming the field as a scene file spells it
+/// ("shape[0].box[1]"), for a body createBody would reject.
 SPINDRIFT_API void validateBodyDef(const BodyDef& def);
+/// Throws FieldError for a joint createJoint would reject whatever the world
+/// ("limits", "max_motor_torque"); createJoint also checks its bodies exist.
+SPINDRIFT_API void validateJointDef(const JointDef& def);
 
 /// Adds a body to the world (either backend: bodies always run on the CPU).
 SPINDRIFT_API BodyId createBody(WorldId world, const BodyDef& def);

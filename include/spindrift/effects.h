@@ -74,6 +74,15 @@ inline constexpr std::uint32_t kEmitterMaxCapacity = 16 * 1024 * 1024;
 /// Most particles one burst of the API may ask for (BurstDef::count).
 inline constexpr std::uint32_t kEmitterMaxBurstCount = (1u << 20) - 1;
 
+/// Most samples along one axis of a flow field (FlowFieldDef::nx, ny, nz) and
+/// in all (48 MiB of vec3); the API and scene files check against them.
+inline constexpr std::uint32_t kFlowFieldMaxAxis = 512;
+inline constexpr std::uint32_t kFlowFieldMaxSamples = 4 * 1024 * 1024;
+/// Most heights along one axis of a terrain (ColliderDef::terrainNx, terrainNz).
+inline constexpr std::uint32_t kTerrainMaxAxis = 4096;
+/// Most texels along a cube map face's edge (ColliderDef::cubeResolution).
+inline constexpr std::uint32_t kCubeMapMaxResolution = 1024;
+
 struct BurstDef {
     float time = 0.0f;         ///< s since the emitter started
     std::uint32_t count = 0;   ///< particles born at that time

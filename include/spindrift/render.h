@@ -41,6 +41,11 @@ struct BackgroundDef {
     std::string image;                       ///< PNG path (Image)
 };
 
+/// Most pixels a side of a frame (RenderDef::width, height).
+inline constexpr std::uint32_t kRenderMaxFrameSide = 16384;
+/// The splat steps below, FluidRenderDef::upTo's largest n.
+inline constexpr int kFluidRenderSteps = 7;
+
 /// The Sprinkle document's splat steps (slides 62-68), each switchable. They
 /// build on each other in this order; FluidRenderDef::upTo(n) turns on the
 /// first n.
@@ -112,7 +117,11 @@ SPINDRIFT_API void setFluidRender(RendererId renderer, const FluidRenderDef& flu
 SPINDRIFT_API Frame renderFrame(RendererId renderer);
 SPINDRIFT_API RenderStats renderStats(RendererId renderer);
 
-/// Throws Error naming the field for a definition createRenderer rejects.
+/// Throws FieldError naming the field ("fps", "fluid.opacity", "camera.fov")
+/// for a definition createRenderer rejects.
 SPINDRIFT_API void validateRenderDef(const RenderDef& def);
+/// The camera's part of validateRenderDef; fields are named without
+/// "camera." ("fov"), as a scene file's [camera] spells them.
+SPINDRIFT_API void validateCameraDef(const CameraDef& camera);
 
 }  // namespace spindrift

@@ -15,13 +15,11 @@ FieldError::FieldError(std::string object, std::string field, std::string messag
 std::string formatNumber(double v) {
     if (std::isnan(v)) return "nan";
     if (std::isinf(v)) return v > 0 ? "inf" : "-inf";
+    // Most values are floats: a float widened to double prints as the float
+    // it was (0.005, not 0.004999999888241291).
+    const auto f = static_cast<float>(v);
+    if (static_cast<double>(f) == v) return fmt::format("{}", f);
     return fmt::format("{}", v);
-}
-
-bool Bounds::contains(double v) const {
-    const bool lowOk = minOpen ? v > min : v >= min;
-    const bool highOk = maxOpen ? v < max : v <= max;
-    return lowOk && highOk;
 }
 
 std::string Bounds::describe(bool integer) const {

@@ -34,7 +34,11 @@ struct Bounds {
     static constexpr Bounds unit() { return between(0.0, 1.0); }
 
     /// False for NaN.
-    bool contains(double v) const;
+    constexpr bool contains(double v) const {
+        const bool lowOk = minOpen ? v > min : v >= min;
+        const bool highOk = maxOpen ? v < max : v <= max;
+        return lowOk && highOk;
+    }
     /// "a number > 0", "an integer in [1, 16]", "a number" ...
     std::string describe(bool integer) const;
 };
@@ -53,6 +57,23 @@ struct FieldRule {
 private:
     constexpr FieldRule(Bounds b, bool isInteger) : bounds(b), integer(isInteger) {}
 };
+
+/// The span a slider offers for a field: the rule's ends where they are
+/// closed and finite, otherwise `lo` and `hi` (a UI's choice for an open or
+/// unbounded end), which must lie inside the rule. So a slider never offers a
+/// value the API refuses; a span outside the rule fails to compile when
+/// called in a constant expression, and throws otherwise.
+struct SliderSpan {
+    float min;
+    float max;
+};
+constexpr SliderSpan sliderSpan(const FieldRule& rule, double lo, double hi) {
+    const Bounds& b = rule.bounds;
+    const double min = !b.minOpen && b.min > -std::numeric_limits<double>::infinity() ? b.min : lo;
+    const double max = !b.maxOpen && b.max < std::numeric_limits<double>::infinity() ? b.max : hi;
+    if (!(b.contains(min) && b.contains(max) && min < max)) throw Error("a slider's span outside its field's rule");
+    return {static_cast<float>(min), static_cast<float>(max)};
+}
 
 /// How a number reads in a message: 1.5, -1, nan, inf.
 std::string formatNumber(double v);

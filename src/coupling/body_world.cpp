@@ -6,6 +6,9 @@
 // Box2D conventions (b2Vec2, body user data as our slot) live in one place.
 #include "coupling/body_world.h"
 
+#include "coupling/body_rules.h"
+#include "core/field_rules.h"
+
 #include "kernels/fluid.glsl"
 
 #include <fmt/format.h>
@@ -21,15 +24,9 @@ namespace {
 /// Box2D's solver iterations per step (its recommended 8 and 3).
 constexpr int kVelocityIterations = 8;
 constexpr int kPositionIterations = 3;
-/// Box2D welds polygon corners closer than half its linear slop and
-/// asserts on chain points closer than the slop; we reject them instead.
-constexpr float kMinVertexGap = b2_linearSlop;
-
 bool finite(glm::vec2 v) { return std::isfinite(v.x) && std::isfinite(v.y); }
 b2Vec2 toB2(glm::vec2 v) { return b2Vec2(v.x, v.y); }
 glm::vec2 fromB2(b2Vec2 v) { return glm::vec2(v.x, v.y); }
-
-std::string label(const BodyDef& def) { return fmt::format("body '{}'", def.name); }
 
 /// Twice the signed area of a closed polygon (m^2): > 0 counter-clockwise.
 double twiceArea(const std::vector<glm::vec2>& v) {
@@ -42,86 +39,90 @@ double twiceArea(const std::vector<glm::vec2>& v) {
     return area;
 }
 
-/// The corners counter-clockwise; throws if they are not a convex polygon
-/// Box2D accepts.
+FieldCheck bodyCheck(const BodyDef& def) { return FieldCheck(objectLabel("body", def.name)); }
+
+/// "shape[0].box": a shape's key as a scene file spells it; `index` 0-based.
+std::string shapeField(std::size_t index, const BodyShapeDef& s) {
+    switch (s.kind) {
+    case BodyShapeKind::Box: return fieldPath("shape", index, "box");
+    case BodyShapeKind::Circle: return fieldPath("shape", index, "circle");
+    case BodyShapeKind::Polygon: return fieldPath("shape", index, "polygon");
+    case BodyShapeKind::Edge: return fieldPath("shape", index, "edge");
+    case BodyShapeKind::Chain: return fieldPath("shape", index, "chain");
+    }
+    return fieldPath("shape", index);
+}
+
+/// "3 to 8 [x, y] corners".
+std::string counted(const FieldRule& rule, std::string_view what) {
+    return fmt::format("{} to {} {}", rule.bounds.min, rule.bounds.max, what);
+}
+
+std::string pointText(glm::vec2 p) { return fmt::format("[{}, {}]", p.x, p.y); }
+
+/// The corners counter-clockwise; throws FieldError if they are not a convex
+/// polygon Box2D accepts. `index` is the shape's, 0-based.
 std::vector<glm::vec2> convexPolygon(const BodyDef& def, std::size_t index, const std::vector<glm::vec2>& v) {
+    const FieldCheck check = bodyCheck(def);
+    const std::string field = fieldPath("shape", index, "polygon");
     const std::size_t n = v.size();
-    if (n < 3 || n > static_cast<std::size_t>(b2_maxPolygonVertices)) {
-        throw Error(fmt::format("{}: shape {}: a polygon needs 3 to {} vertices, got {}", label(def), index,
-                                b2_maxPolygonVertices, n));
-    }
+    check.expect(body_rules::kPolygonCorners.bounds.contains(static_cast<double>(n)), field,
+                 counted(body_rules::kPolygonCorners, "[x, y] corners"), fmt::format("{}", n));
     const double area = twiceArea(v);
-    if (!(std::abs(area) > 0.0)) {
-        throw Error(fmt::format("{}: shape {}: the polygon has no area", label(def), index));
-    }
+    check.expect(std::abs(area) > 0.0, field, "corners that enclose an area", "none");
     std::vector<glm::vec2> ccw(v);
     if (area < 0.0) ccw.assign(v.rbegin(), v.rend());
     for (std::size_t i = 0; i < n; ++i) {
         const glm::dvec2 a = ccw[i], b = ccw[(i + 1) % n], c = ccw[(i + 2) % n];
-        if (glm::length(b - a) < kMinVertexGap) {
-            throw Error(fmt::format("{}: shape {}: polygon corners {} and {} are closer than {} m", label(def), index,
-                                    i, (i + 1) % n, kMinVertexGap));
-        }
-        if ((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) <= 0.0) {
-            throw Error(fmt::format("{}: shape {}: the polygon is not strictly convex at vertex {}", label(def),
-                                    index, (i + 1) % n));
-        }
+        check.expect(glm::length(b - a) >= body_rules::kMinGap, field,
+                     fmt::format("corners at least {} m apart", body_rules::kMinGap),
+                     fmt::format("{} and {}", pointText(ccw[i]), pointText(ccw[(i + 1) % n])));
+        check.expect((b.x - a.x) * (c.y - b.y) - (b.y - a.y) * (c.x - b.x) > 0.0, field, "a strictly convex polygon",
+                     fmt::format("a corner at {} that is not", pointText(ccw[(i + 1) % n])));
     }
     return ccw;
 }
 
-/// Finite and within kBodyMaxLength of 0 in each coordinate.
-bool inWorld(glm::vec2 p) { return std::abs(p.x) <= kBodyMaxLength && std::abs(p.y) <= kBodyMaxLength; }
-bool inWorld(float length) { return std::abs(length) <= kBodyMaxLength; }
+void coordinates(const FieldCheck& check, std::string_view field, glm::vec2 p) {
+    check.number(fmt::format("{}[0]", field), p.x, body_rules::kCoordinate);
+    check.number(fmt::format("{}[1]", field), p.y, body_rules::kCoordinate);
+}
 
 void validateShape(const BodyDef& def, std::size_t index, const BodyShapeDef& s) {
-    for (glm::vec2 p : s.vertices) {
-        if (!inWorld(p)) {
-            throw Error(fmt::format("{}: shape {}: vertices must be finite and within {} m", label(def), index,
-                                    kBodyMaxLength));
-        }
-    }
-    if (!inWorld(s.offset) || !std::isfinite(s.angle)) {
-        throw Error(fmt::format("{}: shape {}: offset and angle must be finite, the offset within {} m", label(def),
-                                index, kBodyMaxLength));
-    }
+    namespace rules = body_rules;
+    const FieldCheck check = bodyCheck(def);
+    const std::string field = shapeField(index, s);
+    for (std::size_t i = 0; i < s.vertices.size(); ++i) coordinates(check, fieldPath(field, i), s.vertices[i]);
+    coordinates(check, fieldPath("shape", index, "offset"), s.offset);
+    check.number(fieldPath("shape", index, "angle"), s.angle, rules::kAngle);
     switch (s.kind) {
     case BodyShapeKind::Box:
-        if (!(s.halfExtents.x >= kMinVertexGap && s.halfExtents.y >= kMinVertexGap) || !inWorld(s.halfExtents)) {
-            throw Error(fmt::format("{}: shape {}: box half extents must be {} to {} m", label(def), index,
-                                    kMinVertexGap, kBodyMaxLength));
-        }
+        check.number(field + "[0]", s.halfExtents.x, rules::kSize);
+        check.number(field + "[1]", s.halfExtents.y, rules::kSize);
         break;
-    case BodyShapeKind::Circle:
-        if (!(s.radius >= kMinVertexGap) || !inWorld(s.radius)) {
-            throw Error(fmt::format("{}: shape {}: circle radius must be {} to {} m", label(def), index, kMinVertexGap,
-                                    kBodyMaxLength));
-        }
-        break;
+    case BodyShapeKind::Circle: check.number(field, s.radius, rules::kSize); break;
     case BodyShapeKind::Polygon: convexPolygon(def, index, s.vertices); break;
     case BodyShapeKind::Edge:
     case BodyShapeKind::Chain: {
         const bool edge = s.kind == BodyShapeKind::Edge;
-        const std::size_t least = edge ? 2 : (s.loop ? 3 : 2);
-        if (edge ? s.vertices.size() != 2 : s.vertices.size() < least) {
-            throw Error(fmt::format("{}: shape {}: {} needs {} {} points, got {}", label(def), index,
-                                    edge ? "an edge" : (s.loop ? "a chain loop" : "a chain"),
-                                    edge ? "exactly" : "at least", least, s.vertices.size()));
+        const std::size_t n = s.vertices.size();
+        if (edge) {
+            check.expect(n == 2, field, "exactly 2 [x, y] points", fmt::format("{}", n));
+        } else {
+            check.expect(rules::kChainPoints.bounds.contains(static_cast<double>(n)), field,
+                         counted(rules::kChainPoints, "[x, y] points"), fmt::format("{}", n));
+            check.expect(!s.loop || n >= 3, field, "at least 3 points in a loop", fmt::format("{}", n));
         }
-        for (std::size_t i = 1; i < s.vertices.size(); ++i) {
-            if (glm::length(s.vertices[i] - s.vertices[i - 1]) < kMinVertexGap) {
-                throw Error(fmt::format("{}: shape {}: points {} and {} are closer than {} m", label(def), index,
-                                        i - 1, i, kMinVertexGap));
-            }
+        for (std::size_t i = 1; i < n; ++i) {
+            check.expect(glm::length(s.vertices[i] - s.vertices[i - 1]) >= rules::kMinGap, field,
+                         fmt::format("points at least {} m apart", rules::kMinGap),
+                         fmt::format("{} and {}", pointText(s.vertices[i - 1]), pointText(s.vertices[i])));
         }
-        if (def.type == BodyType::Dynamic) {
-            throw Error(fmt::format("{}: shape {}: edges and chains have no area, so a dynamic body cannot use them; "
-                                    "make the body static or kinematic",
-                                    label(def), index));
-        }
+        check.expect(def.type != BodyType::Dynamic, field,
+                     "a static or kinematic body (an edge or chain has no area, so no mass)", "a dynamic body");
         break;
     }
-    default: throw Error(fmt::format("{}: shape {}: unknown kind", label(def), index));
+    default: check.fail(fieldPath("shape", index), "expected a known shape kind");
     }
 }
 
@@ -146,7 +147,7 @@ std::vector<LocalShape> fluidShapes(const BodyDef& def) {
         case BodyShapeKind::Box: out.push_back({kernels::SD_BODY_SHAPE_POLYGON, boxCorners(s), 0.0f}); break;
         case BodyShapeKind::Circle: out.push_back({kernels::SD_BODY_SHAPE_CIRCLE, {s.offset}, s.radius}); break;
         case BodyShapeKind::Polygon:
-            out.push_back({kernels::SD_BODY_SHAPE_POLYGON, convexPolygon(def, i + 1, s.vertices), 0.0f});
+            out.push_back({kernels::SD_BODY_SHAPE_POLYGON, convexPolygon(def, i, s.vertices), 0.0f});
             break;
         case BodyShapeKind::Edge:
         case BodyShapeKind::Chain: {
@@ -344,28 +345,48 @@ BodyShapeDef chainShape(std::vector<glm::vec2> points, bool loop) {
 }
 
 void validateBodyDef(const BodyDef& def) {
-    using coupling::label;
-    if (def.type != BodyType::Static && def.type != BodyType::Kinematic && def.type != BodyType::Dynamic) {
-        throw Error(fmt::format("{}: unknown body type", label(def)));
+    // Each field against its rule (body_rules.h), named as a scene file
+    // spells its key.
+    namespace rules = body_rules;
+    const FieldCheck check = coupling::bodyCheck(def);
+    check.expect(def.type == BodyType::Static || def.type == BodyType::Kinematic || def.type == BodyType::Dynamic,
+                 "type", "\"static\", \"kinematic\" or \"dynamic\"",
+                 fmt::format("{}", static_cast<std::uint32_t>(def.type)));
+    coupling::coordinates(check, "position", def.position);
+    check.number("angle", def.angle, rules::kAngle);
+    check.finite("velocity", def.linearVelocity);
+    check.expect(glm::length(def.linearVelocity) <= kBodyMaxSpeed, "velocity",
+                 fmt::format("a speed of at most {} m/s", kBodyMaxSpeed),
+                 coupling::pointText(def.linearVelocity));
+    check.number("angular_velocity", def.angularVelocity, rules::kAngularVelocity);
+    if (def.type == BodyType::Dynamic) check.number("density", def.density, rules::kDensity);
+    check.number("friction", def.friction, rules::kFriction);
+    check.number("restitution", def.restitution, rules::kRestitution);
+    check.expect(!def.shapes.empty(), "shape", "at least one shape", "none");
+    for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::validateShape(def, i, def.shapes[i]);
+}
+
+void validateJointDef(const JointDef& def) {
+    namespace rules = body_rules;
+    const FieldCheck check(objectLabel("joint", def.name));
+    const bool revolute = def.kind == JointKind::Revolute;
+    const bool prismatic = def.kind == JointKind::Prismatic;
+    check.expect(revolute || prismatic || def.kind == JointKind::Weld, "kind",
+                 "\"revolute\", \"prismatic\" or \"weld\"", fmt::format("{}", static_cast<std::uint32_t>(def.kind)));
+    check.expect(def.bodyA.index != def.bodyB.index, "body_b", "a body other than body_a", "the same body");
+    check.finite("anchor", def.anchor);
+    check.finite("axis", def.axis);
+    if (prismatic) {
+        check.expect(glm::length(def.axis) > 0.0f, "axis", "a non-zero [x, y] direction",
+                     coupling::pointText(def.axis));
     }
-    if (!coupling::inWorld(def.position) || !std::isfinite(def.angle)) {
-        throw Error(fmt::format("{}: position and angle must be finite, the position within {} m", label(def),
-                                kBodyMaxLength));
+    if (def.enableLimit) {
+        check.range("limits", {def.lower, def.upper}, FieldRule::number(Bounds::any()));
     }
-    if (!(glm::length(def.linearVelocity) <= kBodyMaxSpeed) || !(std::abs(def.angularVelocity) <= kBodyMaxSpeed)) {
-        throw Error(fmt::format("{}: velocities must be finite and at most {} m/s and rad/s", label(def),
-                                kBodyMaxSpeed));
+    if (def.enableMotor) {
+        check.number("motor_speed", def.motorSpeed, FieldRule::number(Bounds::any()));
+        check.number(revolute ? "max_motor_torque" : "max_motor_force", def.maxMotor, rules::kMaxMotor);
     }
-    if (def.type == BodyType::Dynamic && !(def.density > 0.0f && def.density <= kBodyMaxDensity)) {
-        throw Error(fmt::format("{}: a dynamic body needs a density in (0, {}] kg/m^2, got {}", label(def),
-                                kBodyMaxDensity, def.density));
-    }
-    if (!(def.friction >= 0.0f) || !std::isfinite(def.friction) ||
-        !(def.restitution >= 0.0f && def.restitution <= 1.0f)) {
-        throw Error(fmt::format("{}: friction must be >= 0 and restitution in [0, 1]", label(def)));
-    }
-    if (def.shapes.empty()) throw Error(fmt::format("{}: needs at least one shape", label(def)));
-    for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::validateShape(def, i + 1, def.shapes[i]);
 }
 
 namespace coupling {
@@ -382,7 +403,7 @@ BodyId createBody(BodyWorld& b, const BodyDef& def) {
     // The 1-based slot, to map Box2D's broad-phase answers back to our bodies.
     bd.userData.pointer = static_cast<uintptr_t>(b.bodies.size() + 1);
     b2Body* body = b.world.CreateBody(&bd);
-    for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::addFixture(body, def, def.shapes[i], i + 1);
+    for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::addFixture(body, def, def.shapes[i], i);
     b.bodies.push_back({body, def, coupling::fluidShapes(def)});
     b.alive += 1;
     return {static_cast<std::uint32_t>(b.bodies.size())};
@@ -469,17 +490,9 @@ BodyId bodyAt(const BodyWorld* bodies, glm::vec2 point) {
 JointId createJoint(BodyWorld* bodies, const JointDef& def) {
     const std::string name = fmt::format("joint '{}'", def.name);
     if (!bodies) throw Error(fmt::format("{}: the world has no bodies", name));
-    if (def.bodyA.index == def.bodyB.index) throw Error(fmt::format("{}: joins a body to itself", name));
+    validateJointDef(def);
     b2Body* a = coupling::bodyFromId(*bodies, def.bodyA).body;
     b2Body* b = coupling::bodyFromId(*bodies, def.bodyB).body;
-    if (!coupling::finite(def.anchor) || !coupling::finite(def.axis) || !std::isfinite(def.lower) ||
-        !std::isfinite(def.upper) || !std::isfinite(def.motorSpeed) || !std::isfinite(def.maxMotor)) {
-        throw Error(fmt::format("{}: anchor, axis, limits and motor must be finite", name));
-    }
-    if (def.enableLimit && def.lower > def.upper) throw Error(fmt::format("{}: lower limit above upper", name));
-    if (def.enableMotor && !(def.maxMotor > 0.0f)) {
-        throw Error(fmt::format("{}: a motor needs a max torque or force > 0", name));
-    }
     b2Joint* joint = nullptr;
     switch (def.kind) {
     case JointKind::Revolute: {
@@ -496,7 +509,6 @@ JointId createJoint(BodyWorld* bodies, const JointDef& def) {
         break;
     }
     case JointKind::Prismatic: {
-        if (!(glm::length(def.axis) > 0.0f)) throw Error(fmt::format("{}: the axis must be non-zero", name));
         b2PrismaticJointDef jd;
         jd.Initialize(a, b, coupling::toB2(def.anchor), coupling::toB2(glm::normalize(def.axis)));
         jd.enableLimit = def.enableLimit;

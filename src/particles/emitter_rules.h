@@ -1,7 +1,9 @@
 // The rules of an EmitterDef's fields, named once: validateEmitterDef checks
 // them (so createEmitter and the scene loader, which words its type errors
-// with them too; src/core/field_rules.h). Rules a scene file states in its
-// own units or conventions (degrees, "leave duration out for forever") stay in
+// with them too; src/core/field_rules.h). A file's angles are degrees,
+// converted to the API's radians where they enter, and checked here as
+// radians. Rules of a file's own conventions ("leave duration out for
+// forever", a burst that fits the capacity) stay in
 // src/scene/parse_emitter.cpp (docs/design.md, "Validation").
 #pragma once
 
@@ -20,20 +22,24 @@ inline constexpr FieldRule kSize = FieldRule::number(Bounds::nonNegative());    
 inline constexpr FieldRule kMass = FieldRule::number(Bounds::positive());         ///< kg
 inline constexpr FieldRule kLifeLoss = FieldRule::number(Bounds::unit());         ///< per hit
 inline constexpr FieldRule kBurstTime = FieldRule::number(Bounds::nonNegative()); ///< s
-
-// Checked by the API only: a scene file reads these in its own terms and is
-// stricter (src/scene/parse_emitter.cpp), so the API rule never fires for it.
-/// m/s; the scene file asks for >= 0 (docs/design.md, "Validation").
-inline constexpr FieldRule kSpeed = FieldRule::number(Bounds::any());
-/// rad, rad/s: a file gives degrees and checks them as degrees.
+/// m/s, each end: a magnitude; the shape's direction gives the way.
+inline constexpr FieldRule kSpeed = FieldRule::number(Bounds::nonNegative());
+/// rad, rad/s, each end (a file gives degrees).
 inline constexpr FieldRule kRotation = FieldRule::number(Bounds::any());
 inline constexpr FieldRule kAngularVelocity = FieldRule::number(Bounds::any());
-/// rad: the half-angle of a cone of directions; a file gives [0, 180] degrees.
+/// rad: the half-angle of a cone of directions (a file gives [0, 180] degrees).
 /// The float pi (just above the real one) is the top: 180 degrees converted
 /// in float arithmetic is that value.
 inline constexpr FieldRule kSpread = FieldRule::number(Bounds::between(0.0, static_cast<double>(glm::pi<float>())));
-/// m; a file asks for > 0 where the shape has a radius.
-inline constexpr FieldRule kShapeRadius = FieldRule::number(Bounds::nonNegative());
+/// m: a sphere of radius 0 is a point.
+inline constexpr FieldRule kSphereRadius = FieldRule::number(Bounds::nonNegative());
+/// m: a disk and a cone need a rim (a cone's launch angle grows from 0 on its
+/// axis to `spread` at its rim: radius 0 would launch everything along the axis).
+inline constexpr FieldRule kRimRadius = FieldRule::number(Bounds::positive());
+/// m, each, of a box.
+inline constexpr FieldRule kHalfExtent = FieldRule::number(Bounds::nonNegative());
+/// s: >= 0 is how long the emitter runs, < 0 forever (a file leaves it out).
+inline constexpr FieldRule kDuration = FieldRule::number(Bounds::any());
 /// A file asks for at least 1 and at most `capacity`.
 inline constexpr FieldRule kBurstCount = FieldRule::whole(Bounds::between(0, kEmitterMaxBurstCount));
 

@@ -1,7 +1,10 @@
 #include "particles/params.h"
 
 #include "core/field_rules.h"
+#include "particles/collider_rules.h"
 #include "particles/emitter_rules.h"
+#include "particles/flow_field_rules.h"
+#include "particles/force_rules.h"
 
 #include "kernels/random.glsl"
 #include "kernels/stateless.glsl"
@@ -65,14 +68,22 @@ void validateEmitterDef(const EmitterDef& d) {
     const FieldCheck check(objectLabel("emitter", d.name));
     check.number("capacity", d.capacity, rules::kCapacity);
     check.number("rate", d.rate, rules::kRate);
+    check.number("duration", d.duration, rules::kDuration);
     for (std::size_t i = 0; i < d.bursts.size(); ++i) {
         check.number(fieldPath("bursts", i, "time"), d.bursts[i].time, rules::kBurstTime);
         check.number(fieldPath("bursts", i, "count"), d.bursts[i].count, rules::kBurstCount);
     }
     const SpawnShapeDef& s = d.shape;
     check.finite("shape.center", s.center);
-    check.number("shape.radius", s.radius, rules::kShapeRadius);
-    check.finite("shape.half_extents", s.halfExtents);
+    const bool rim = s.kind == SpawnShapeKind::Disk || s.kind == SpawnShapeKind::Cone;
+    if (rim || s.kind == SpawnShapeKind::Sphere) {
+        check.number("shape.radius", s.radius, rim ? rules::kRimRadius : rules::kSphereRadius);
+    }
+    if (s.kind == SpawnShapeKind::Box) {
+        for (std::size_t a = 0; a < 3; ++a) {
+            check.number(fieldPath("shape.half_extents", a), s.halfExtents[static_cast<int>(a)], rules::kHalfExtent);
+        }
+    }
     check.finite("shape.direction", s.direction);
     check.expect(glm::length(s.direction) > 0.0f, "shape.direction", "a non-zero direction",
                  fmt::format("[{}, {}, {}]", s.direction.x, s.direction.y, s.direction.z));
@@ -126,34 +137,58 @@ kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed
     return e;
 }
 
+void validateFlowFieldGrid(const FlowFieldDef& d) {
+    // Each field against its rule (flow_field_rules.h), named as a scene file
+    // spells its key.
+    namespace rules = flow_field_rules;
+    const FieldCheck check(objectLabel("flow field", d.name));
+    const std::uint32_t n[3] = {d.nx, d.ny, d.nz};
+    for (std::size_t a = 0; a < 3; ++a) check.number(fieldPath("resolution", a), n[a], rules::kAxis);
+    const std::size_t samples = static_cast<std::size_t>(d.nx) * d.ny * d.nz;
+    check.expect(samples <= kFlowFieldMaxSamples, "resolution",
+                 fmt::format("at most {} samples (nx * ny * nz)", kFlowFieldMaxSamples),
+                 fmt::format("{} x {} x {}", d.nx, d.ny, d.nz));
+    check.finite("bounds_min", d.boundsMin);
+    check.finite("bounds_max", d.boundsMax);
+    for (std::size_t a = 0; a < 3; ++a) {
+        const float lo = d.boundsMin[static_cast<int>(a)];
+        const float hi = d.boundsMax[static_cast<int>(a)];
+        check.expect(hi > lo, fieldPath("bounds_max", a), fmt::format("a number > bounds_min[{}] = {}", a, lo),
+                     formatNumber(hi));
+    }
+}
+
 void validateFlowFieldDef(const FlowFieldDef& d) {
-    std::string who = label("flow field", d.name);
-    require(d.nx >= 1 && d.ny >= 1 && d.nz >= 1, who, "resolution", "at least 1 x 1 x 1 cells");
-    require(d.velocities.size() == static_cast<std::size_t>(d.nx) * d.ny * d.nz, who, "velocities",
-            fmt::format("{} velocities (nx * ny * nz)", static_cast<std::size_t>(d.nx) * d.ny * d.nz));
-    glm::vec3 extent = d.boundsMax - d.boundsMin;
-    require(finite(extent) && extent.x > 0.0f && extent.y > 0.0f && extent.z > 0.0f, who, "bounds",
-            "max > min on every axis");
-    for (glm::vec3 v : d.velocities) {
-        require(finite(v), who, "velocities", "finite velocities");
+    validateFlowFieldGrid(d);
+    const FieldCheck check(objectLabel("flow field", d.name));
+    const std::size_t samples = static_cast<std::size_t>(d.nx) * d.ny * d.nz;
+    check.expect(d.velocities.size() == samples, "velocities", fmt::format("{} velocities (nx * ny * nz)", samples),
+                 fmt::format("{}", d.velocities.size()));
+    for (std::size_t i = 0; i < d.velocities.size(); ++i) {
+        if (!finite(d.velocities[i])) check.finite(fieldPath("velocities", i), d.velocities[i]);
     }
 }
 
 void validateForceDef(const ForceDef& d) {
-    std::string who = label("force", d.name);
-    require(finite(d.vector) && finite(d.position) && finite(d.axis), who, "vector/position/axis", "finite values");
-    require(std::isfinite(d.strength), who, "strength", "a finite number");
-    require(std::isfinite(d.radius) && d.radius > 0.0f, who, "radius", "a radius > 0 m");
-    require(std::isfinite(d.falloff), who, "falloff", "a finite exponent");
-    require(std::isfinite(d.range) && d.range >= 0.0f, who, "range", "a range >= 0 m (0: unlimited)");
-    require(std::isfinite(d.targetSpeed) && d.targetSpeed >= 0.0f, who, "target_speed", "a speed >= 0 m/s");
-    require(std::isfinite(d.viscosity) && d.viscosity >= 0.0f, who, "viscosity", "a viscosity >= 0 Pa s");
+    // Each field against its rule (force_rules.h), named as a scene file
+    // spells its key for the force's kind.
+    namespace rules = force_rules;
+    const FieldCheck check(objectLabel("force", d.name));
+    check.finite(d.kind == ForceKind::Gravity ? "acceleration" : d.kind == ForceKind::Wind ? "velocity" : "vector",
+                 d.vector);
+    check.finite("position", d.position);
+    check.finite("axis", d.axis);
     if (d.kind == ForceKind::Vortex) {
-        require(glm::length(d.axis) > 0.0f, who, "axis", "a non-zero axis");
+        check.expect(glm::length(d.axis) > 0.0f, "axis", "a non-zero axis",
+                     fmt::format("[{}, {}, {}]", d.axis.x, d.axis.y, d.axis.z));
     }
-    if (d.kind == ForceKind::Damping || d.kind == ForceKind::Undamping || d.kind == ForceKind::Wind) {
-        require(d.strength >= 0.0f, who, "strength", "a rate >= 0 (a negative one would blow up)");
-    }
+    const bool rate = d.kind == ForceKind::Damping || d.kind == ForceKind::Undamping || d.kind == ForceKind::Wind;
+    check.number("strength", d.strength, rate ? rules::kRate : rules::kStrength);
+    check.number("radius", d.radius, rules::kRadius);
+    check.number("falloff", d.falloff, rules::kFalloff);
+    check.number("range", d.range, rules::kRange);
+    check.number("target_speed", d.targetSpeed, rules::kTargetSpeed);
+    check.number("viscosity", d.viscosity, rules::kViscosity);
 }
 
 kernels::ForceParams makeForceParams(const ForceDef& d, const FlowFieldDef* flow, std::uint32_t flowIndex) {
@@ -181,41 +216,69 @@ kernels::ForceParams makeForceParams(const ForceDef& d, const FlowFieldDef* flow
     return f;
 }
 
+void validateColliderGrid(const ColliderDef& d) {
+    namespace rules = collider_rules;
+    const FieldCheck check(objectLabel("collider", d.name));
+    if (d.kind == ColliderKind::Terrain) {
+        check.number("resolution[0]", d.terrainNx, rules::kTerrainAxis);
+        check.number("resolution[1]", d.terrainNz, rules::kTerrainAxis);
+    } else if (d.kind == ColliderKind::CubeMap) {
+        check.number("resolution", d.cubeResolution, rules::kCubeResolution);
+    }
+}
+
 void validateColliderDef(const ColliderDef& d) {
-    std::string who = label("collider", d.name);
-    require(finite(d.position) && finite(d.normal) && finite(d.halfExtents) && finite(d.rotationDegrees), who,
-            "position/normal/half_extents/rotation", "finite values");
-    require(d.friction >= 0.0f && d.friction <= 1.0f, who, "friction", "a fraction in [0, 1]");
-    require(d.resilience >= 0.0f && d.resilience <= 1.0f, who, "resilience", "a fraction in [0, 1]");
-    require(std::isfinite(d.restSpeed) && d.restSpeed >= 0.0f, who, "rest_speed", "a speed >= 0 m/s");
+    // Each field against its rule (collider_rules.h), named as a scene file
+    // spells its key for the collider's kind.
+    namespace rules = collider_rules;
+    const FieldCheck check(objectLabel("collider", d.name));
+    check.number("friction", d.friction, rules::kFriction);
+    check.number("resilience", d.resilience, rules::kResilience);
+    check.number("rest_speed", d.restSpeed, rules::kRestSpeed);
+    check.finite(d.kind == ColliderKind::Plane ? "point" : d.kind == ColliderKind::Terrain ? "origin" : "center",
+                 d.position);
+    check.finite("normal", d.normal);
+    check.finite("half_extents", d.halfExtents);
+    check.finite("rotation", d.rotationDegrees);
     switch (d.kind) {
         case ColliderKind::Plane:
-            require(glm::length(d.normal) > 0.0f, who, "normal", "a non-zero normal");
+            check.expect(glm::length(d.normal) > 0.0f, "normal", "a non-zero normal",
+                         fmt::format("[{}, {}, {}]", d.normal.x, d.normal.y, d.normal.z));
             break;
         case ColliderKind::Sphere:
-            require(std::isfinite(d.radius) && d.radius > 0.0f, who, "radius", "a radius > 0 m");
+            check.number("radius", d.radius, rules::kRadius);
             break;
         case ColliderKind::Box:
-            require(d.halfExtents.x > 0.0f && d.halfExtents.y > 0.0f && d.halfExtents.z > 0.0f, who,
-                    "half_extents", "half extents > 0 m");
-            break;
-        case ColliderKind::Terrain:
-            require(d.terrainNx >= 2 && d.terrainNz >= 2, who, "resolution", "at least 2 x 2 heights");
-            require(d.heights.size() == static_cast<std::size_t>(d.terrainNx) * d.terrainNz, who, "heights",
-                    "nx * nz heights");
-            require(d.terrainSizeX > 0.0f && d.terrainSizeZ > 0.0f, who, "size", "a size > 0 m on x and z");
-            for (float h : d.heights) {
-                require(std::isfinite(h), who, "heights", "finite heights");
+            for (std::size_t a = 0; a < 3; ++a) {
+                check.number(fieldPath("half_extents", a), d.halfExtents[static_cast<int>(a)], rules::kHalfExtent);
             }
             break;
-        case ColliderKind::CubeMap:
-            require(d.cubeResolution >= 2, who, "resolution", "at least 2 x 2 texels per face");
-            require(d.cubeDepths.size() == 6ull * d.cubeResolution * d.cubeResolution, who, "depths",
-                    "6 * res * res depths");
-            for (float depth : d.cubeDepths) {
-                require(std::isfinite(depth) && depth >= 0.0f, who, "depths", "finite depths >= 0 m");
+        case ColliderKind::Terrain: {
+            validateColliderGrid(d);
+            check.number("size[0]", d.terrainSizeX, rules::kTerrainSize);
+            check.number("size[1]", d.terrainSizeZ, rules::kTerrainSize);
+            const std::size_t count = static_cast<std::size_t>(d.terrainNx) * d.terrainNz;
+            check.expect(d.heights.size() == count, "heights", fmt::format("{} heights (nx * nz)", count),
+                         fmt::format("{}", d.heights.size()));
+            for (std::size_t i = 0; i < d.heights.size(); ++i) {
+                if (!std::isfinite(d.heights[i])) {
+                    check.number(fieldPath("heights", i), d.heights[i], FieldRule::number(Bounds::any()));
+                }
             }
             break;
+        }
+        case ColliderKind::CubeMap: {
+            validateColliderGrid(d);
+            const std::size_t count = 6ull * d.cubeResolution * d.cubeResolution;
+            check.expect(d.cubeDepths.size() == count, "depths", fmt::format("{} depths (6 * res * res)", count),
+                         fmt::format("{}", d.cubeDepths.size()));
+            for (std::size_t i = 0; i < d.cubeDepths.size(); ++i) {
+                if (!(std::isfinite(d.cubeDepths[i]) && rules::kCubeDepth.bounds.contains(d.cubeDepths[i]))) {
+                    check.number(fieldPath("depths", i), d.cubeDepths[i], rules::kCubeDepth);
+                }
+            }
+            break;
+        }
     }
 }
 

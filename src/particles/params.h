@@ -28,7 +28,13 @@ kernels::ColliderParams makeColliderParams(const ColliderDef& def, std::uint32_t
 
 void validateEmitterDef(const EmitterDef& def);
 void validateFlowFieldDef(const FlowFieldDef& def);
+/// The resolution and bounds only: what a generator needs before it fills
+/// the velocities (validateFlowFieldDef checks them too).
+void validateFlowFieldGrid(const FlowFieldDef& def);
 void validateColliderDef(const ColliderDef& def);
+/// A terrain's or cube map's resolution only: what a generator needs before
+/// it fills the heights or depths (validateColliderDef checks it too).
+void validateColliderGrid(const ColliderDef& def);
 void validateForceDef(const ForceDef& def);
 
 }  // namespace spindrift

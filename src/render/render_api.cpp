@@ -1,5 +1,6 @@
 // The public render API (include/spindrift/render.h): definitions checked,
 // renderers kept in a table of ids. The drawing itself is in renderer.cpp.
+#include "render/render_rules.h"
 #include "render/renderer.h"
 
 #include <spindrift/render.h>
@@ -14,9 +15,7 @@
 namespace spindrift {
 
 FluidRenderDef FluidRenderDef::upTo(int n) {
-    if (n < 1 || n > 7) {
-        throw Error(fmt::format("fluid splat steps: {} is not in [1, 7]", n));
-    }
+    FieldCheck("render").number("fluid.steps", n, render_rules::kFluidSteps);
     FluidRenderDef def;
     def.sizeFromDensity = n >= 2;
     def.stretch = n >= 3;
@@ -29,7 +28,13 @@ FluidRenderDef FluidRenderDef::upTo(int n) {
 
 namespace {
 
-bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+std::string vec3Text(glm::vec3 v) { return fmt::format("[{}, {}, {}]", v.x, v.y, v.z); }
+
+void colour(const FieldCheck& check, std::string_view field, glm::vec3 c) {
+    for (std::size_t i = 0; i < 3; ++i) {
+        check.number(fieldPath(field, i), c[static_cast<int>(i)], render_rules::kColour);
+    }
+}
 
 // Renderers by id (index + 1); destroyed ones leave a null.
 std::mutex registryMutex;
@@ -47,28 +52,44 @@ render::Renderer& rendererFromId(RendererId id) {
 
 render::Renderer& render::rendererOf(RendererId id) { return rendererFromId(id); }
 
+void validateCameraDef(const CameraDef& c) {
+    const FieldCheck check("camera");
+    check.finite("eye", c.eye);
+    check.finite("target", c.target);
+    check.finite("up", c.up);
+    const glm::vec3 view = c.target - c.eye;
+    check.expect(glm::length(view) > 1e-6f, "target", "a target that differs from the eye", vec3Text(c.target));
+    // lookAt needs an up that is not along the view.
+    check.expect(glm::length(c.up) > 0.0f &&
+                     glm::length(glm::cross(glm::normalize(view), glm::normalize(c.up))) >= 1e-3f,
+                 "up", "a direction not parallel to the view direction (target - eye)", vec3Text(c.up));
+    check.number("fov", c.fovDegrees, render_rules::kFov);
+    check.number("ortho_height", c.orthoHeight, render_rules::kOrthoHeight);
+}
+
 void validateRenderDef(const RenderDef& def) {
-    // 16384: the smallest maxImageDimension2D a desktop driver reports is far
-    // above what a frame needs; lavapipe allows 16384.
-    if (def.width < 1 || def.height < 1 || def.width > 16384 || def.height > 16384) {
-        throw Error(fmt::format("render: width and height must be in [1, 16384], got {} x {}", def.width, def.height));
-    }
-    const CameraDef& c = def.camera;
-    if (!finite(c.eye) || !finite(c.target) || !finite(c.up) || !(glm::length(c.target - c.eye) > 1e-6f)) {
-        throw Error("render: camera eye and target must be finite and differ");
-    }
-    if (!(c.fovDegrees > 0.0f && c.fovDegrees < 180.0f) || !(c.orthoHeight > 0.0f)) {
-        throw Error("render: camera fov must be in (0, 180) degrees and ortho_height > 0");
-    }
-    if (def.background.kind == BackgroundKind::Image && def.background.image.empty()) {
-        throw Error("render: an image background needs an image path");
-    }
-    if (!(def.fluid.opacity > 0.0f && def.fluid.opacity <= 1.0f) || !(def.fluid.radiusScale > 0.0f)) {
-        throw Error("render: fluid opacity must be in (0, 1] and radius_scale > 0");
-    }
-    if (!(def.fps > 0.0f) || !(def.seconds > 0.0f) || !finite(def.sunDirection) ||
-        !(glm::length(def.sunDirection) > 0.0f)) {
-        throw Error("render: fps and seconds must be > 0 and the sun direction non-zero");
+    // Each field against its rule (render_rules.h), named as a scene file's
+    // [render] spells its key.
+    namespace rules = render_rules;
+    const FieldCheck check("render");
+    check.number("width", def.width, rules::kFrameSide);
+    check.number("height", def.height, rules::kFrameSide);
+    check.number("fps", def.fps, rules::kFps);
+    check.number("seconds", def.seconds, rules::kSeconds);
+    check.finite("sun", def.sunDirection);
+    check.expect(glm::length(def.sunDirection) > 0.0f, "sun", "a non-zero direction", vec3Text(def.sunDirection));
+    colour(check, "background.color", def.background.colour);
+    colour(check, "background.top", def.background.top);
+    colour(check, "background.bottom", def.background.bottom);
+    check.expect(def.background.kind != BackgroundKind::Image || !def.background.image.empty(), "background.image",
+                 "a PNG file path", "none");
+    colour(check, "fluid.color", def.fluid.colour);
+    check.number("fluid.opacity", def.fluid.opacity, rules::kFluidOpacity);
+    check.number("fluid.radius_scale", def.fluid.radiusScale, rules::kFluidRadiusScale);
+    try {
+        validateCameraDef(def.camera);
+    } catch (const FieldError& e) {
+        throw FieldError("render", "camera." + e.field(), e.message());
     }
 }
 

@@ -3,6 +3,8 @@
 
 #include "kernels/layout.glsl"
 
+#include <spindrift/effects.h>
+
 #include <cstddef>
 #include <cstdint>
 
@@ -12,10 +14,11 @@ namespace spindrift::scene {
 /// (src/kernels/layout.glsl).
 inline constexpr std::size_t kMaxColliders = kernels::SD_MAX_COLLIDERS;
 inline constexpr std::size_t kMaxForces = kernels::SD_MAX_FORCES;
-inline constexpr std::int64_t kMaxFlowAxis = 512;                 ///< samples along one axis
-inline constexpr std::int64_t kMaxFlowSamples = 4 * 1024 * 1024;  ///< 48 MiB of vec3
-inline constexpr std::int64_t kMaxTerrainAxis = 4096;
-inline constexpr std::int64_t kMaxCubeResolution = 1024;  ///< texels per face edge
+/// The API's limits (include/spindrift/effects.h), for the data files' headers.
+inline constexpr std::int64_t kMaxFlowAxis = kFlowFieldMaxAxis;        ///< samples along one axis
+inline constexpr std::int64_t kMaxFlowSamples = kFlowFieldMaxSamples;  ///< 48 MiB of vec3
+inline constexpr std::int64_t kMaxTerrainAxis = kTerrainMaxAxis;
+inline constexpr std::int64_t kMaxCubeResolution = kCubeMapMaxResolution;  ///< texels per face edge
 inline constexpr std::int64_t kMaxThreads = 1024;
 inline constexpr std::int64_t kMaxSteps = 100'000'000;
 

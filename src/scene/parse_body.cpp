@@ -1,5 +1,11 @@
 // [[body]] and [[joint]]: rigid bodies with their shapes, and joints between
 // bodies named in the scene.
+//
+// Values are read with type checks only; their ranges are validateBodyDef's
+// and validateJointDef's rules (src/coupling/body_rules.h), checked once
+// through validateAt. What is checked here is what only a file says: which
+// keys go with which shape or joint kind, and that a motor has both its keys.
+#include "coupling/body_rules.h"
 #include "scene/parse_internal.h"
 
 #include <fmt/format.h>
@@ -8,14 +14,14 @@ namespace spindrift::scene {
 
 namespace {
 
-glm::vec2 vec2(const Value& v, Bounds bounds = Bounds::any()) {
-    const std::vector<float> xy = v.numbers(2, bounds);
+glm::vec2 vec2(const Value& v) {
+    const std::vector<float> xy = v.numbers(2);
     return {xy[0], xy[1]};
 }
 
-std::vector<glm::vec2> points(const Value& list, std::size_t least, std::size_t most, const std::string& what) {
+// Any number of points: how many a shape needs is validateBodyDef's rule.
+std::vector<glm::vec2> points(const Value& list) {
     const std::size_t n = list.array().size();
-    if (n < least || n > most) list.failExpected(what);
     std::vector<glm::vec2> out;
     for (std::size_t i = 0; i < n; ++i) out.push_back(vec2(list.element(i)));
     return out;
@@ -39,26 +45,26 @@ BodyShapeDef parseShape(const Table& t) {
     const Value v = *t.find(kind);
     if (kind == "box") {
         s.kind = BodyShapeKind::Box;
-        s.halfExtents = vec2(v, Bounds::positive());
+        s.halfExtents = vec2(v);
     } else if (kind == "circle") {
         s.kind = BodyShapeKind::Circle;
-        s.radius = v.real(Bounds::positive());
+        s.radius = v.real(body_rules::kSize);
     } else if (kind == "polygon") {
         s.kind = BodyShapeKind::Polygon;
-        s.vertices = points(v, 3, 8, "3 to 8 [x, y] corners of a convex polygon");
+        s.vertices = points(v);
     } else if (kind == "edge") {
         s.kind = BodyShapeKind::Edge;
-        s.vertices = points(v, 2, 2, "exactly 2 [x, y] points");
+        s.vertices = points(v);
     } else {
         s.kind = BodyShapeKind::Chain;
-        s.vertices = points(v, 2, 4096, "2 to 4096 [x, y] points");
+        s.vertices = points(v);
     }
     const bool placed = s.kind == BodyShapeKind::Box || s.kind == BodyShapeKind::Circle;
     if (t.has("offset") && !placed) t.failAtKey("offset", "offset applies to box and circle shapes only");
     if (t.has("angle") && s.kind != BodyShapeKind::Box) t.failAtKey("angle", "angle applies to box shapes only");
     if (t.has("loop") && s.kind != BodyShapeKind::Chain) t.failAtKey("loop", "loop applies to chain shapes only");
     if (auto o = t.find("offset")) s.offset = vec2(*o);
-    s.angle = t.real("angle", s.angle);
+    s.angle = t.real("angle", s.angle, body_rules::kAngle);
     s.loop = t.boolean("loop", s.loop);
     return s;
 }
@@ -76,21 +82,15 @@ BodyDef parseBody(const Table& t, NameTable& names) {
             {{"static", BodyType::Static}, {"kinematic", BodyType::Kinematic}, {"dynamic", BodyType::Dynamic}});
     }
     if (auto v = t.find("position")) def.position = vec2(*v);
-    def.angle = t.real("angle", def.angle);
+    def.angle = t.real("angle", def.angle, body_rules::kAngle);
     if (auto v = t.find("velocity")) def.linearVelocity = vec2(*v);
-    def.angularVelocity = t.real("angular_velocity", def.angularVelocity);
-    def.density = t.real("density", def.density, Bounds::positive());
-    def.friction = t.real("friction", def.friction, Bounds::nonNegative());
-    def.restitution = t.real("restitution", def.restitution, Bounds::unit());
+    def.angularVelocity = t.real("angular_velocity", def.angularVelocity, body_rules::kAngularVelocity);
+    def.density = t.real("density", def.density, body_rules::kDensity);
+    def.friction = t.real("friction", def.friction, body_rules::kFriction);
+    def.restitution = t.real("restitution", def.restitution, body_rules::kRestitution);
     def.fixedRotation = t.boolean("fixed_rotation", def.fixedRotation);
     for (const Table& s : tableArray(t, "shape")) def.shapes.push_back(parseShape(s));
-    if (def.shapes.empty()) t.fail("a body needs at least one shape: [[body.shape]] or shape = [{ box = [hx, hy] }]");
-    // The library's own checks (convexity, dynamic edges ...), at this table.
-    try {
-        validateBodyDef(def);
-    } catch (const Error& e) {
-        t.fail(e.what());
-    }
+    validateAt(t, [&] { validateBodyDef(def); });
     return def;
 }
 
@@ -108,19 +108,16 @@ JointDef parseJoint(const Table& t, NameTable& names, const NameTable& bodies) {
     const Value b = t.require("body_b", "the name of a [[body]]");
     def.bodyA = {bodies.resolve(a) + 1};
     def.bodyB = {bodies.resolve(b) + 1};
-    if (def.bodyA.index == def.bodyB.index) b.fail("a joint joins two different bodies");
     def.anchor = vec2(t.require("anchor", "[x, y] (m), the joint's world point"));
     const bool revolute = def.kind == JointKind::Revolute;
     const bool prismatic = def.kind == JointKind::Prismatic;
     if (auto v = t.find("axis")) {
         if (!prismatic) t.failAtKey("axis", "axis applies to prismatic joints only");
         def.axis = vec2(*v);
-        if (!(glm::length(def.axis) > 0.0f)) v->failExpected("a non-zero [x, y] direction");
     }
     if (auto v = t.find("limits")) {
         if (!revolute && !prismatic) t.failAtKey("limits", "a weld joint has no limits");
         const std::vector<float> range = v->numbers(2);
-        if (range[0] > range[1]) v->failExpected("[lower, upper] with lower <= upper");
         def.enableLimit = true;
         def.lower = range[0];
         def.upper = range[1];
@@ -139,9 +136,10 @@ JointDef parseJoint(const Table& t, NameTable& names, const NameTable& bodies) {
     if (t.has(maxKey)) {
         def.enableMotor = true;
         def.motorSpeed = t.real("motor_speed", 0.0f);
-        def.maxMotor = t.real(maxKey, 0.0f, Bounds::positive());
+        def.maxMotor = t.real(maxKey, 0.0f, body_rules::kMaxMotor);
     }
     def.collideConnected = t.boolean("collide_connected", def.collideConnected);
+    validateAt(t, [&] { validateJointDef(def); });
     return def;
 }
 

@@ -1,8 +1,15 @@
 // [[collider]]: planes, spheres, boxes, height-map terrain and depth cube maps.
+//
+// Values of the Def are read with type checks only; their ranges are
+// validateColliderDef's rules (src/particles/collider_rules.h), checked once
+// through validateAt. What is checked here is what never reaches the Def: the
+// parameters of the hills generator and of a cube map's shapes, an image's
+// height scale and size, and that a cube map's centre lies inside its shapes.
+#include "particles/collider_rules.h"
+#include "particles/params.h"
 #include "scene/cube_map.h"
 #include "scene/field_sources.h"
 #include "scene/heightmap_png.h"
-#include "scene/limits.h"
 #include "scene/parse_internal.h"
 
 #include <fmt/format.h>
@@ -65,12 +72,11 @@ HeightSource heightSource(const Table& t) {
 }
 
 glm::uvec2 readTerrainResolution(const Value& v) {
-    const auto axis = Bounds::between(2, static_cast<double>(kMaxTerrainAxis));
+    const FieldRule& axis = collider_rules::kTerrainAxis;
     if (v.array().size() != 2) {
-        v.failExpected("[nx, nz], two integers in [2, 4096]");
+        v.failExpected(fmt::format("[nx, nz], each {}", axis.describe()));
     }
-    return {static_cast<std::uint32_t>(v.element(0).integer(axis)),
-            static_cast<std::uint32_t>(v.element(1).integer(axis))};
+    return {v.element(0).whole<std::uint32_t>(axis), v.element(1).whole<std::uint32_t>(axis)};
 }
 
 void setGrid(ColliderDef& def, glm::uvec2 n) {
@@ -82,6 +88,7 @@ void readHills(const Table& t, ColliderDef& def) {
     t.find("generate")->choice<int>({{"hills", 0}});
     auto resolution = t.find("resolution");
     setGrid(def, resolution ? readTerrainResolution(*resolution) : glm::uvec2(64, 64));
+    validateAt(t, [&] { validateColliderGrid(def); });  // before the heights are generated
     HillParams params;
     params.amplitude = t.real("amplitude", params.amplitude, Bounds::nonNegative());
     params.frequency = t.real("frequency", params.frequency, Bounds::positive());
@@ -102,12 +109,12 @@ void readImageHeights(const Table& t, ColliderDef& def) {
     if (!decodeGreyPng(bytes, image, error)) {
         file.fail(fmt::format("cannot use \"{}\" as a height map: {}", ref.display, error));
     }
-    const auto tooSmallOrBig = [](std::uint32_t n) {
-        return n < 2 || n > static_cast<std::uint32_t>(kMaxTerrainAxis);
-    };
+    // The image is the grid: its size is checked as the resolution would be,
+    // at the image (the file has no resolution key).
+    const auto tooSmallOrBig = [](std::uint32_t n) { return !collider_rules::kTerrainAxis.bounds.contains(n); };
     if (tooSmallOrBig(image.width) || tooSmallOrBig(image.height)) {
         file.fail(fmt::format("expected an image of 2 to {} pixels a side, got {} x {}",
-                              kMaxTerrainAxis, image.width, image.height));
+                              kTerrainMaxAxis, image.width, image.height));
     }
     setGrid(def, {image.width, image.height});
     def.heights.resize(image.values.size());
@@ -118,15 +125,11 @@ void readImageHeights(const Table& t, ColliderDef& def) {
 void readInlineHeights(const Table& t, ColliderDef& def) {
     const glm::uvec2 n =
         readTerrainResolution(t.require("resolution", "[nx, nz] for the heights array"));
-    const Value heights = *t.find("heights");
-    const std::size_t expected = static_cast<std::size_t>(n.x) * n.y;
-    if (heights.array().size() != expected) {
-        heights.fail(fmt::format("expected {} heights (resolution {} x {}, x fastest), got {}",
-                                 expected, n.x, n.y, heights.array().size()));
-    }
     setGrid(def, n);
+    // As many as the file has: that they are nx * nz is validateColliderDef's rule.
+    const Value heights = *t.find("heights");
     def.heights.clear();
-    for (std::size_t i = 0; i < expected; ++i) {
+    for (std::size_t i = 0; i < heights.array().size(); ++i) {
         def.heights.push_back(heights.element(i).real());
     }
 }
@@ -134,8 +137,7 @@ void readInlineHeights(const Table& t, ColliderDef& def) {
 void readTerrain(const Table& t, ColliderDef& def) {
     const HeightSource source = heightSource(t);
     def.position = t.vec3("origin", def.position);
-    const std::vector<float> size =
-        t.require("size", "[size_x, size_z] (m)").numbers(2, Bounds::positive());
+    const std::vector<float> size = t.require("size", "[size_x, size_z] (m)").numbers(2);
     def.terrainSizeX = size[0];
     def.terrainSizeZ = size[1];
     switch (source) {
@@ -178,8 +180,8 @@ CubeShape readCubeShape(const Value& v) {
 }
 
 void readCubeShapes(const Table& t, ColliderDef& def) {
-    def.cubeResolution = static_cast<std::uint32_t>(
-        t.integer("resolution", 64, Bounds::between(2, static_cast<double>(kMaxCubeResolution))));
+    def.cubeResolution = t.whole<std::uint32_t>("resolution", 64, collider_rules::kCubeResolution);
+    validateAt(t, [&] { validateColliderGrid(def); });  // before the depths are computed
     const Value list = *t.find("shapes");
     if (list.array().empty()) {
         list.failExpected("at least one shape");
@@ -245,12 +247,11 @@ void readSimple(const Table& t, ColliderDef& def) {
             break;
         case ColliderKind::Sphere:
             def.position = t.vec3("center", def.position);
-            def.radius = t.require("radius", "a number > 0 (m)").real(Bounds::positive());
+            def.radius = t.require("radius", "a number > 0 (m)").real(collider_rules::kRadius);
             break;
         default:
             def.position = t.vec3("center", def.position);
-            def.halfExtents =
-                t.require("half_extents", "[hx, hy, hz] (m), each > 0").vec3(Bounds::positive());
+            def.halfExtents = t.require("half_extents", "[hx, hy, hz] (m), each > 0").vec3();
             def.rotationDegrees = t.vec3("rotation", def.rotationDegrees);
             break;
     }
@@ -274,9 +275,9 @@ void checkKeys(const Table& t, ColliderKind kind) {
 }
 
 void readSurface(const Table& t, ColliderDef& def) {
-    def.friction = t.real("friction", def.friction, Bounds::unit());
-    def.resilience = t.real("resilience", def.resilience, Bounds::unit());
-    def.restSpeed = t.real("rest_speed", def.restSpeed, Bounds::nonNegative());
+    def.friction = t.real("friction", def.friction, collider_rules::kFriction);
+    def.resilience = t.real("resilience", def.resilience, collider_rules::kResilience);
+    def.restSpeed = t.real("rest_speed", def.restSpeed, collider_rules::kRestSpeed);
 }
 
 }  // namespace
@@ -301,6 +302,7 @@ ColliderDef parseCollider(const Table& t, NameTable& names) {
     } else {
         readSimple(t, def);
     }
+    validateAt(t, [&] { validateColliderDef(def); });
     return def;
 }
 

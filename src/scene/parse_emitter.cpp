@@ -3,10 +3,11 @@
 // Angles in the file are degrees.
 //
 // Fields that have an EmitterDef rule (src/particles/emitter_rules.h) are
-// read with type checks only and checked once by validateEmitterDef through
-// validateAt. What is checked here is what only a file says: degrees, a
-// duration left out for "forever", a burst that fits the capacity, a radius
-// the shape needs, colours and curves as written.
+// read with type checks only, angles converted from degrees to the API's
+// radians, and checked once by validateEmitterDef through validateAt. What is
+// checked here is what only a file says: a duration left out for "forever"
+// (so one written is > 0), a burst that fits the capacity, colours and curves
+// as written.
 #include "particles/emitter_rules.h"
 #include "particles/params.h"
 #include "scene/parse_internal.h"
@@ -69,15 +70,14 @@ SpawnShapeDef readShape(const Table& t) {
     t.allowOnly(shapeKeys(def.kind), fmt::format("a shape of kind \"{}\"", kind.string()));
     def.center = t.vec3("center", def.center);
     def.direction = t.direction("direction", def.direction);
-    def.spreadAngle = t.real("spread", 0.0f, Bounds::between(0.0, 180.0)) * kRadiansPerDegree;
+    def.spreadAngle = t.real("spread", 0.0f) * kRadiansPerDegree;
     def.surface = t.boolean("surface", def.surface);
     if (def.kind == SpawnShapeKind::Box) {
-        def.halfExtents =
-            t.require("half_extents", "[hx, hy, hz] (m), each >= 0").vec3(Bounds::nonNegative());
+        def.halfExtents = t.require("half_extents", "[hx, hy, hz] (m), each >= 0").vec3();
+    } else if (def.kind == SpawnShapeKind::Sphere) {
+        def.radius = t.require("radius", "a number >= 0 (m)").real(emitter_rules::kSphereRadius);
     } else if (def.kind != SpawnShapeKind::Point) {
-        // A cone's launch angle grows from 0 on its axis to `spread` at its rim,
-        // so it needs a rim: radius 0 would launch everything along the axis.
-        def.radius = t.require("radius", "a number > 0 (m)").real(Bounds::positive());
+        def.radius = t.require("radius", "a number > 0 (m)").real(emitter_rules::kRimRadius);
     }
     return def;
 }
@@ -193,14 +193,14 @@ void readSpawning(const Table& t, EmitterDef& def) {
 // --- Per-particle ranges -----------------------------------------------------
 
 void readParticleRanges(const Table& t, EmitterDef& def) {
-    def.speed = t.range("speed", def.speed, Bounds::nonNegative());
+    def.speed = t.range("speed", def.speed, emitter_rules::kSpeed);
     def.lifetime = t.range("lifetime", def.lifetime, emitter_rules::kLifetime);
     def.size = t.range("size", def.size, emitter_rules::kSize);
     if (auto v = t.find("rotation")) {
-        def.rotation = toRadians(v->range());
+        def.rotation = toRadians(v->range(emitter_rules::kRotation));
     }
     if (auto v = t.find("angular_velocity")) {
-        def.angularVelocity = toRadians(v->range());
+        def.angularVelocity = toRadians(v->range(emitter_rules::kAngularVelocity));
     }
     if (auto v = t.find("color")) {
         def.color = readColorRange(*v);

@@ -1,5 +1,12 @@
 // [[force]]: gravity, wind, attractors, repulsors, vortices, damping,
 // undamping and flow-field drag.
+//
+// Values are read with type checks only; their ranges are validateForceDef's
+// rules (src/particles/force_rules.h), checked once through validateAt. What
+// is checked here is what only a file says: a repulsor is an attractor with
+// its strength negated, so both strengths are written >= 0.
+#include "particles/force_rules.h"
+#include "particles/params.h"
 #include "scene/parse_internal.h"
 
 #include <fmt/format.h>
@@ -82,9 +89,9 @@ ForceKind apiKind(ForceName kind) {
 // repulsors and vortices: |F| = strength (radius / d)^falloff within range.
 void readFalloffLaw(const Table& t, ForceDef& def) {
     def.position = t.vec3("position", def.position);
-    def.radius = t.real("radius", def.radius, Bounds::positive());
-    def.falloff = t.real("falloff", def.falloff);
-    def.range = t.real("range", def.range, Bounds::nonNegative());
+    def.radius = t.real("radius", def.radius, force_rules::kRadius);
+    def.falloff = t.real("falloff", def.falloff, force_rules::kFalloff);
+    def.range = t.real("range", def.range, force_rules::kRange);
 }
 
 void readAttractor(const Table& t, ForceDef& def, bool repulsor) {
@@ -106,7 +113,7 @@ void readKindFields(const Table& t, ForceName kind, ForceDef& def, const NameTab
             break;
         case ForceName::Wind:
             def.vector = t.require("velocity", "[vx, vy, vz] (m/s)").vec3();
-            def.strength = t.real("strength", def.strength, Bounds::nonNegative());
+            def.strength = t.real("strength", def.strength, force_rules::kRate);
             break;
         case ForceName::Attractor:
             readAttractor(t, def, false);
@@ -117,20 +124,20 @@ void readKindFields(const Table& t, ForceName kind, ForceDef& def, const NameTab
         case ForceName::Vortex:
             readFalloffLaw(t, def);
             def.axis = t.direction("axis", def.axis);
-            def.strength = t.real("strength", def.strength);
+            def.strength = t.real("strength", def.strength, force_rules::kStrength);
             break;
         case ForceName::Undamping:
-            def.targetSpeed = t.real("target_speed", def.targetSpeed, Bounds::nonNegative());
+            def.targetSpeed = t.real("target_speed", def.targetSpeed, force_rules::kTargetSpeed);
             [[fallthrough]];
         case ForceName::Damping:
-            def.strength = t.real("strength", def.strength, Bounds::nonNegative());
+            def.strength = t.real("strength", def.strength, force_rules::kRate);
             def.position = t.vec3("position", def.position);
-            def.range = t.real("range", def.range, Bounds::nonNegative());
+            def.range = t.real("range", def.range, force_rules::kRange);
             break;
         case ForceName::Flow: {
             const Value field = t.require("field", "the name of a [[flow_field]]");
             def.flowField = FlowFieldId{flowFields.resolve(field) + 1};
-            def.viscosity = t.real("viscosity", def.viscosity, Bounds::positive());
+            def.viscosity = t.real("viscosity", def.viscosity, force_rules::kViscosity);
             break;
         }
     }
@@ -145,6 +152,7 @@ ForceDef parseForce(const Table& t, NameTable& names, const NameTable& flowField
     def.name = names.add(t);
     def.kind = apiKind(kind);
     readKindFields(t, kind, def, flowFields);
+    validateAt(t, [&] { validateForceDef(def); });
     return def;
 }
 

@@ -1,16 +1,15 @@
 // [render]: frame size, video timing, sun, and the [render.background] and
-// [render.fluid] sub-tables. Ranges are those of validateRenderDef, checked
-// here per key so an error points at the line that is wrong.
+// [render.fluid] sub-tables. Values are read with type checks only; their
+// ranges are validateRenderDef's rules (src/render/render_rules.h), checked
+// once through validateAt, so an error points at the line that is wrong.
 #include <fmt/format.h>
 
+#include "render/render_rules.h"
 #include "scene/parse_internal.h"
 
 namespace spindrift::scene {
 
 namespace {
-
-// The renderer's limit (validateRenderDef): lavapipe's maxImageDimension2D.
-constexpr double kMaxFrameSide = 16384;
 
 std::vector<std::string_view> backgroundKeys(BackgroundKind kind) {
     switch (kind) {
@@ -30,16 +29,17 @@ BackgroundDef parseBackground(const Table& t) {
     def.kind = kind.choice<BackgroundKind>(
         {{"color", BackgroundKind::Colour}, {"gradient", BackgroundKind::Gradient}, {"image", BackgroundKind::Image}});
     t.allowOnly(backgroundKeys(def.kind), fmt::format("a background of kind \"{}\"", kind.string()));
-    def.colour = t.vec3("color", def.colour, Bounds::nonNegative());
-    def.top = t.vec3("top", def.top, Bounds::nonNegative());
-    def.bottom = t.vec3("bottom", def.bottom, Bounds::nonNegative());
+    def.colour = t.vec3("color", def.colour);
+    def.top = t.vec3("top", def.top);
+    def.bottom = t.vec3("bottom", def.bottom);
     if (def.kind == BackgroundKind::Image) {
         def.image = readPngPath(t.require("image", "a PNG file path, relative to the scene file"));
     }
     return def;
 }
 
-FluidRenderDef parseFluidRender(const Table& t) {
+// `render` is the [render] table, where FluidRenderDef::upTo's error is located.
+FluidRenderDef parseFluidRender(const Table& render, const Table& t) {
     t.allowOnly({"color", "opacity", "radius_scale", "steps", "size_from_density", "stretch", "refraction", "edges",
                  "splashes", "bubbles"},
                 "[render.fluid]");
@@ -48,7 +48,9 @@ FluidRenderDef parseFluidRender(const Table& t) {
     // off); a flag written beside it overrides it, so "steps = 5" plus
     // "bubbles = true" reads as what it says.
     if (auto v = t.find("steps")) {
-        const FluidRenderDef preset = FluidRenderDef::upTo(static_cast<int>(v->integer(Bounds::between(1, 7))));
+        const int steps = v->whole<int>(render_rules::kFluidSteps);
+        FluidRenderDef preset;
+        validateAt(render, [&] { preset = FluidRenderDef::upTo(steps); });
         def.sizeFromDensity = preset.sizeFromDensity;
         def.stretch = preset.stretch;
         def.refraction = preset.refraction;
@@ -56,9 +58,9 @@ FluidRenderDef parseFluidRender(const Table& t) {
         def.splashes = preset.splashes;
         def.bubbles = preset.bubbles;
     }
-    def.colour = t.vec3("color", def.colour, Bounds::nonNegative());
-    def.opacity = t.real("opacity", def.opacity, {0.0, 1.0, true, false});
-    def.radiusScale = t.real("radius_scale", def.radiusScale, Bounds::positive());
+    def.colour = t.vec3("color", def.colour);
+    def.opacity = t.real("opacity", def.opacity, render_rules::kFluidOpacity);
+    def.radiusScale = t.real("radius_scale", def.radiusScale, render_rules::kFluidRadiusScale);
     def.sizeFromDensity = t.boolean("size_from_density", def.sizeFromDensity);
     def.stretch = t.boolean("stretch", def.stretch);
     def.refraction = t.boolean("refraction", def.refraction);
@@ -73,25 +75,20 @@ FluidRenderDef parseFluidRender(const Table& t) {
 RenderDef parseRender(const Table& t) {
     t.allowOnly({"width", "height", "fps", "seconds", "draw_colliders", "sun", "background", "fluid"}, "[render]");
     RenderDef def;
-    def.width = static_cast<std::uint32_t>(t.integer("width", def.width, Bounds::between(1, kMaxFrameSide)));
-    def.height = static_cast<std::uint32_t>(t.integer("height", def.height, Bounds::between(1, kMaxFrameSide)));
-    def.fps = t.real("fps", def.fps, Bounds::positive());
-    def.seconds = t.real("seconds", def.seconds, Bounds::positive());
+    def.width = t.whole<std::uint32_t>("width", def.width, render_rules::kFrameSide);
+    def.height = t.whole<std::uint32_t>("height", def.height, render_rules::kFrameSide);
+    def.fps = t.real("fps", def.fps, render_rules::kFps);
+    def.seconds = t.real("seconds", def.seconds, render_rules::kSeconds);
     def.drawColliders = t.boolean("draw_colliders", def.drawColliders);
     def.sunDirection = t.direction("sun", def.sunDirection);
     if (auto background = t.subTable("background")) {
         def.background = parseBackground(*background);
     }
     if (auto fluid = t.subTable("fluid")) {
-        def.fluid = parseFluidRender(*fluid);
+        def.fluid = parseFluidRender(t, *fluid);
     }
-    // The library's own check, so a rule added there and not here still
-    // rejects the scene rather than createRenderer mid-command.
-    try {
-        validateRenderDef(def);
-    } catch (const Error& e) {
-        t.fail(e.what());
-    }
+    // The camera is the [camera] table's (parseCamera); the default one here is valid.
+    validateAt(t, [&] { validateRenderDef(def); });
     return def;
 }
 

@@ -1,5 +1,6 @@
 // Scene files: the top level (world, camera, run) and the order in which the
 // object arrays are read. See docs/scene-format.md for the format.
+#include "render/render_rules.h"
 #include "scene/heightmap_png.h"
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
@@ -34,24 +35,15 @@ WorldDef parseWorld(const Table& t) {
 
 CameraDef parseCamera(const Table& t) {
     t.allowOnly({"eye", "target", "up", "fov", "orthographic", "ortho_height"}, "[camera]");
+    // Type checks here; the ranges are validateCameraDef's (src/render/render_rules.h).
     CameraDef def;
     def.eye = t.vec3("eye", def.eye);
     def.target = t.vec3("target", def.target);
     def.up = t.direction("up", def.up);
-    // Open interval: 0 and 180 degrees make a degenerate projection.
-    def.fovDegrees = t.real("fov", def.fovDegrees, {0.0, 180.0, true, true});
+    def.fovDegrees = t.real("fov", def.fovDegrees, render_rules::kFov);
     def.orthographic = t.boolean("orthographic", def.orthographic);
-    def.orthoHeight = t.real("ortho_height", def.orthoHeight, Bounds::positive());
-    const glm::vec3 view = def.target - def.eye;
-    if (!(glm::length(view) > 1e-6f)) {
-        t.failAtKey(t.has("target") ? "target" : "eye",
-                    "the camera target must differ from its eye position");
-    }
-    if (glm::length(glm::cross(glm::normalize(view), def.up)) < 1e-3f) {
-        t.failAtKey(t.has("up") ? "up" : "target",
-                    "the up direction must not be parallel to the view direction "
-                    "(target - eye)");
-    }
+    def.orthoHeight = t.real("ortho_height", def.orthoHeight, render_rules::kOrthoHeight);
+    validateAt(t, [&] { validateCameraDef(def); });
     return def;
 }
 

@@ -86,7 +86,7 @@ TEST(CouplingScene, TheFluidBoxesSceneHasFloatingAndSinkingCrates) {
 using test::expectError;
 
 TEST(CouplingSceneErrors, BodyWithoutShape) {
-    expectError("[[body]]\nname = \"b\"\n", {1, 1, "body[0]", "at least one shape"});
+    expectError("[[body]]\nname = \"b\"\n", {1, 1, "body[0].shape", "expected at least one shape, got none"});
 }
 
 TEST(CouplingSceneErrors, UnknownBodyType) {
@@ -101,17 +101,17 @@ TEST(CouplingSceneErrors, ShapeWithTwoKinds) {
 
 TEST(CouplingSceneErrors, NegativeBoxExtent) {
     expectError("[[body]]\nname = \"b\"\nshape = [{ box = [1, -1] }]\n",
-                {3, 22, "body[0].shape[0].box[1]", "a number > 0"});
+                {3, 22, "body[0].shape[0].box[1]", "expected a number in [0.005, 10000], got -1"});
 }
 
 TEST(CouplingSceneErrors, ConcavePolygon) {
     expectError("[[body]]\nname = \"b\"\n\n[[body.shape]]\npolygon = [[0, 0], [1, 0], [0.2, 0.2], [0, 1]]\n",
-                {1, 1, "body[0]", "not strictly convex"});
+                {5, 11, "body[0].shape[0].polygon", "expected a strictly convex polygon"});
 }
 
 TEST(CouplingSceneErrors, DynamicEdge) {
     expectError("[[body]]\nname = \"b\"\nshape = [{ edge = [[0, 0], [1, 0]] }]\n",
-                {1, 1, "body[0]", "dynamic body cannot use them"});
+                {3, 19, "body[0].shape[0].edge", "no area, so no mass"});
 }
 
 TEST(CouplingSceneErrors, JointToAnUnknownBody) {
@@ -168,7 +168,7 @@ TEST(CouplingSceneErrors, BodyGravityNeedsTwoNumbers) {
 TEST(CouplingSceneErrors, AHugeCircleIsRefusedBeforeBox2DSeesIt) {
     // Radius 1e18 overflowed the inertia and fired b2Body::ResetMassData's
     // assertion m_I > 0.
-    expectError("[[body]]\nname = \"b\"\nshape = [{ circle = 1e18 }]\n", {1, 1, "body[0]", "circle radius must be"});
+    expectError("[[body]]\nname = \"b\"\nshape = [{ circle = 1e18 }]\n", {3, 21, "body[0].shape[0].circle", "expected a number in [0.005, 10000], got 1e+18"});
 }
 
 TEST(CouplingSceneErrors, BodyGravityOfAThousandGAtMost) {

@@ -1,0 +1,30 @@
+// The rules of a RenderDef's fields, named once: validateRenderDef and
+// validateCameraDef check them (so createRenderer, setRenderCamera,
+// setFluidRender and the scene loader, which words its type errors with them
+// too; src/core/field_rules.h), and the viewer's sliders take their ranges
+// from them.
+#pragma once
+
+#include "core/field_rules.h"
+
+#include <spindrift/render.h>
+
+namespace spindrift::render_rules {
+
+/// Pixels a side: the smallest maxImageDimension2D a desktop driver reports is
+/// far above what a frame needs; lavapipe allows 16384.
+inline constexpr FieldRule kFrameSide = FieldRule::whole(Bounds::between(1, kRenderMaxFrameSide));
+inline constexpr FieldRule kFps = FieldRule::number(Bounds::positive());
+inline constexpr FieldRule kSeconds = FieldRule::number(Bounds::positive());  ///< s
+/// Linear RGB, each channel; above 1 is allowed (HDR).
+inline constexpr FieldRule kColour = FieldRule::number(Bounds::nonNegative());
+/// FluidRenderDef::upTo's n.
+inline constexpr FieldRule kFluidSteps = FieldRule::whole(Bounds::between(1, kFluidRenderSteps));
+inline constexpr FieldRule kFluidOpacity = FieldRule::number(Bounds{0.0, 1.0, true, false});
+inline constexpr FieldRule kFluidRadiusScale = FieldRule::number(Bounds::positive());
+
+// Camera. Open interval: 0 and 180 degrees make a degenerate projection.
+inline constexpr FieldRule kFov = FieldRule::number(Bounds{0.0, 180.0, true, true});  ///< degrees
+inline constexpr FieldRule kOrthoHeight = FieldRule::number(Bounds::positive());      ///< m
+
+}  // namespace spindrift::render_rules

@@ -19,4 +19,11 @@ inline constexpr std::int64_t kMaxCubeResolution = 1024;  ///< texels per face e
 inline constexpr std::int64_t kMaxThreads = 1024;
 inline constexpr std::int64_t kMaxSteps = 100'000'000;
 
+// What a scene's text may ask of the TOML parser (src/scene/toml_prescan.h),
+// checked before toml++ sees it.
+inline constexpr std::size_t kMaxSceneBytes = 16u << 20;     ///< a scene's text
+inline constexpr std::size_t kMaxSceneLineBytes = 1u << 20;  ///< one line of it
+inline constexpr int kMaxKeyParts = 32;     ///< parts of a dotted key or table header
+inline constexpr int kMaxTomlNesting = 32;  ///< arrays, inline tables, table headers
+
 }  // namespace spindrift::scene

@@ -3,6 +3,7 @@
 #include "scene/heightmap_png.h"
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
+#include "scene/toml_prescan.h"
 
 #include <fmt/format.h>
 
@@ -148,6 +149,7 @@ using scene::Table;
 SceneDef parseScene(std::string_view text, const std::string& sourceName,
                     const std::string& baseDir) {
     const scene::ParseContext ctx{sourceName, baseDir.empty() ? "." : baseDir};
+    scene::prescanToml(text, sourceName);
     toml::table document;
     try {
         document = toml::parse(text, std::string_view(sourceName));

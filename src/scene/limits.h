@@ -26,4 +26,8 @@ inline constexpr std::size_t kMaxSceneLineBytes = 1u << 20;  ///< one line of it
 inline constexpr int kMaxKeyParts = 32;     ///< parts of a dotted key or table header
 inline constexpr int kMaxTomlNesting = 32;  ///< arrays, inline tables, table headers
 
+/// A data file (`file`, `image`, `texture`): room for the largest flow field
+/// (kMaxFlowSamples lines of three numbers) as text.
+inline constexpr std::size_t kMaxDataFileBytes = 256u << 20;
+
 }  // namespace spindrift::scene

@@ -124,7 +124,7 @@ std::string readDataFile(const Value& value, DataFileRef& ref) {
     ref.display = ref.path.string();
     ref.keyPath = value.path();
     std::string error;
-    std::optional<std::string> text = readWholeFile(ref.path, error);
+    std::optional<std::string> text = readWholeFile(ref.path, kMaxDataFileBytes, error);
     if (!text) {
         value.fail(fmt::format("cannot read \"{}\" (resolved to \"{}\"): {}", relative, ref.display,
                                error));
@@ -223,7 +223,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
 
 SceneDef loadScene(const std::string& path) {
     std::string error;
-    std::optional<std::string> text = scene::readWholeFile(path, error);
+    std::optional<std::string> text = scene::readWholeFile(path, scene::kMaxSceneBytes, error);
     if (!text) {
         throw SceneError(path, 0, 0, "", "cannot read scene file: " + error);
     }

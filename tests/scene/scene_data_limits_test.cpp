@@ -101,4 +101,32 @@ TEST_F(SceneDataLimits, SceneFileOverTheSizeLimitIsRefused) {
     }
 }
 
+// A NUL escape in a path used to be cut at the NUL by the system:
+// "data/rock.cube\u0000.txt" opened data/rock.cube, and the error about
+// "data/swirl.flow\u0000.txt" printed no further than the NUL. Now every
+// string with a NUL is refused at its value, and the message shows the NUL
+// as an escape (what() has no NUL in it).
+TEST(SceneDataLimitsNul, NulInAPathIsRefusedAtTheValue) {
+    const std::string flow = "[[flow_field]]\nname = \"f\"\nfile = \"data/swirl.flow\\u0000.txt\"\n";
+    expectError(flow, {3, 8, "flow_field[0].file", "without NUL"}, SPINDRIFT_SOURCE_DIR "/scenes");
+    const std::string cube =
+        "[[collider]]\nname = \"c\"\nkind = \"cube_map\"\ncenter = [0, 0, 0]\nfile = \"data/rock.cube\\u0000.txt\"\n";
+    expectError(cube, {5, 8, "collider[0].file", "without NUL"}, SPINDRIFT_SOURCE_DIR "/scenes");
+    try {
+        spindrift::parseScene(flow, "bad.toml", SPINDRIFT_SOURCE_DIR "/scenes");
+        FAIL() << "accepted a NUL in a path";
+    } catch (const SceneError& err) {
+        const std::string what = err.what();
+        EXPECT_EQ(what.find('\0'), std::string::npos);
+        EXPECT_NE(what.find("got \"data/swirl.flow\\u0000.txt\""), std::string::npos) << what;
+    }
+    // Without the NUL the same scene reads: the refusal is the NUL's.
+    EXPECT_NO_THROW(spindrift::parseScene("[[flow_field]]\nname = \"f\"\nfile = \"data/swirl.flow\"\n", "ok.toml",
+                                          SPINDRIFT_SOURCE_DIR "/scenes"));
+}
+
+TEST(SceneDataLimitsNul, NulInANameIsRefusedAtTheValue) {
+    expectError("[[emitter]]\nname = \"a\\u0000b\"\n", {2, 8, "emitter[0].name", "without NUL"});
+}
+
 }  // namespace

@@ -15,6 +15,11 @@ inline constexpr std::size_t kMaxForces = kernels::SD_MAX_FORCES;
 inline constexpr std::int64_t kMaxFlowAxis = 512;                 ///< samples along one axis
 inline constexpr std::int64_t kMaxFlowSamples = 4 * 1024 * 1024;  ///< 48 MiB of vec3
 inline constexpr std::int64_t kMaxTerrainAxis = 4096;
+/// Noise evaluations a generated field may cost (curl noise, hills): samples
+/// x octaves (x 3 potentials for 3D curl noise). Fields are generated while
+/// the scene is read, so this bounds what `validate` spends on them: about
+/// half a second in an optimised build (~130 ns an evaluation).
+inline constexpr std::uint64_t kMaxNoiseEvaluations = 1u << 22;
 inline constexpr std::int64_t kMaxCubeResolution = 1024;  ///< texels per face edge
 inline constexpr std::int64_t kMaxThreads = 1024;
 inline constexpr std::int64_t kMaxSteps = 100'000'000;

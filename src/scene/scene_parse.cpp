@@ -132,6 +132,23 @@ std::string readDataFile(const Value& value, DataFileRef& ref) {
     return *text;
 }
 
+void checkNoiseCost(const Table& table, std::uint64_t evaluations, const std::string& what) {
+    if (evaluations <= kMaxNoiseEvaluations) {
+        return;
+    }
+    const std::string message = fmt::format(
+        "{} is {} noise evaluations, more than the limit of {} (fields are generated while the "
+        "scene is read, and the limit keeps that under about half a second); lower the "
+        "resolution or the octaves",
+        what, evaluations, kMaxNoiseEvaluations);
+    for (const std::string_view key : {"octaves", "resolution"}) {
+        if (auto v = table.find(key)) {
+            v->fail(message);
+        }
+    }
+    table.fail(message);
+}
+
 std::string readPngPath(const Value& value) {
     DataFileRef ref;
     const std::string bytes = readDataFile(value, ref);

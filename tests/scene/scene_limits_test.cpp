@@ -3,10 +3,13 @@
 // passed, and what it lets through. Positions are counted by hand.
 #include <spindrift/scene.h>
 
+#include "scene/field_sources.h"
 #include "scene/limits.h"
 #include "scene/scene_error_expect.h"
 
 #include <gtest/gtest.h>
+
+#include <chrono>
 
 #include <string>
 #include <string_view>
@@ -104,6 +107,52 @@ TEST(SceneLimits, TextLongerThanTheLimitIsRefusedWhereItPassesIt) {
     ASSERT_EQ(text.size(), scene::kMaxSceneBytes);
     text += "[world]\n";
     expectError(text, {17, 1, "", "longer than 16777216 bytes"});
+}
+
+// --- Generated fields: their cost is checked before they are built ---------
+
+// The fuzzer's hangs: curl noise 512 x 512 x 16 with 8 octaves (8 to 22 s in
+// validate) and hills 4096^2 with 8 octaves, both within the per-key limits.
+// Refused at `octaves` before any sample is made: the time bound (1 s, for
+// ASan and a loaded machine) fails if the field were generated first.
+TEST(SceneLimits, CostlyGeneratedFieldsAreRefusedBeforeTheyAreBuilt) {
+    static_assert(scene::kMaxNoiseEvaluations == 4194304);
+    const auto start = std::chrono::steady_clock::now();
+    expectError("[[flow_field]]\nname = \"f\"\ngenerate = \"curl_noise\"\nbounds_min = [0, 0, 0]\n"
+                "bounds_max = [1, 1, 1]\nresolution = [512, 512, 16]\noctaves = 8\n",
+                {7, 11, "flow_field[0].octaves",
+                 "curl noise of 512 x 512 x 16 samples x 8 octaves x 3 potentials is 100663296 noise "
+                 "evaluations, more than the limit of 4194304"});
+    expectError("[[collider]]\nname = \"t\"\nkind = \"terrain\"\nsize = [1, 1]\ngenerate = \"hills\"\n"
+                "resolution = [4096, 4096]\noctaves = 8\n",
+                {7, 11, "collider[0].octaves",
+                 "hills of 4096 x 4096 samples x 8 octaves is 134217728 noise evaluations"});
+    // Without `octaves` (1 for curl noise, 3 for hills) the error is at `resolution`.
+    expectError("[[collider]]\nname = \"t\"\nkind = \"terrain\"\nsize = [1, 1]\ngenerate = \"hills\"\n"
+                "resolution = [2048, 2048]\n",
+                {6, 14, "collider[0].resolution", "2048 x 2048 samples x 3 octaves is 12582912"});
+    // One row over the limit: 2048 x 2049 x 1 = 4194304 + 2048.
+    expectError("[[collider]]\nname = \"t\"\nkind = \"terrain\"\nsize = [1, 1]\ngenerate = \"hills\"\n"
+                "resolution = [2048, 2049]\noctaves = 1\n",
+                {7, 11, "collider[0].octaves", "is 4196352 noise evaluations"});
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
+// The cost the limit bounds, counted as the generators count it (building a
+// field at the limit takes about half a second, too long for this suite; the
+// refusal above is one row past it).
+TEST(SceneLimits, NoiseEvaluationsAreSamplesTimesOctavesTimesPotentials) {
+    spindrift::FlowFieldDef field;
+    field.nx = 128;
+    field.ny = 128;
+    field.nz = 85;
+    EXPECT_EQ(scene::curlNoiseEvaluations(field, 1), 4177920u);  // 3D: three potentials
+    field.nz = 1;
+    EXPECT_EQ(scene::curlNoiseEvaluations(field, 8), 131072u);  // planar: one stream function
+    spindrift::ColliderDef terrain;
+    terrain.terrainNx = 2048;
+    terrain.terrainNz = 2048;
+    EXPECT_EQ(scene::hillsEvaluations(terrain, 1), scene::kMaxNoiseEvaluations);
 }
 
 }  // namespace

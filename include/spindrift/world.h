@@ -71,6 +71,8 @@ struct StepStats {
     std::uint64_t died = 0;
     std::uint64_t collisions = 0;
     /// Births asked for beyond capacity in this step (spawn mode), dropped.
+    /// They are counted, never stored: memory does not grow with the rate or
+    /// dt. Saturates at the largest std::uint64_t (a rate of 3e38 per second).
     std::uint64_t clamped = 0;
     std::vector<ColliderStepStats> colliderHits;
     /// One entry per fluid, in id order.

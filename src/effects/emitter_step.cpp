@@ -1,6 +1,7 @@
 // One step of one state-preserving emitter on the CPU: a named list of passes.
 #include "effects/emitter_step.h"
 
+#include "core/saturating.h"
 #include "particles/birth_schedule.h"
 
 #include <bit>
@@ -119,9 +120,10 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
     // Emission (spawn mode): births owed this step take free slots; beyond
     // capacity they are dropped and counted, never overwriting live particles.
     if (spawnMode) {
-        std::vector<float> ages = scheduleBirths(e, time, dt).ages();
-        std::size_t count = std::min(ages.size(), e.freeSlots.size());
-        stats.clamped += ages.size() - count;
+        const BirthSchedule schedule = scheduleBirths(e, time, dt);
+        const std::vector<float> ages = schedule.ages(e.freeSlots.size());
+        const std::size_t count = ages.size();
+        stats.clamped = saturatingAdd(stats.clamped, saturatingAdd(schedule.total() - count, schedule.dropped));
         std::vector<std::uint32_t> slots(e.freeSlots.end() - static_cast<std::ptrdiff_t>(count), e.freeSlots.end());
         e.freeSlots.resize(e.freeSlots.size() - count);
         const std::uint32_t firstSerial = e.nextSerial;

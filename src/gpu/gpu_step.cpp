@@ -3,6 +3,7 @@
 // collecting a finished step's counts and events.
 #include "gpu/gpu_world_parts.h"
 
+#include "core/saturating.h"
 #include "gpu/vulkan_pipeline.h"
 #include "particles/birth_schedule.h"
 
@@ -21,10 +22,11 @@ namespace {
 // vkQueueSubmit need no barrier) and returns how many births it owes.
 std::uint32_t writeSchedule(GpuEmitter& e, std::uint32_t frame, EmitterState& s, double time, float dt) {
     BirthSchedule b = scheduleBirths(s, time, dt);
-    std::uint64_t total = b.total();
-    if (total > std::numeric_limits<std::uint32_t>::max()) {
-        throw Error(fmt::format("emitter '{}': {} births in one step", s.def.name, total));
-    }
+    // At most the capacity (kEmitterMaxCapacity < 2^32); the births beyond it
+    // are counted with the step's device counters when they are collected.
+    const auto total = static_cast<std::uint32_t>(b.total());
+    static_assert(kEmitterMaxCapacity <= std::numeric_limits<std::uint32_t>::max());
+    e.scheduleDropped[frame] = b.dropped;
     ScheduleHeader h{};
     h.burstRuns = static_cast<std::uint32_t>(b.bursts.size());
     h.rateSpan = static_cast<float>(b.t1 - b.t0);
@@ -67,7 +69,8 @@ void collectCounters(GpuEmitter& e, std::uint32_t frame, EmitterState& s, StepSt
     s.alive = s.alive + c.born - c.died;
     stats.born += c.born;
     stats.died += c.died;
-    stats.clamped += c.clamped;
+    stats.clamped = saturatingAdd(stats.clamped, saturatingAdd(c.clamped, e.scheduleDropped[frame]));
+    e.scheduleDropped[frame] = 0;
     if (e.spawn) {
         // Every birth of a spawn emitter came from the emit pass, numbered
         // from the device's nextSerial in schedule order, as the CPU does.

@@ -75,6 +75,9 @@ struct GpuEmitter {
     Buffer dead;      // kernels::DeadHeader, dead slot stack
     Buffer alive[2];  // kernels::TableHeader, slot indices
     Buffer schedules[kMaxFramesInFlight];  // host-visible: kernels::ScheduleHeader, burst runs
+    // Births the frame's schedule left out (beyond the capacity), added to
+    // the device's clamped count when the frame is collected.
+    std::uint64_t scheduleDropped[kMaxFramesInFlight] = {};
     std::uint32_t scheduleRuns = 0;  // burst runs a schedule buffer holds
     /// listSets[p][f]: alive[p] is the current list, alive[1 - p] the next,
     /// with frame f's schedule.

@@ -1,5 +1,6 @@
 #include "io/summary.h"
 
+#include "core/saturating.h"
 #include "io/atomic_file.h"
 #include "io/json_writer.h"
 
@@ -221,7 +222,7 @@ Totals sumSteps(const RunSummary& s) {
         t.born += step.born;
         t.died += step.died;
         t.collisions += step.collisions;
-        t.clamped += step.clamped;
+        t.clamped = saturatingAdd(t.clamped, step.clamped);
         t.milliseconds += step.milliseconds;
         const auto hits = denseHits(step, s.colliderNames.size());
         for (std::size_t i = 0; i < hits.size(); ++i) t.colliderHits[i] += hits[i];

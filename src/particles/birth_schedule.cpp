@@ -1,6 +1,8 @@
 // The one host-side birth-age rule (see birth_schedule.h).
 #include "particles/birth_schedule.h"
 
+#include "core/saturating.h"
+
 #include <algorithm>
 #include <cmath>
 
@@ -16,18 +18,27 @@ BirthSchedule scheduleBirths(EmitterState& e, double t0, float dt) {
     s.dt = dt;
     s.rate = e.def.rate;
     s.carry = e.emissionCarry;
+    const std::uint64_t capacity = e.def.capacity;
+    std::uint64_t room = capacity;  // births the schedule may still hold
     for (const BurstDef& b : e.def.bursts) {
         if (b.time >= s.t0 && b.time < s.t1) {
-            s.bursts.push_back({b.count, static_cast<float>(s.t1 - b.time)});
+            const std::uint64_t kept = std::min<std::uint64_t>(b.count, room);
+            if (kept > 0) {
+                s.bursts.push_back({static_cast<std::uint32_t>(kept), static_cast<float>(s.t1 - b.time)});
+            }
+            s.dropped += b.count - kept;
+            room -= kept;
         }
     }
     double activeEnd = e.def.duration >= 0.0f ? std::min<double>(s.t1, e.def.duration) : s.t1;
     double activeDt = std::max(0.0, activeEnd - t0);
     if (e.def.rate > 0.0f && activeDt > 0.0) {
-        double owed = e.emissionCarry + e.def.rate * activeDt;
-        auto count = static_cast<std::uint64_t>(std::floor(owed));
-        s.rateCount = count;
-        e.emissionCarry = owed - static_cast<double>(count);
+        // In double: owed may be far beyond any integer type (rate 3e38).
+        const double owed = e.emissionCarry + e.def.rate * activeDt;
+        const double whole = std::floor(owed);
+        e.emissionCarry = owed - whole;
+        s.rateCount = whole < static_cast<double>(room) ? static_cast<std::uint64_t>(whole) : room;
+        s.dropped = saturatingAdd(s.dropped, saturatingCount(whole - static_cast<double>(s.rateCount)));
     }
     return s;
 }
@@ -45,13 +56,14 @@ float BirthSchedule::rateAge(std::uint64_t j) const {
     return static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, dt));
 }
 
-std::vector<float> BirthSchedule::ages() const {
+std::vector<float> BirthSchedule::ages(std::uint64_t limit) const {
+    const std::uint64_t n = std::min(total(), limit);
     std::vector<float> out;
-    out.reserve(total());
+    out.reserve(n);
     for (const BurstRun& b : bursts) {
-        out.insert(out.end(), b.count, b.age);
+        out.insert(out.end(), std::min<std::uint64_t>(b.count, n - out.size()), b.age);
     }
-    for (std::uint64_t j = 0; j < rateCount; ++j) {
+    for (std::uint64_t j = 0; out.size() < n; ++j) {
         out.push_back(rateAge(j));
     }
     return out;

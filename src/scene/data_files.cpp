@@ -6,13 +6,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cerrno>
 #include <charconv>
 #include <cmath>
-#include <cstdio>
+#include <cstdint>
 #include <cstring>
-#include <memory>
 #include <string_view>
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
 
 namespace spindrift::scene {
 
@@ -149,28 +153,65 @@ void readFlowHeader(LineReader& in, FlowFieldDef& field) {
 
 }  // namespace
 
-std::optional<std::string> readWholeFile(const std::filesystem::path& path, std::string& error) {
-    std::error_code ec;
-    if (std::filesystem::is_directory(path, ec)) {
+std::optional<std::string> readWholeFile(const std::filesystem::path& path, std::size_t maxBytes,
+                                         std::string& error) {
+    // O_NONBLOCK: opening a FIFO must not wait for a writer; it is refused
+    // below like every other file that is not a regular one (/dev/zero,
+    // /dev/urandom, a directory), whose size says nothing of what it yields.
+    const int fd = ::open(path.c_str(), O_RDONLY | O_NONBLOCK | O_CLOEXEC);
+    if (fd < 0) {
+        error = std::strerror(errno);
+        return std::nullopt;
+    }
+    struct Closer {
+        int fd;
+        ~Closer() { ::close(fd); }
+    } const closer{fd};
+    struct stat info {};
+    if (::fstat(fd, &info) != 0) {
+        error = std::strerror(errno);
+        return std::nullopt;
+    }
+    if (S_ISDIR(info.st_mode)) {
         error = "is a directory, not a file";
         return std::nullopt;
     }
-    std::unique_ptr<std::FILE, int (*)(std::FILE*)> file(std::fopen(path.c_str(), "rb"),
-                                                         &std::fclose);
-    if (!file) {
-        error = std::strerror(errno);
+    if (!S_ISREG(info.st_mode)) {
+        error = "is not a regular file (a device, pipe or socket cannot be read as data)";
         return std::nullopt;
     }
-    std::string text;
-    char buffer[1 << 16];
-    std::size_t n = 0;
-    while ((n = std::fread(buffer, 1, sizeof buffer, file.get())) > 0) {
-        text.append(buffer, n);
-    }
-    if (std::ferror(file.get())) {
-        error = std::strerror(errno);
+    const auto tooLarge = [&](std::string_view size) {
+        error = fmt::format("is {} bytes, more than the limit of {} bytes", size, maxBytes);
         return std::nullopt;
+    };
+    if (static_cast<std::uint64_t>(info.st_size) > maxBytes) {
+        return tooLarge(std::to_string(info.st_size));
     }
+    // Read at most one byte past the limit: a file that grows while it is
+    // read is refused too, and nothing is read without bound.
+    std::string text(static_cast<std::size_t>(info.st_size), '\0');
+    std::size_t used = 0;
+    for (;;) {
+        if (used == text.size()) {
+            if (used > maxBytes) {
+                return tooLarge("more than " + std::to_string(maxBytes));
+            }
+            text.resize(std::min(maxBytes + 1, std::max<std::size_t>(2 * used, 4096)));
+        }
+        const ssize_t n = ::read(fd, text.data() + used, text.size() - used);
+        if (n < 0) {
+            if (errno == EINTR) {
+                continue;
+            }
+            error = std::strerror(errno);
+            return std::nullopt;
+        }
+        if (n == 0) {
+            break;
+        }
+        used += static_cast<std::size_t>(n);
+    }
+    text.resize(used);
     return text;
 }
 

@@ -12,9 +12,12 @@
 
 namespace spindrift::scene {
 
-/// Reads a whole file; on failure returns nullopt and sets `error` to the
-/// system's reason ("No such file or directory").
-std::optional<std::string> readWholeFile(const std::filesystem::path& path, std::string& error);
+/// Reads a whole regular file of at most `maxBytes` bytes; on failure
+/// returns nullopt and sets `error` to the reason: the system's ("No such file
+/// or directory"), not a regular file (a device such as /dev/zero, a pipe, a
+/// directory: refused before reading), or larger than `maxBytes`.
+std::optional<std::string> readWholeFile(const std::filesystem::path& path, std::size_t maxBytes,
+                                         std::string& error);
 
 /// A data file as errors name it: `display` is the path shown, `keyPath` the
 /// scene key that referenced it.

@@ -64,6 +64,11 @@ glm::vec3 curlNoise(glm::vec3 p, const CurlNoiseParams& params, bool planar) {
     return glm::vec3(gz.y - gy.z, gx.z - gz.x, gy.x - gx.y) * params.frequency;
 }
 
+std::uint64_t curlNoiseEvaluations(const FlowFieldDef& field, std::uint32_t octaves) {
+    const std::uint64_t potentials = field.nz == 1 ? 1 : 3;
+    return std::uint64_t{field.nx} * field.ny * field.nz * octaves * potentials;
+}
+
 void fillCurlNoise(FlowFieldDef& field, const CurlNoiseParams& params) {
     const bool planar = field.nz == 1;
     fillEachSample(field, [&](glm::vec3 p) { return curlNoise(p, params, planar); });
@@ -96,6 +101,10 @@ void fillVortex(FlowFieldDef& field, glm::vec3 center, glm::vec3 axis, float spe
         const float profile = d < coreRadius ? d / coreRadius : coreRadius / d;
         return glm::cross(axis, radial / d) * (speed * profile);
     });
+}
+
+std::uint64_t hillsEvaluations(const ColliderDef& collider, std::uint32_t octaves) {
+    return std::uint64_t{collider.terrainNx} * collider.terrainNz * octaves;
 }
 
 void fillHills(ColliderDef& collider, const HillParams& params) {

@@ -29,6 +29,10 @@ struct CurlNoiseParams {
 /// construction; not yet scaled to `strength`.
 glm::vec3 curlNoise(glm::vec3 p, const CurlNoiseParams& params, bool planar);
 
+/// Noise evaluations fillCurlNoise makes: samples x octaves, x 3 in 3D (a
+/// vector potential); what kMaxNoiseEvaluations bounds.
+std::uint64_t curlNoiseEvaluations(const FlowFieldDef& field, std::uint32_t octaves);
+
 /// Fills field.velocities (bounds and resolution already set) with curl noise,
 /// scaled so the root-mean-square speed over the grid equals params.strength.
 /// A field with nz == 1 is planar.
@@ -49,6 +53,9 @@ struct HillParams {
     std::uint32_t seed = 1;
     std::uint32_t octaves = 3;
 };
+
+/// Noise evaluations fillHills makes: samples x octaves.
+std::uint64_t hillsEvaluations(const ColliderDef& collider, std::uint32_t octaves);
 
 /// Fills collider.heights for its terrain grid (origin, size, resolution set)
 /// with fractal noise hills, scaled so the largest |height| is the amplitude.

@@ -96,6 +96,9 @@ void readHills(const Table& t, ColliderDef& def) {
         static_cast<std::uint32_t>(t.integer("octaves", params.octaves, Bounds::between(1, 8)));
     params.seed = static_cast<std::uint32_t>(
         t.integer("seed", params.seed, Bounds::between(0, 4294967295.0)));
+    checkNoiseCost(t, hillsEvaluations(def, params.octaves),
+                   fmt::format("hills of {} x {} samples x {} octaves", def.terrainNx, def.terrainNz,
+                               params.octaves));
     fillHills(def, params);
 }
 

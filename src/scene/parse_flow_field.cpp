@@ -49,6 +49,9 @@ void generateCurlNoise(const Table& t, FlowFieldDef& def) {
         t.integer("seed", params.seed, Bounds::between(0, 4294967295.0)));
     params.octaves =
         static_cast<std::uint32_t>(t.integer("octaves", params.octaves, Bounds::between(1, 8)));
+    checkNoiseCost(t, curlNoiseEvaluations(def, params.octaves),
+                   fmt::format("curl noise of {} x {} x {} samples x {} octaves{}", def.nx, def.ny, def.nz,
+                               params.octaves, def.nz == 1 ? "" : " x 3 potentials"));
     fillCurlNoise(def, params);
 }
 

@@ -42,6 +42,12 @@ std::string readDataFile(const Value& value, DataFileRef& ref);
 /// not a failure mid-render. Returns the resolved path.
 std::string readPngPath(const Value& value);
 
+/// Refuses a generated field whose cost (noise evaluations, see
+/// kMaxNoiseEvaluations) is over the limit, before it is generated: at
+/// `octaves` if given, else at `resolution`, else at the table. `what`
+/// describes the field ("curl noise of 512 x 512 x 16 samples").
+void checkNoiseCost(const Table& table, std::uint64_t evaluations, const std::string& what);
+
 FlowFieldDef parseFlowField(const Table& table, NameTable& names);
 ForceDef parseForce(const Table& table, NameTable& names, const NameTable& flowFields);
 ColliderDef parseCollider(const Table& table, NameTable& names);

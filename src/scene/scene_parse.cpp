@@ -4,6 +4,7 @@
 #include "scene/heightmap_png.h"
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
+#include "scene/toml_prescan.h"
 
 #include <fmt/format.h>
 
@@ -115,12 +116,29 @@ std::string readDataFile(const Value& value, DataFileRef& ref) {
     ref.display = ref.path.string();
     ref.keyPath = value.path();
     std::string error;
-    std::optional<std::string> text = readWholeFile(ref.path, error);
+    std::optional<std::string> text = readWholeFile(ref.path, kMaxDataFileBytes, error);
     if (!text) {
         value.fail(fmt::format("cannot read \"{}\" (resolved to \"{}\"): {}", relative, ref.display,
                                error));
     }
     return *text;
+}
+
+void checkNoiseCost(const Table& table, std::uint64_t evaluations, const std::string& what) {
+    if (evaluations <= kMaxNoiseEvaluations) {
+        return;
+    }
+    const std::string message = fmt::format(
+        "{} is {} noise evaluations, more than the limit of {} (fields are generated while the "
+        "scene is read, and the limit keeps that under about half a second); lower the "
+        "resolution or the octaves",
+        what, evaluations, kMaxNoiseEvaluations);
+    for (const std::string_view key : {"octaves", "resolution"}) {
+        if (auto v = table.find(key)) {
+            v->fail(message);
+        }
+    }
+    table.fail(message);
 }
 
 std::string readPngPath(const Value& value) {
@@ -140,6 +158,7 @@ using scene::Table;
 SceneDef parseScene(std::string_view text, const std::string& sourceName,
                     const std::string& baseDir) {
     const scene::ParseContext ctx{sourceName, baseDir.empty() ? "." : baseDir};
+    scene::prescanToml(text, sourceName);
     toml::table document;
     try {
         document = toml::parse(text, std::string_view(sourceName));
@@ -213,7 +232,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
 
 SceneDef loadScene(const std::string& path) {
     std::string error;
-    std::optional<std::string> text = scene::readWholeFile(path, error);
+    std::optional<std::string> text = scene::readWholeFile(path, scene::kMaxSceneBytes, error);
     if (!text) {
         throw SceneError(path, 0, 0, "", "cannot read scene file: " + error);
     }

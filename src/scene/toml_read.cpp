@@ -97,7 +97,18 @@ std::string describeValue(const toml::node& node) {
         return v->get() ? "true" : "false";
     }
     if (auto v = node.as_string()) {
-        return fmt::format("\"{}\"", v->get());
+        // Control characters as TOML escapes: a NUL would end the message
+        // wherever it is printed as a C string.
+        std::string quoted = "\"";
+        for (const char c : v->get()) {
+            const auto u = static_cast<unsigned char>(c);
+            if (u < 0x20u || u == 0x7Fu) {
+                quoted += fmt::format("\\u{:04X}", static_cast<unsigned>(u));
+            } else {
+                quoted += c;
+            }
+        }
+        return quoted + "\"";
     }
     if (node.is_array()) {
         return "an array";
@@ -198,6 +209,11 @@ std::string Value::string() const {
     std::string s = node_->as_string()->get();
     if (s.empty()) {
         failExpected("a non-empty string");
+    }
+    // A NUL ends a path or a file name where the system reads it:
+    // "data/rock.cube\u0000.txt" would open data/rock.cube.
+    if (s.find('\0') != std::string::npos) {
+        failExpected("a string without NUL characters (\\u0000)");
     }
     return s;
 }

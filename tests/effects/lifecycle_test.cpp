@@ -4,6 +4,8 @@
 #include <gtest/gtest.h>
 
 #include <algorithm>
+#include <chrono>
+#include <limits>
 #include <cmath>
 
 namespace spindrift {
@@ -42,6 +44,55 @@ TEST(Lifecycle, SpawnSteadyStateAliveIsRateTimesLifetime) {
         s = stepWorld(w.id, 1.0f / 60.0f);
     }
     EXPECT_NEAR(static_cast<double>(s.alive), 300.0, 2.0);
+}
+
+// Births owed beyond the capacity are counted, never stored (issue 14): a
+// rate of 1e12 once stored 1.7e10 birth ages a step (bad_alloc; 1e10 took
+// 650 MB for this capacity-100 emitter). Now a step holds at most the
+// capacity's ages. The bound on time (1 s for 20 steps, ASan and a loaded
+// machine included; microseconds in fact) fails if anything grew with the
+// rate. The first step places 100, later ones none (the lifetime is long);
+// every birth owed is placed or counted as clamped: 1e12 x dt a step, to
+// within 1 (the carry, and the step's length taken as a difference of
+// double clock readings, t1 - t0, move the floor by at most one).
+TEST(Lifecycle, HugeRateIsClampedToCapacityBeforeAnythingIsStored) {
+    ScopedWorld w;
+    createEmitter(w.id, spawner(1e12f, 100, 100.0f));
+    const float dt = 1.0f / 60.0f;
+    const auto start = std::chrono::steady_clock::now();
+    for (int i = 0; i < 20; ++i) {
+        const StepStats s = stepWorld(w.id, dt);
+        EXPECT_EQ(s.born, i == 0 ? 100u : 0u) << "step " << i;
+        EXPECT_NEAR(static_cast<double>(s.born + s.clamped), static_cast<double>(1e12f) * dt, 1.0) << "step " << i;
+        EXPECT_EQ(s.alive, 100u) << "step " << i;
+    }
+    EXPECT_LT(std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count(), 1.0);
+}
+
+// The largest float rate over the longest step owes ~3.4e38 births, far past
+// any integer: the count saturates at the largest std::uint64_t instead of
+// wrapping or (as a cast of the double was) being undefined; rate 1e30 used to
+// emit nothing at all.
+TEST(Lifecycle, RateOfFloatMaxFillsTheCapacityAndSaturatesTheCount) {
+    ScopedWorld w;
+    createEmitter(w.id, spawner(std::numeric_limits<float>::max(), 100, 100.0f));
+    const StepStats s = stepWorld(w.id, 1.0f);
+    EXPECT_EQ(s.born, 100u);
+    EXPECT_EQ(s.alive, 100u);
+    EXPECT_EQ(s.clamped, std::numeric_limits<std::uint64_t>::max());
+}
+
+// A burst larger than the capacity (the API allows up to
+// kEmitterMaxBurstCount) is cut to the capacity in the schedule; the rest is
+// counted as before.
+TEST(Lifecycle, BurstBeyondCapacityIsCutInTheSchedule) {
+    ScopedWorld w;
+    EmitterDef e = spawner(0.0f, 100, 10.0f);
+    e.bursts = {{0.0f, kEmitterMaxBurstCount}, {0.0f, 5}};
+    createEmitter(w.id, e);
+    const StepStats s = stepWorld(w.id, 0.01f);
+    EXPECT_EQ(s.born, 100u);
+    EXPECT_EQ(s.clamped, kEmitterMaxBurstCount + 5u - 100u);
 }
 
 // Emission beyond capacity is clamped and counted, never lost silently and

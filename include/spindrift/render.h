@@ -41,12 +41,29 @@ struct BackgroundDef {
     std::string image;                       ///< PNG path (Image)
 };
 
-/// The Sprinkle document's splat steps (slides 62-68), each switchable. They
-/// build on each other in this order; FluidRenderDef::upTo(n) turns on the
-/// first n.
+/// How fluids are drawn.
+enum class FluidStyle : std::uint32_t {
+    /// 2D fluids as one continuous liquid: the particles' kernels summed into
+    /// a reduced-resolution field, blurred, cut at a threshold into an
+    /// anti-aliased edge and shaded (refraction, depth tint, rim, foam).
+    /// 3D fluids are still drawn as splats in this style.
+    Surface = 0,
+    /// Every fluid as Sprinkle's splats, with the step switches below.
+    Splats = 1,
+};
+
+/// How fluids look. `style` picks the continuous 2D surface (the default) or
+/// the Sprinkle document's splat steps (slides 62-68), each switchable; they
+/// build on each other in this order and FluidRenderDef::upTo(n) turns on the
+/// first n. The surface uses colour, opacity, refraction (of what is behind),
+/// stretch (kernels along the velocity) and splashes (drawn as splats on top).
 struct FluidRenderDef {
+    FluidStyle style = FluidStyle::Surface;
     glm::vec3 colour{0.10f, 0.35f, 0.85f};  ///< linear RGB of water
-    float opacity = 0.6f;                    ///< of a splat's centre, in (0, 1]
+    float opacity = 0.6f;                    ///< of a splat's centre (the surface's shallow water), in (0, 1]
+    /// Surface style: the field's resolution as a fraction of the frame's
+    /// (each side), in [1/8, 1]; lower is faster and softer.
+    float surfaceScale = 0.5f;
     /// Splat radius as a multiple of the fluid's spacing (1 = touching discs).
     float radiusScale = 1.5f;
     bool sizeFromDensity = true;  ///< 2: splat size grows with density, strays shrink
@@ -55,7 +72,8 @@ struct FluidRenderDef {
     bool edges = true;            ///< 5: surface highlight; upward-facing particles brighter (sun)
     bool splashes = true;         ///< 6: ballistic splash particles from low-density, rising particles
     bool bubbles = true;          ///< 7: some dense particles drawn as bubbles
-    /// Step 1 (raw point splats) alone, then steps 2..n: n in [1, 7].
+    /// The splat style with step 1 (raw point splats) alone, then steps
+    /// 2..n: n in [1, 7].
     SPINDRIFT_API static FluidRenderDef upTo(int n);
 };
 
@@ -88,6 +106,9 @@ struct Frame {
 /// preparation, uploads).
 struct RenderStats {
     double backgroundMs = 0.0, collidersMs = 0.0, spritesMs = 0.0, sortMs = 0.0, fluidMs = 0.0;
+    /// The liquid surface's field: kernels summed, then blurred (0 when no
+    /// fluid is drawn as a surface). Its composite counts in fluidMs.
+    double surfaceFieldMs = 0.0;
     /// The copy of the frame that refraction samples, with the extra pass
     /// it needs (0 when nothing refracts).
     double refractionCopyMs = 0.0;

@@ -18,6 +18,7 @@ FluidRenderDef FluidRenderDef::upTo(int n) {
         throw Error(fmt::format("fluid splat steps: {} is not in [1, 7]", n));
     }
     FluidRenderDef def;
+    def.style = FluidStyle::Splats;
     def.sizeFromDensity = n >= 2;
     def.stretch = n >= 3;
     def.refraction = n >= 4;
@@ -28,6 +29,9 @@ FluidRenderDef FluidRenderDef::upTo(int n) {
 }
 
 namespace {
+
+// The surface field's smallest resolution, as a fraction of the frame's side.
+constexpr float kMinSurfaceScale = 0.125f;
 
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
 
@@ -65,6 +69,15 @@ void validateRenderDef(const RenderDef& def) {
     }
     if (!(def.fluid.opacity > 0.0f && def.fluid.opacity <= 1.0f) || !(def.fluid.radiusScale > 0.0f)) {
         throw Error("render: fluid opacity must be in (0, 1] and radius_scale > 0");
+    }
+    if (def.fluid.style != FluidStyle::Surface && def.fluid.style != FluidStyle::Splats) {
+        throw Error(fmt::format("render: fluid style {} is neither surface ({}) nor splats ({})",
+                                static_cast<std::uint32_t>(def.fluid.style),
+                                static_cast<std::uint32_t>(FluidStyle::Surface),
+                                static_cast<std::uint32_t>(FluidStyle::Splats)));
+    }
+    if (!(def.fluid.surfaceScale >= kMinSurfaceScale && def.fluid.surfaceScale <= 1.0f)) {
+        throw Error(fmt::format("render: fluid surface_scale must be in [0.125, 1], got {}", def.fluid.surfaceScale));
     }
     if (!(def.fps > 0.0f) || !(def.seconds > 0.0f) || !finite(def.sunDirection) ||
         !(glm::length(def.sunDirection) > 0.0f)) {

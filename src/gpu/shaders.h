@@ -33,6 +33,8 @@ extern const std::uint32_t kSurfaceFieldFrag[];
 extern const std::size_t kSurfaceFieldFragWords;
 extern const std::uint32_t kSurfaceBlurFrag[];
 extern const std::size_t kSurfaceBlurFragWords;
+extern const std::uint32_t kSurfaceDepthFrag[];
+extern const std::size_t kSurfaceDepthFragWords;
 extern const std::uint32_t kSurfaceVert[];
 extern const std::size_t kSurfaceVertWords;
 extern const std::uint32_t kSurfaceFrag[];

@@ -2,7 +2,7 @@
 // free functions (zeux/niagara style). A frame is:
 //   pass A (clears): background, colliders and bodies;
 //   before it, when a 2D fluid is drawn as a liquid surface, its field at
-//   reduced resolution: kernels summed, blurred across, blurred down;
+//   reduced resolution: kernels summed, blurred across, blurred down, depth;
 //   copy of the colour target (what refraction sees behind the water);
 //   pass B (loads): the liquid surface's composite, fluid splats, then effect
 //   sprites (additive, then alpha back to front).
@@ -71,7 +71,7 @@ struct SplatFluid {
 struct SurfaceField {
     std::uint32_t width = 0, height = 0;
     float scale = 0.0f;  // FluidRenderDef::surfaceScale the images were made for
-    gpu::Image a, b;     // a: the sum, then the result; b: blurred across
+    gpu::Image a, b;     // a: the sum, then blurred both ways; b: blurred across, then the result with depth
     VkFramebuffer framebufferA = VK_NULL_HANDLE, framebufferB = VK_NULL_HANDLE;
     VkRenderPass pass = VK_NULL_HANDLE;
     VkDescriptorSetLayout layout = VK_NULL_HANDLE;
@@ -98,7 +98,7 @@ struct Renderer {
     gpu::Buffer frameUniforms;  // host-visible
     gpu::Image backgroundImage, placeholderImage;
     Pipeline background, mesh, spritesAdditive, spritesAlpha, splats;
-    Pipeline surfaceField, surfaceBlur, surfaceComposite;
+    Pipeline surfaceField, surfaceBlur, surfaceDepth, surfaceComposite;
     SurfaceField surface;
 
     // Colliders: the static mesh, built once; bodies are rebuilt each frame.

@@ -145,13 +145,15 @@ void beginFieldPass(Renderer& r, VkCommandBuffer cmd, VkFramebuffer framebuffer)
     vkCmdSetScissor(cmd, 0, 1, &scissor);
 }
 
-void blur(Renderer& r, VkCommandBuffer cmd, VkFramebuffer into, VkDescriptorSet from, glm::vec2 step) {
+// A full-field pass of `pipeline` (the blur or the depth) reading `from`.
+void fieldPass(Renderer& r, VkCommandBuffer cmd, const Pipeline& pipeline, VkFramebuffer into, VkDescriptorSet from,
+               glm::vec2 step) {
     beginFieldPass(r, cmd, into);
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.surfaceBlur.pipeline);
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.pipeline);
     VkDescriptorSet sets[2] = {r.frameSet, from};
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.surfaceBlur.layout, 0, 2, sets, 0, nullptr);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, pipeline.layout, 0, 2, sets, 0, nullptr);
     const kernels::SurfacePush push{glm::vec4(step, 0.0f, 0.0f)};
-    vkCmdPushConstants(cmd, r.surfaceBlur.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+    vkCmdPushConstants(cmd, pipeline.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
                        sizeof(push), &push);
     vkCmdDraw(cmd, 3, 1, 0, 0);
     vkCmdEndRenderPass(cmd);
@@ -207,6 +209,10 @@ void createSurface(Renderer& r) {
     blurDesc.pushConstantBytes = sizeof(kernels::SurfacePush);
     blurDesc.renderPass = s.pass;
     r.surfaceBlur = makePipeline(d, blurDesc);
+    PipelineDesc depth = blurDesc;
+    depth.name = "liquid surface depth";
+    depth.fragmentCode = code(sh::kSurfaceDepthFrag, sh::kSurfaceDepthFragWords);
+    r.surfaceDepth = makePipeline(d, depth);
 
     PipelineDesc composite;
     composite.name = "liquid surface";
@@ -224,7 +230,7 @@ void destroySurface(Renderer& r) {
     gpu::Device& d = *r.device;
     SurfaceField& s = r.surface;
     destroyImages(d, s);
-    for (Pipeline* p : {&r.surfaceField, &r.surfaceBlur, &r.surfaceComposite}) {
+    for (Pipeline* p : {&r.surfaceField, &r.surfaceBlur, &r.surfaceDepth, &r.surfaceComposite}) {
         vkDestroyPipeline(d.device, p->pipeline, nullptr);
         vkDestroyPipelineLayout(d.device, p->layout, nullptr);
         *p = Pipeline{};
@@ -268,8 +274,9 @@ void recordSurfaceField(Renderer& r, VkCommandBuffer cmd) {
         }
     }
     vkCmdEndRenderPass(cmd);
-    blur(r, cmd, s.framebufferB, s.readA, {1.0f / float(s.width), 0.0f});
-    blur(r, cmd, s.framebufferA, s.readB, {0.0f, 1.0f / float(s.height)});
+    fieldPass(r, cmd, r.surfaceBlur, s.framebufferB, s.readA, {1.0f / float(s.width), 0.0f});
+    fieldPass(r, cmd, r.surfaceBlur, s.framebufferA, s.readB, {0.0f, 1.0f / float(s.height)});
+    fieldPass(r, cmd, r.surfaceDepth, s.framebufferB, s.readA, {0.0f, 0.0f});
 }
 
 void recordSurfaceComposite(Renderer& r, VkCommandBuffer cmd) {
@@ -277,7 +284,7 @@ void recordSurfaceComposite(Renderer& r, VkCommandBuffer cmd) {
         return;
     }
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.surfaceComposite.pipeline);
-    VkDescriptorSet sets[2] = {r.frameSet, r.surface.readA};
+    VkDescriptorSet sets[2] = {r.frameSet, r.surface.readB};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.surfaceComposite.layout, 0, 2, sets, 0, nullptr);
     // A quad far larger than the view (planeExtent's reach), in z = 0.
     const float aspect = float(r.def.width) / float(r.def.height);

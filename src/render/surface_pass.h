@@ -1,6 +1,6 @@
 // 2D fluids drawn as one continuous liquid (issue 15): the field passes
-// (kernels summed at reduced resolution, blurred across, then down; before
-// the frame's first render pass) and the composite (in pass B, before the
+// (kernels summed at reduced resolution, blurred across, then down, then the
+// depth tint's input; before the frame's first render pass) and the composite (in pass B, before the
 // splats). The kernels themselves are host work: surface_field.h.
 #pragma once
 

@@ -11,8 +11,6 @@ layout(set = SD_SURFACE_SET, binding = SD_SURFACE_BINDING_FIELD) uniform sampler
 
 layout(location = 0) out vec4 outColour;
 
-// Samples of the water above a pixel for the depth tint.
-const int kDepthTaps = 8;
 // Rim width as a fraction of the frame's height, and its strength.
 const float kRimWidth = 0.004;
 const float kRimStrength = 0.7;
@@ -24,30 +22,18 @@ void main() {
     vec2 uv = gl_FragCoord.xy / size;
     vec2 texel = frame.surface.xy;
     float threshold = frame.surface.w;
-    vec4 here = texture(field, uv);
+    vec4 here = texture(field, uv);  // r water, g foam x water, b depth (surface_depth.frag)
     float f = here.r;
-    // The field's gradient per frame pixel (central differences one field
-    // texel apart), and from it the signed distance to the edge in pixels.
-    vec2 g = vec2(texture(field, uv + vec2(texel.x, 0.0)).r - texture(field, uv - vec2(texel.x, 0.0)).r,
-                  texture(field, uv + vec2(0.0, texel.y)).r - texture(field, uv - vec2(0.0, texel.y)).r) /
-             (2.0 * texel * size);
+    // The field's gradient per frame pixel (the quad's derivatives: one
+    // fetch), and from it the signed distance to the edge in pixels.
+    vec2 g = vec2(dFdx(f), dFdy(f));
     float slope = max(length(g), 1e-5);
     float inside = (f - threshold) / slope;  // pixels inside the edge (negative outside)
     float coverage = clamp(inside + 0.5, 0.0, 1.0);
     if (coverage <= 0.0) {
         discard;
     }
-    // Depth tint: the share of points above this one (up to the reach) that
-    // are water too. The taps start at a per-pixel offset (interleaved
-    // gradient noise, Jimenez 2014) so their steps dither instead of banding.
-    float jitter = fract(52.9829189 * fract(dot(gl_FragCoord.xy, vec2(0.06711056, 0.00583715))));
-    float depth = 0.0;
-    for (int i = 0; i < kDepthTaps; ++i) {
-        float t = (float(i) + jitter) / float(kDepthTaps);
-        float above = texture(field, uv - vec2(0.0, frame.surface.z * t)).r;
-        depth += smoothstep(threshold * 0.7, threshold * 1.3, above);
-    }
-    depth /= float(kDepthTaps);
+    float depth = here.b;
     vec3 water = frame.waterColour.rgb;
     vec3 tint = mix(water * 1.1 + vec3(0.02, 0.03, 0.04), water * 0.55, depth);
     float opacity = mix(frame.waterColour.a, min(1.0, frame.waterColour.a + 0.3), depth);

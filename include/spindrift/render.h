@@ -1,7 +1,8 @@
 // spindrift public API: drawing a world with Vulkan. A renderer draws the
 // world's current state: effect particles as camera-facing sprites straight
 // from the particle buffers (no copy back on the Vulkan backend, one upload
-// per frame on the CPU backend), fluids as Sprinkle-style splats, and the
+// per frame on the CPU backend), 2D fluids as a continuous liquid surface
+// and other fluids as Sprinkle-style splats (FluidRenderDef::style), and the
 // colliders and bodies with simple shading. It works without a GPU on Mesa's
 // lavapipe.
 #pragma once
@@ -115,7 +116,9 @@ struct RenderStats {
     double totalDeviceMs = 0.0;
     double cpuMs = 0.0;
     std::uint64_t sprites = 0;   ///< sprite instances drawn
-    std::uint64_t splats = 0;    ///< fluid splats drawn, splashes and bubbles included
+    /// Fluid instances drawn: splats (splashes and bubbles included) and the
+    /// liquid surface's kernels (mirror images behind walls included).
+    std::uint64_t splats = 0;
 };
 
 /// Creates a renderer for `world` on the world's own Vulkan device (Vulkan

@@ -106,7 +106,7 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
                                            // Sprinkle's seven splat steps, the other style.
                                            ReferenceCase{"scenes/fluid_splash.toml", 1.0, "cpu", "--fluid-steps 7",
                                                          "_splats"},
-                                           ReferenceCase{"scenes/fluid_dam_break_2d.toml", 2.0, "cpu"},
+                                           ReferenceCase{"scenes/fluid_dam_break_2d.toml", 1.0, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "vulkan"}),
                          [](const auto& info) { return stem(info.param) + "_" + info.param.backend; });

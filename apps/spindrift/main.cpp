@@ -420,9 +420,10 @@ void applyRenderOverrides(SceneDef& scene, const RenderOptions& o) {
     if (o.hasFps) r.fps = static_cast<float>(o.fps);
     if (o.hasSeconds) r.seconds = static_cast<float>(o.seconds);
     if (o.hasFluidSteps) {
-        // The preset switches the six steps; the scene's colour, opacity and
-        // radius stay.
+        // The preset selects the splat style and switches its six steps; the
+        // scene's colour, opacity and radius stay.
         const FluidRenderDef steps = FluidRenderDef::upTo(o.fluidSteps);
+        r.fluid.style = steps.style;
         r.fluid.sizeFromDensity = steps.sizeFromDensity;
         r.fluid.stretch = steps.stretch;
         r.fluid.refraction = steps.refraction;
@@ -573,7 +574,7 @@ void addRenderOptions(CLI::App& render, RenderOptions& o) {
     render.add_option("--format,-f", o.formats, "Outputs, comma separated: mp4, png (default: mp4 if ffmpeg is found)")
         ->delimiter(',')
         ->check(CLI::IsMember({"png", "mp4"}));
-    render.add_option("--fluid-steps", o.fluidSteps, "Fluid splat steps 1..7 of the Sprinkle slides")
+    render.add_option("--fluid-steps", o.fluidSteps, "Fluid splat steps 1..7 of the Sprinkle slides (selects the splat style)")
         ->check(CLI::Range(1, 7));
     render.add_option("--backend,-b", o.backend, "Simulation backend: cpu, vulkan or auto (default: the scene's)")
         ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));

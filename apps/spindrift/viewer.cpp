@@ -266,9 +266,14 @@ void statistics(Session& s) {
 }
 
 void fluidSettings(Session& s) {
-    if (ImGui::TreeNode("splats")) {
+    if (ImGui::TreeNode("fluid look")) {
         FluidRenderDef fluid = render::rendererOf(s.renderer).def.fluid;
         bool changed = false;
+        bool surface = fluid.style == FluidStyle::Surface;
+        if (ImGui::Checkbox("2D surface (off: splats)", &surface)) {
+            fluid.style = surface ? FluidStyle::Surface : FluidStyle::Splats;
+            changed = true;
+        }
         changed |= ImGui::Checkbox("size from density", &fluid.sizeFromDensity);
         changed |= ImGui::Checkbox("stretch", &fluid.stretch);
         changed |= ImGui::Checkbox("refraction", &fluid.refraction);

@@ -1,7 +1,8 @@
 // spindrift public API: drawing a world with Vulkan. A renderer draws the
 // world's current state: effect particles as camera-facing sprites straight
 // from the particle buffers (no copy back on the Vulkan backend, one upload
-// per frame on the CPU backend), fluids as Sprinkle-style splats, and the
+// per frame on the CPU backend), 2D fluids as a continuous liquid surface
+// and other fluids as Sprinkle-style splats (FluidRenderDef::style), and the
 // colliders and bodies with simple shading. It works without a GPU on Mesa's
 // lavapipe.
 #pragma once
@@ -46,12 +47,29 @@ inline constexpr std::uint32_t kRenderMaxFrameSide = 16384;
 /// The splat steps below, FluidRenderDef::upTo's largest n.
 inline constexpr int kFluidRenderSteps = 7;
 
-/// The Sprinkle document's splat steps (slides 62-68), each switchable. They
-/// build on each other in this order; FluidRenderDef::upTo(n) turns on the
-/// first n.
+/// How fluids are drawn.
+enum class FluidStyle : std::uint32_t {
+    /// 2D fluids as one continuous liquid: the particles' kernels summed into
+    /// a reduced-resolution field, blurred, cut at a threshold into an
+    /// anti-aliased edge and shaded (refraction, depth tint, rim, foam).
+    /// 3D fluids are still drawn as splats in this style.
+    Surface = 0,
+    /// Every fluid as Sprinkle's splats, with the step switches below.
+    Splats = 1,
+};
+
+/// How fluids look. `style` picks the continuous 2D surface (the default) or
+/// the Sprinkle document's splat steps (slides 62-68), each switchable; they
+/// build on each other in this order and FluidRenderDef::upTo(n) turns on the
+/// first n. The surface uses colour, opacity, refraction (of what is behind),
+/// stretch (kernels along the velocity) and splashes (drawn as splats on top).
 struct FluidRenderDef {
+    FluidStyle style = FluidStyle::Surface;
     glm::vec3 colour{0.10f, 0.35f, 0.85f};  ///< linear RGB of water
-    float opacity = 0.6f;                    ///< of a splat's centre, in (0, 1]
+    float opacity = 0.6f;                    ///< of a splat's centre (the surface's shallow water), in (0, 1]
+    /// Surface style: the field's resolution as a fraction of the frame's
+    /// (each side), in [1/8, 1]; lower is faster and softer.
+    float surfaceScale = 0.5f;
     /// Splat radius as a multiple of the fluid's spacing (1 = touching discs).
     float radiusScale = 1.5f;
     bool sizeFromDensity = true;  ///< 2: splat size grows with density, strays shrink
@@ -60,7 +78,8 @@ struct FluidRenderDef {
     bool edges = true;            ///< 5: surface highlight; upward-facing particles brighter (sun)
     bool splashes = true;         ///< 6: ballistic splash particles from low-density, rising particles
     bool bubbles = true;          ///< 7: some dense particles drawn as bubbles
-    /// Step 1 (raw point splats) alone, then steps 2..n: n in [1, 7].
+    /// The splat style with step 1 (raw point splats) alone, then steps
+    /// 2..n: n in [1, 7].
     SPINDRIFT_API static FluidRenderDef upTo(int n);
 };
 
@@ -93,13 +112,18 @@ struct Frame {
 /// preparation, uploads).
 struct RenderStats {
     double backgroundMs = 0.0, collidersMs = 0.0, spritesMs = 0.0, sortMs = 0.0, fluidMs = 0.0;
+    /// The liquid surface's field: kernels summed, then blurred (0 when no
+    /// fluid is drawn as a surface). Its composite counts in fluidMs.
+    double surfaceFieldMs = 0.0;
     /// The copy of the frame that refraction samples, with the extra pass
     /// it needs (0 when nothing refracts).
     double refractionCopyMs = 0.0;
     double totalDeviceMs = 0.0;
     double cpuMs = 0.0;
     std::uint64_t sprites = 0;   ///< sprite instances drawn
-    std::uint64_t splats = 0;    ///< fluid splats drawn, splashes and bubbles included
+    /// Fluid instances drawn: splats (splashes and bubbles included) and the
+    /// liquid surface's kernels (mirror images behind walls included).
+    std::uint64_t splats = 0;
 };
 
 /// Creates a renderer for `world` on the world's own Vulkan device (Vulkan

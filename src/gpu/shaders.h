@@ -27,4 +27,16 @@ extern const std::uint32_t kSplatsVert[];
 extern const std::size_t kSplatsVertWords;
 extern const std::uint32_t kSplatsFrag[];
 extern const std::size_t kSplatsFragWords;
+extern const std::uint32_t kSurfaceFieldVert[];
+extern const std::size_t kSurfaceFieldVertWords;
+extern const std::uint32_t kSurfaceFieldFrag[];
+extern const std::size_t kSurfaceFieldFragWords;
+extern const std::uint32_t kSurfaceBlurFrag[];
+extern const std::size_t kSurfaceBlurFragWords;
+extern const std::uint32_t kSurfaceDepthFrag[];
+extern const std::size_t kSurfaceDepthFragWords;
+extern const std::uint32_t kSurfaceVert[];
+extern const std::size_t kSurfaceVertWords;
+extern const std::uint32_t kSurfaceFrag[];
+extern const std::size_t kSurfaceFragWords;
 }  // namespace spindrift::gpu::shaders

@@ -166,7 +166,7 @@ struct SortPush {
 
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
-// 208 bytes.
+// 224 bytes.
 SD_CONST uint SD_RENDER_SET_FRAME = 0u;
 SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;         // uniform FrameUniforms
 SD_CONST uint SD_RENDER_BINDING_BACKGROUND = 1u;    // sampler2D, the background image
@@ -183,6 +183,7 @@ struct FrameUniforms {
     vec4 backgroundBottom;
     vec4 waterColour;     // rgb linear; a: opacity
     vec4 waterFlags;      // x refraction, y edges (0 or 1); z refraction strength (uv units)
+    vec4 surface;         // liquid surface: xy one field texel (uv); z depth-tint reach (uv of the frame's height); w field threshold
 };
 
 // Effect sprites (src/render/shaders/sprites.*, src/render/sprite_pass.cpp):
@@ -221,6 +222,19 @@ struct SplatInstance {
     vec4 centre;  // xyz position (m); w: radius (m) across the major axis
     vec4 axis;    // xyz unit major axis (2D: z = 0; (1,0,0) unoriented); w: stretch >= 1 (major semi-axis / radius)
     vec4 shade;   // x: brightness (1 base, > 1 sun highlight, splashes); y: edge factor in [0,1]; z: SD_SPLAT_*; w: rho / rho0 (0 for splashes)
+                  // (liquid surface: x the kernel's amplitude, y foam in [0,1]; centre.w the kernel radius)
+};
+
+// The 2D liquid surface (src/render/surface_pass.cpp, shaders surface_*): the
+// particles' kernels (SplatInstance, set 1 of surface_field.vert as for the
+// splats) are summed into a reduced-resolution field, blurred twice (one
+// direction each), then the composite reads the field at set 1 binding 0.
+// The blur reads the field the same way.
+SD_CONST uint SD_SURFACE_SET = 1u;
+SD_CONST uint SD_SURFACE_BINDING_FIELD = 0u;  // sampler2D: r sum of kernels, g sum of kernels x foam
+// The blur's and the composite's push constants (vertex and fragment). 16 bytes.
+struct SurfacePush {
+    vec4 values;  // blur: xy one field texel along the blur's direction (uv); composite: x half side of its quad (m)
 };
 
 SD_END
@@ -247,9 +261,12 @@ static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
 static_assert(sizeof(SplatInstance) == 48);
 static_assert(offsetof(SplatInstance, shade) == 32);
 // std140: a mat4 is four vec4 columns, every vec4 16-byte aligned.
-static_assert(sizeof(FrameUniforms) == 208);
+static_assert(sizeof(FrameUniforms) == 224);
 static_assert(offsetof(FrameUniforms, eye) == 64);
 static_assert(offsetof(FrameUniforms, waterFlags) == 192);
+static_assert(offsetof(FrameUniforms, surface) == 208);
+static_assert(sizeof(SurfacePush) == 16);
+static_assert(SD_SURFACE_SET == SD_SPLAT_SET);  // surface_field.vert reads the splats' instance set
 // The masks are 32 bits wide.
 static_assert(SD_MAX_FORCES <= 32u && SD_MAX_COLLIDERS <= 32u);
 }  // namespace spindrift::kernels

@@ -17,6 +17,7 @@ namespace spindrift {
 FluidRenderDef FluidRenderDef::upTo(int n) {
     FieldCheck("render").number("fluid.steps", n, render_rules::kFluidSteps);
     FluidRenderDef def;
+    def.style = FluidStyle::Splats;
     def.sizeFromDensity = n >= 2;
     def.stretch = n >= 3;
     def.refraction = n >= 4;
@@ -86,6 +87,11 @@ void validateRenderDef(const RenderDef& def) {
     colour(check, "fluid.color", def.fluid.colour);
     check.number("fluid.opacity", def.fluid.opacity, rules::kFluidOpacity);
     check.number("fluid.radius_scale", def.fluid.radiusScale, rules::kFluidRadiusScale);
+    check.expect(def.fluid.style == FluidStyle::Surface || def.fluid.style == FluidStyle::Splats, "fluid.style",
+                 fmt::format("surface ({}) or splats ({})", static_cast<std::uint32_t>(FluidStyle::Surface),
+                             static_cast<std::uint32_t>(FluidStyle::Splats)),
+                 std::to_string(static_cast<std::uint32_t>(def.fluid.style)));
+    check.number("fluid.surface_scale", def.fluid.surfaceScale, rules::kFluidSurfaceScale);
     try {
         validateCameraDef(def.camera);
     } catch (const FieldError& e) {

@@ -22,6 +22,9 @@ inline constexpr FieldRule kColour = FieldRule::number(Bounds::nonNegative());
 inline constexpr FieldRule kFluidSteps = FieldRule::whole(Bounds::between(1, kFluidRenderSteps));
 inline constexpr FieldRule kFluidOpacity = FieldRule::number(Bounds{0.0, 1.0, true, false});
 inline constexpr FieldRule kFluidRadiusScale = FieldRule::number(Bounds::positive());
+/// The liquid surface's field resolution, a fraction of the frame's side
+/// (docs/rendering.md).
+inline constexpr FieldRule kFluidSurfaceScale = FieldRule::number(Bounds::between(0.125, 1.0));
 
 // Camera. Open interval: 0 and 180 degrees make a degenerate projection.
 inline constexpr FieldRule kFov = FieldRule::number(Bounds{0.0, 180.0, true, true});  ///< degrees

@@ -11,6 +11,8 @@
 #include "render/render_pipelines.h"
 #include "render/splat_pass.h"
 #include "render/sprite_pass.h"
+#include "render/surface_field.h"
+#include "render/surface_pass.h"
 
 #include <spindrift/bodies.h>
 
@@ -23,10 +25,14 @@
 namespace spindrift::render {
 namespace {
 
-// Timestamps written in a frame: start, after the background, after the
-// colliders (end of pass A), after the copy, after the splats, after the
-// sprites (end of pass B).
-constexpr std::uint32_t kTimestamps = 6;
+// Timestamps written in a frame: start, after the liquid surface's field,
+// after the background, after the colliders (end of pass A), after the copy,
+// after the fluids (surface composite and splats), after the sprites (end of
+// pass B).
+constexpr std::uint32_t kTimestamps = 7;
+// The liquid surface's depth tint reaches its deepest this far (m) below the
+// water above a point.
+constexpr float kSurfaceTintDepth = 0.5f;
 // How far refraction moves what is seen through a splat's rim, in fractions
 // of the frame (a lens, not physics: Sprinkle distorts the background).
 constexpr float kRefractionStrength = 0.012f;
@@ -201,6 +207,7 @@ void createResources(Renderer& r) {
     }
     createDescriptors(r);
     createPipelines(r);
+    createSurface(r);
     createCommands(r);
     const float aspect = float(r.def.width) / float(r.def.height);
     r.staticMesh = vertexBuffer(d, r.def.drawColliders ? staticColliderMesh(r.world, planeExtent(r.def.camera, aspect))
@@ -242,6 +249,11 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
     u.waterColour = glm::vec4(def.fluid.colour, def.fluid.opacity);
     u.waterFlags = glm::vec4(def.fluid.refraction ? 1.0f : 0.0f, def.fluid.edges ? 1.0f : 0.0f,
                              kRefractionStrength, 0.0f);
+    // The surface's field texel is set per frame (prepareFrame); its tint
+    // reach in fractions of the frame's height.
+    const float visibleHeight = c.orthographic ? c.orthoHeight
+                                               : 2.0f * distance * std::tan(0.5f * glm::radians(c.fovDegrees));
+    u.surface = glm::vec4(0.0f, 0.0f, kSurfaceTintDepth / visibleHeight, kSurfaceThreshold);
     return u;
 }
 
@@ -294,12 +306,13 @@ void readFrameTimes(Renderer& r) {
         return;
     }
     auto ms = [&](std::uint32_t a, std::uint32_t b) { return double(t[b] - t[a]) * r.timestampPeriodNs * 1e-6; };
-    r.stats.backgroundMs = ms(0, 1);
-    r.stats.collidersMs = ms(1, 2);
-    r.stats.refractionCopyMs = ms(2, 3);
-    r.stats.fluidMs = ms(3, 4);
-    r.stats.spritesMs = ms(4, 5);
-    r.stats.totalDeviceMs = ms(0, 5);
+    r.stats.surfaceFieldMs = ms(0, 1);
+    r.stats.backgroundMs = ms(1, 2);
+    r.stats.collidersMs = ms(2, 3);
+    r.stats.refractionCopyMs = ms(3, 4);
+    r.stats.fluidMs = ms(4, 5);
+    r.stats.spritesMs = ms(5, 6);
+    r.stats.totalDeviceMs = ms(0, 6);
 }
 
 namespace {
@@ -351,6 +364,9 @@ void destroyRenderer(Renderer& r) {
         vkDeviceWaitIdle(d.device);
         destroySpriteEmitters(r);
         destroySplats(r);
+        if (r.surface.pass != VK_NULL_HANDLE) {
+            destroySurface(r);
+        }
         r.sort.reset();
         for (gpu::Buffer* b : {&r.staticMesh, &r.dynamicMesh, &r.frameUniforms}) {
             if (b->buffer != VK_NULL_HANDLE) {
@@ -393,11 +409,16 @@ void prepareFrame(Renderer& r) {
     World& w = worldFromId(r.world);
     const float dt = r.lastTime < 0.0 ? 0.0f : static_cast<float>(std::max(0.0, w.time - r.lastTime));
     r.lastTime = w.time;
-    FrameUniforms u = frameUniforms(r.def, w.time);
-    std::memcpy(r.frameUniforms.mapped, &u, sizeof(u));
     prepareBodies(r);
     prepareSplats(r, dt);
+    prepareSurface(r);
     prepareSprites(r);
+    FrameUniforms u = frameUniforms(r.def, w.time);
+    if (r.surface.drawn) {
+        u.surface.x = 1.0f / float(r.surface.width);
+        u.surface.y = 1.0f / float(r.surface.height);
+    }
+    std::memcpy(r.frameUniforms.mapped, &u, sizeof(u));
 }
 
 void recordFrame(Renderer& r, VkCommandBuffer cmd) {
@@ -410,6 +431,8 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
         vkCmdResetQueryPool(cmd, r.timestamps, 0, kTimestamps);
     }
     timestamp(r, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
+    recordSurfaceField(r, cmd);  // its own passes, before the frame's
+    timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
     // One render pass, or two around a copy of the colour target when
     // something refracts (the copy is what the water shows behind it; on
     // lavapipe each extra pass costs a full-frame store and load).
@@ -420,23 +443,25 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.background.layout, 0, 1, &r.frameSet, 0,
                                 nullptr);
         vkCmdDraw(cmd, 3, 1, 0, 0);
-        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 2);
         recordMesh(r, cmd, r.staticMesh, r.staticVertices);
         recordMesh(r, cmd, r.dynamicMesh, r.dynamicVertices);
-        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 2);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
     }
     if (refracts) {  // What refraction sees behind the water.
         vkCmdEndRenderPass(cmd);
         recordCopyBehind(cmd, r.target);
         beginPass(r, cmd, false);
     }
-    timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
-    {  // Fluid splats, then sprites.
+    timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
+    {  // Fluids (splats, then the liquid surface over the splashes that fell
+       // back into it), then sprites.
         recordSplats(r, cmd);
-        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
+        recordSurfaceComposite(r, cmd);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 5);
         recordSprites(r, cmd);
         vkCmdEndRenderPass(cmd);
-        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 5);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 6);
     }
 }
 

@@ -1,9 +1,11 @@
 // The Vulkan renderer behind include/spindrift/render.h: plain structs and
 // free functions (zeux/niagara style). A frame is:
 //   pass A (clears): background, colliders and bodies;
+//   before it, when a 2D fluid is drawn as a liquid surface, its field at
+//   reduced resolution: kernels summed, blurred across, blurred down, depth;
 //   copy of the colour target (what refraction sees behind the water);
-//   pass B (loads): fluid splats, then effect sprites (additive, then alpha
-//   back to front).
+//   pass B (loads): the liquid surface's composite, fluid splats, then effect
+//   sprites (additive, then alpha back to front).
 // Internal, so the viewer (apps/spindrift) can record a frame into its own
 // command buffer and present the colour target.
 #pragma once
@@ -56,6 +58,26 @@ struct SpriteEmitter {
 struct SplatFluid {
     FluidSplatState state;
     std::vector<SplatInstance> instances;
+    /// Drawn as a liquid surface: the first `particles` instances are its
+    /// kernels (surface_field.h: particles and their mirror images behind
+    /// planes), the rest splashes drawn as splats.
+    bool surface = false;
+    std::uint32_t particles = 0;
+    std::uint32_t first = 0;  // of its instances in Renderer::splatBuffer
+};
+
+/// The liquid surface's field (surface_pass.cpp): two float images at a
+/// fraction of the frame's size, written by one render pass that clears.
+struct SurfaceField {
+    std::uint32_t width = 0, height = 0;
+    float scale = 0.0f;  // FluidRenderDef::surfaceScale the images were made for
+    gpu::Image a, b;     // a: the sum, then blurred both ways; b: blurred across, then the result with depth
+    VkFramebuffer framebufferA = VK_NULL_HANDLE, framebufferB = VK_NULL_HANDLE;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet readA = VK_NULL_HANDLE, readB = VK_NULL_HANDLE;
+    bool drawn = false;  // this frame: some fluid is a surface
 };
 
 struct Renderer {
@@ -76,6 +98,8 @@ struct Renderer {
     gpu::Buffer frameUniforms;  // host-visible
     gpu::Image backgroundImage, placeholderImage;
     Pipeline background, mesh, spritesAdditive, spritesAlpha, splats;
+    Pipeline surfaceField, surfaceBlur, surfaceDepth, surfaceComposite;
+    SurfaceField surface;
 
     // Colliders: the static mesh, built once; bodies are rebuilt each frame.
     gpu::Buffer staticMesh, dynamicMesh;

@@ -1,6 +1,8 @@
 // Fluid splats (see splat_pass.h).
 #include "render/splat_pass.h"
 
+#include "render/surface_field.h"
+
 #include <spindrift/fluid.h>
 
 #include <cstring>
@@ -40,8 +42,22 @@ void prepareSplats(Renderer& r, float dt) {
     r.fluids.resize(fluids);
     std::size_t total = 0;
     for (std::uint32_t f = 0; f < fluids; ++f) {
-        updateFluidSplats(r.fluids[f].state, r.world, FluidId{f + 1}, r.def.fluid, dt, r.fluids[f].instances);
-        total += r.fluids[f].instances.size();
+        SplatFluid& sf = r.fluids[f];
+        const FluidId id{f + 1};
+        sf.surface = r.def.fluid.style == FluidStyle::Surface && fluidDimension(r.world, id) == 2;
+        if (sf.surface) {
+            // The splat rules give the splashes; the water's instances are
+            // then replaced by the surface's kernels.
+            FluidRenderDef splashesOnly = FluidRenderDef::upTo(1);
+            splashesOnly.splashes = r.def.fluid.splashes;
+            updateFluidSplats(sf.state, r.world, id, splashesOnly, dt, sf.instances);
+            sf.particles = static_cast<std::uint32_t>(surfaceInstances(r.world, id, r.def.fluid.stretch, sf.instances));
+        } else {
+            updateFluidSplats(sf.state, r.world, id, r.def.fluid, dt, sf.instances);
+            sf.particles = 0;
+        }
+        sf.first = static_cast<std::uint32_t>(total);
+        total += sf.instances.size();
     }
     reserve(r, total);
     auto* out = static_cast<SplatInstance*>(r.splatBuffer.mapped);
@@ -62,7 +78,14 @@ void recordSplats(Renderer& r, VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.splats.pipeline);
     VkDescriptorSet sets[2] = {r.frameSet, r.splatSet};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.splats.layout, 0, 2, sets, 0, nullptr);
-    vkCmdDraw(cmd, 6, r.splatCount, 0, 0);
+    // A surface fluid's water is the surface's (surface_pass.cpp); its
+    // splashes are splats.
+    for (const SplatFluid& f : r.fluids) {
+        const auto count = static_cast<std::uint32_t>(f.instances.size()) - f.particles;
+        if (count > 0) {
+            vkCmdDraw(cmd, 6, count, 0, f.first + f.particles);
+        }
+    }
 }
 
 void destroySplats(Renderer& r) {

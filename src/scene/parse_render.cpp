@@ -40,10 +40,21 @@ BackgroundDef parseBackground(const Table& t) {
 
 // `render` is the [render] table, where FluidRenderDef::upTo's error is located.
 FluidRenderDef parseFluidRender(const Table& render, const Table& t) {
-    t.allowOnly({"color", "opacity", "radius_scale", "steps", "size_from_density", "stretch", "refraction", "edges",
-                 "splashes", "bubbles"},
+    t.allowOnly({"style", "color", "opacity", "radius_scale", "surface_scale", "steps", "size_from_density", "stretch",
+                 "refraction", "edges", "splashes", "bubbles"},
                 "[render.fluid]");
     FluidRenderDef def;
+    // `style` picks the look; `steps` are the splat style's, so they select
+    // it unless a style is written, and steps beside style = "surface" are a
+    // contradiction the user should hear about.
+    if (auto v = t.find("style")) {
+        def.style = v->choice<FluidStyle>({{"surface", FluidStyle::Surface}, {"splats", FluidStyle::Splats}});
+        if (def.style == FluidStyle::Surface && t.find("steps")) {
+            t.find("steps")->fail("\"steps\" are the splat style's; with style = \"surface\" remove them");
+        }
+    } else if (t.find("steps")) {
+        def.style = FluidStyle::Splats;
+    }
     // `steps` is the baseline (the Sprinkle slides' steps 1..n on, the rest
     // off); a flag written beside it overrides it, so "steps = 5" plus
     // "bubbles = true" reads as what it says.
@@ -61,6 +72,7 @@ FluidRenderDef parseFluidRender(const Table& render, const Table& t) {
     def.colour = t.vec3("color", def.colour);
     def.opacity = t.real("opacity", def.opacity, render_rules::kFluidOpacity);
     def.radiusScale = t.real("radius_scale", def.radiusScale, render_rules::kFluidRadiusScale);
+    def.surfaceScale = t.real("surface_scale", def.surfaceScale, render_rules::kFluidSurfaceScale);
     def.sizeFromDensity = t.boolean("size_from_density", def.sizeFromDensity);
     def.stretch = t.boolean("stretch", def.stretch);
     def.refraction = t.boolean("refraction", def.refraction);

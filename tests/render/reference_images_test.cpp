@@ -32,6 +32,8 @@ struct ReferenceCase {
     const char* scene;   // scene file, relative to the source tree; the reference is named after its stem
     double start;        // s: the moment shown
     const char* backend;
+    const char* options = "";  // more `spindrift render` options
+    const char* suffix = "";   // of the reference's name, for a case with options
 };
 
 struct Image {
@@ -60,7 +62,7 @@ std::size_t differingPixels(const Image& a, const Image& b, int threshold) {
     return count;
 }
 
-std::string stem(const ReferenceCase& c) { return fs::path(c.scene).stem().string(); }
+std::string stem(const ReferenceCase& c) { return fs::path(c.scene).stem().string() + c.suffix; }
 
 class ReferenceImages : public ::testing::TestWithParam<ReferenceCase> {};
 
@@ -74,6 +76,7 @@ TEST_P(ReferenceImages, FrameMatchesTheReviewedReference) {
                                 (source / c.scene).string() + "' --out '" +
                                 out.string() + "' --start " + std::to_string(c.start) +
                                 " --frames 1 --format png --width 160 --height 90 --quiet --backend " + c.backend +
+                                " " + c.options +
                                 " > '" + out.string() + ".log' 2>&1";
     const int status = std::system(command.c_str());
     ASSERT_TRUE(status != -1 && WIFEXITED(status) && WEXITSTATUS(status) == 0)
@@ -100,6 +103,10 @@ TEST_P(ReferenceImages, FrameMatchesTheReviewedReference) {
 
 INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
                          ::testing::Values(ReferenceCase{"scenes/fluid_splash.toml", 1.0, "cpu"},
+                                           // Sprinkle's seven splat steps, the other style.
+                                           ReferenceCase{"scenes/fluid_splash.toml", 1.0, "cpu", "--fluid-steps 7",
+                                                         "_splats"},
+                                           ReferenceCase{"scenes/fluid_dam_break_2d.toml", 1.0, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "vulkan"}),
                          [](const auto& info) { return stem(info.param) + "_" + info.param.backend; });

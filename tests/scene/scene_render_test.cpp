@@ -33,6 +33,7 @@ TEST(SceneRender, DefaultsWithoutARenderTable) {
     EXPECT_EQ(scene.render.fps, def.fps);
     EXPECT_EQ(scene.render.background.kind, def.background.kind);
     EXPECT_TRUE(scene.render.fluid.bubbles);
+    EXPECT_EQ(scene.render.fluid.style, spindrift::FluidStyle::Surface) << "the liquid surface is the default look";
 }
 
 TEST(SceneRender, EveryKeyLands) {
@@ -50,9 +51,11 @@ sun = [0, 2, 0]
 kind = "image"
 image = "data/sky.png"
 [render.fluid]
+style = "splats"
 color = [0.2, 0.5, 0.9]
 opacity = 0.5
 radius_scale = 2
+surface_scale = 0.25
 size_from_density = false
 stretch = false
 refraction = false
@@ -73,6 +76,8 @@ bubbles = false
     EXPECT_EQ(r.fluid.colour, glm::vec3(0.2f, 0.5f, 0.9f));
     EXPECT_FLOAT_EQ(r.fluid.opacity, 0.5f);
     EXPECT_FLOAT_EQ(r.fluid.radiusScale, 2.0f);
+    EXPECT_EQ(r.fluid.style, spindrift::FluidStyle::Splats);
+    EXPECT_FLOAT_EQ(r.fluid.surfaceScale, 0.25f);
     EXPECT_FALSE(r.fluid.sizeFromDensity || r.fluid.stretch || r.fluid.refraction || r.fluid.edges ||
                  r.fluid.splashes || r.fluid.bubbles);
 }
@@ -98,7 +103,11 @@ TEST(SceneRender, FluidStepsSetTheSixFlagsAndExplicitFlagsOverride) {
         EXPECT_EQ(fluid.edges, preset.edges) << n;
         EXPECT_EQ(fluid.splashes, preset.splashes) << n;
         EXPECT_EQ(fluid.bubbles, preset.bubbles) << n;
+        EXPECT_EQ(fluid.style, spindrift::FluidStyle::Splats) << n << ": steps are the splat style's";
     }
+    EXPECT_EQ(parse("[render.fluid]\nstyle = \"splats\"\nsteps = 3\n").render.fluid.style,
+              spindrift::FluidStyle::Splats);
+    EXPECT_EQ(parse("[render.fluid]\nstyle = \"surface\"\n").render.fluid.style, spindrift::FluidStyle::Surface);
     // Written before or after `steps`, a flag wins; the other keys stay.
     const auto fluid = parse("[render.fluid]\nbubbles = true\nsteps = 2\nopacity = 0.4\n").render.fluid;
     EXPECT_TRUE(fluid.sizeFromDensity);
@@ -158,6 +167,12 @@ TEST(SceneRender, BadFluidKeys) {
     expectError("[render.fluid]\nradius_scale = 0\n", {2, 16, "render.fluid.radius_scale", "> 0"});
     expectError("[render.fluid]\nbubbles = \"yes\"\n", {2, 11, "render.fluid.bubbles", "true or false"});
     expectError("[render.fluid]\nsplash = true\n", {2, 1, "render.fluid.splash", "did you mean"});
+    expectError("[render.fluid]\nstyle = \"blobs\"\n", {2, 9, "render.fluid.style", "\"surface\""});
+    expectError("[render.fluid]\nstyle = 1\n", {2, 9, "render.fluid.style", "string"});
+    expectError("[render.fluid]\nstyle = \"surface\"\nsteps = 3\n",
+                {3, 9, "render.fluid.steps", "splat style"});
+    expectError("[render.fluid]\nsurface_scale = 0.1\n", {2, 17, "render.fluid.surface_scale", "[0.125, 1]"});
+    expectError("[render.fluid]\nsurface_scale = 2\n", {2, 17, "render.fluid.surface_scale", "[0.125, 1]"});
 }
 
 TEST(SceneRender, BadSprites) {

@@ -35,14 +35,6 @@ constexpr float kAllowanceSlop = 0.1f;
 /// jitters at 0.25 m/s). A quarter (measured, baumgarte 0.05): 0.56 % and
 /// 0.11 m/s.
 constexpr float kRealBiasShare = 0.25f;
-/// Split impulses: gain of the pseudo velocity's share of the bias. The
-/// pseudo velocity moves positions and is forgotten, so a stronger pull
-/// toward rest density there adds no kinetic energy; it takes the
-/// compression a substep leaves (which the substep count's backstop answers)
-/// out faster. Measured (docs/fluid.md): LiquidFun's dam break at 10k, 5.6
-/// substeps per step at gain 1, 4.2 at 10; the resting and deep tanks the
-/// same.
-constexpr float kPseudoBiasGain = 10.0f;
 
 template <int D>
 struct SolverView {
@@ -143,7 +135,7 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
     pseudoRate += pseudoOdd;
     const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, bias * kRealBiasShare, s.invMass[i], s.pressure[i]);
     const kernels::FluidImpulse q =
-        kernels::fluidSolveImpulse(pseudoRate, bias * (1.0f - kRealBiasShare) * kPseudoBiasGain, s.invMass[i], s.pseudoImpulse[i]);
+        kernels::fluidSolveImpulse(pseudoRate, bias * (1.0f - kRealBiasShare), s.invMass[i], s.pseudoImpulse[i]);
     s.pressure[i] = r.accumulated;
     s.pseudoImpulse[i] = q.accumulated;
     Vec<D> self = wall * r.delta;

@@ -5,8 +5,6 @@
 #include "fluid/body_contacts.h"
 #include "fluid/body_link.h"
 #include "fluid/fluid_state.h"
-
-#include <array>
 #include "particles/cpu_kernels.h"
 
 #include <algorithm>
@@ -64,10 +62,6 @@ void forEachSurface(const StepContext& world, const FluidState& f, glm::vec3 x, 
 
 }  // namespace
 
-/// Walls whose shared ghosts a particle's corner correction takes off (the
-/// corner of a 3D box has three).
-constexpr std::size_t kCornerWalls = 3;
-
 template <int D>
 void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, float dt) {
     Particles<D>& p = f.particles<D>();
@@ -85,36 +79,14 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
             // Speculative (a surface the particle could reach this step, with
             // a spacing to spare for what the fluid adds while solving).
             const float reach = radius + glm::length(p.velocity[i]) * dt + f.def.spacing;
-            std::array<kernels::FluidSurface, kCornerWalls> lending{};
-            std::size_t lendingCount = 0;
             forEachSurface<D>(world, f, x, [&](const kernels::FluidSurface& s) {
                 if (s.distance < reach) out.push_back(Contact{s, static_cast<std::uint32_t>(i)});
                 // The wall's ghost neighbours (wall_density.cpp): their
                 // direction from the particle is into the wall, -normal.
                 const WallTerm t = wallTerm(f.wallTable, s.distance);
-                if (t.density <= 0.0f && t.push == 0.0f) return;
                 c.wallDensity[i] += t.density;
                 c.wallGradient[i] -= s.normal * t.push;
-                if (lendingCount < lending.size()) lending[lendingCount++] = s;
             });
-            // In a corner the lattice beyond both walls was lent twice, once
-            // by each wall's table: take one copy off (it pushed corner
-            // particles out along the diagonal, up a wall at 14 m/s in a dam
-            // break, measured).
-            // By inclusion and exclusion: each pair's shared lattice off once,
-            // the three walls' shared lattice (a 3D box's corner) back once.
-            for (std::size_t a = 0; a < lendingCount; ++a) {
-                for (std::size_t b = a + 1; b < lendingCount; ++b) {
-                    const CornerTerm o = cornerOverlap(f, lending[a], &lending[b], 1);
-                    c.wallDensity[i] -= o.density;
-                    c.wallGradient[i] -= o.push;
-                }
-            }
-            if (lendingCount == 3) {
-                const CornerTerm o = cornerOverlap(f, lending[0], &lending[1], 2);
-                c.wallDensity[i] += o.density;
-                c.wallGradient[i] += o.push;
-            }
         }
     });
 }

@@ -167,17 +167,6 @@ struct WallTerm {
 void buildWallTable(FluidState& f);
 WallTerm wallTerm(const WallTable& t, float distance);
 
-/// The ghosts of wall a's lattice (as its table lays them) that also lie
-/// behind every surface in `behind`: in a corner, the lattice that two or
-/// three walls' tables all count. Density (kernel-sum units) and g summed
-/// (the direction from the particle to each ghost).
-struct CornerTerm {
-    float density = 0.0f;
-    glm::vec3 push{0.0f};
-};
-CornerTerm cornerOverlap(const FluidState& f, const kernels::FluidSurface& a, const kernels::FluidSurface* behind,
-                         std::size_t behindCount);
-
 /// A particle near a collider surface this step (found once per step; the
 /// surface does not move while the solver iterates). 24 bytes.
 struct Contact {

@@ -56,49 +56,6 @@ void buildWallTable(FluidState& f) {
     }
 }
 
-CornerTerm cornerOverlap(const FluidState& f, const kernels::FluidSurface& a, const kernels::FluidSurface* behind,
-                         std::size_t behindCount) {
-    const float distanceA = a.distance;
-    const glm::vec3 normalA = a.normal;
-    // Wall a's ghost lattice as buildWallTable lays it (rows (k + 1/2)
-    // spacings behind surface a, columns at whole spacings beside the
-    // particle); the ghosts of it that also lie behind surface b are the
-    // ones wall b's table counts again.
-    const float sp = f.def.spacing;
-    const float h = f.h;
-    const float invH2 = 1.0f / (h * h);
-    const glm::vec3 helper = std::fabs(normalA.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
-    const glm::vec3 tangent = f.def.dimension == 2 ? glm::vec3(-normalA.y, normalA.x, 0.0f)
-                                                   : glm::normalize(glm::cross(normalA, helper));
-    const glm::vec3 bitangent = glm::cross(normalA, tangent);
-    const int lateral = static_cast<int>(std::ceil(h / sp));
-    const int lateralZ = f.def.dimension == 3 ? lateral : 0;
-    const int rows = static_cast<int>(std::ceil(h / sp)) + 1;
-    CornerTerm r;
-    for (int k = 0; k < rows; ++k) {
-        const float normal = distanceA + (static_cast<float>(k) + 0.5f) * sp;
-        if (normal <= 0.0f) continue;
-        for (int j = -lateralZ; j <= lateralZ; ++j) {
-            for (int i = -lateral; i <= lateral; ++i) {
-                const glm::vec3 offset = -normalA * normal + tangent * (static_cast<float>(i) * sp) +
-                                         bitangent * (static_cast<float>(j) * sp);
-                bool inside = true;
-                for (std::size_t b = 0; b < behindCount; ++b) {
-                    inside = inside && behind[b].distance + glm::dot(offset, behind[b].normal) < 0.0f;
-                }
-                if (!inside) continue;
-                const float r2 = glm::dot(offset, offset);
-                const float w = kernels::fluidWeight(r2, invH2);
-                if (w <= 0.0f) continue;
-                const float len = std::sqrt(r2);
-                r.density += kernels::fluidDensityKernel(len / h);
-                r.push += offset * (w / len);
-            }
-        }
-    }
-    return r;
-}
-
 WallTerm wallTerm(const WallTable& t, float distance) {
     const float u = (distance - t.start) / t.step;
     if (!(u < static_cast<float>(WallTable::kSize - 1))) return WallTerm{};  // also NaN

@@ -32,9 +32,6 @@ constexpr float kEdgeSurface = 0.25f;
 /// Rule 3: extra stretch along the surface tangent at edge factor 1 (slide
 /// 57: "stretch and rotate in direction of edge tangent").
 constexpr float kEdgeStretch = 0.8f;
-/// Rule 3: along the velocity the major semi-axis grows by the distance the
-/// particle moves in this time (s), like a short motion blur (slide 64).
-constexpr float kStretchTime = 0.02f;
 /// Rule 3: most stretch (major semi-axis / radius) of the combined axis.
 constexpr float kMaxStretch = 3.0f;
 /// Rule 3: time constant (s) with which the displayed stretch follows its

@@ -61,6 +61,10 @@ inline constexpr std::size_t kMaxSplashes = 800;
 /// Fastest turn of a displayed axis (rad/s): slide 60 "allow small rotations";
 /// 6 rad/s is 0.1 rad (5.7 degrees) per frame at 60 fps.
 inline constexpr float kMaxTurnRate = 6.0f;
+/// Rule 3: along the velocity a splat's major semi-axis grows by the distance
+/// the particle moves in this time (s), like a short motion blur (slide 64);
+/// the liquid surface stretches its kernels the same way (surface_field.cpp).
+inline constexpr float kStretchTime = 0.02f;
 
 /// Writes fluid `fluid`'s splats into `out` (cleared first): one per particle
 /// (in the solver's grid order), then the live splashes. `dt` (s) is world

@@ -20,9 +20,8 @@ constexpr float kFoamSpeedMost = 0.4f;
 /// top at rest is about 0.5, a thin jet 0.3: not foam; spray is).
 constexpr float kFoamDensityStart = 0.2f;
 constexpr float kFoamDensityFull = 0.05f;
-/// The slides' velocity stretch time (s), as in fluid_splats.cpp rule 3, and
-/// the most extra length (in radii) a kernel gets.
-constexpr float kStretchTime = 0.02f;
+/// The most extra length (in radii) a kernel gets from the velocity stretch
+/// (kStretchTime, fluid_splats.h).
 constexpr float kMaxExtraStretch = 1.0f;
 
 float smoothstep(float edge0, float edge1, float x) {

@@ -42,5 +42,16 @@ inline constexpr FieldRule kHalfExtent = FieldRule::number(Bounds::nonNegative()
 inline constexpr FieldRule kDuration = FieldRule::number(Bounds::any());
 /// A file asks for at least 1 and at most `capacity`.
 inline constexpr FieldRule kBurstCount = FieldRule::whole(Bounds::between(0, kEmitterMaxBurstCount));
+/// `color`: linear RGB, each channel (above 1 is brighter than white, for
+/// additive light), and an opacity in [0, 1].
+inline constexpr FieldRule kColorChannel = FieldRule::number(Bounds::nonNegative());
+inline constexpr FieldRule kColorAlpha = FieldRule::number(Bounds::unit());
+/// A curve key's time: the particle's normalised age.
+inline constexpr FieldRule kCurveTime = FieldRule::number(Bounds::unit());
+/// A curve key's value: a colour curve's factor per channel (alpha included)
+/// or a size curve's factor.
+inline constexpr FieldRule kCurveFactor = FieldRule::number(Bounds::nonNegative());
+/// s: `sprite.stretch`, metres of length per m/s of screen-space speed.
+inline constexpr FieldRule kSpriteStretch = FieldRule::number(Bounds::nonNegative());
 
 }  // namespace spindrift::emitter_rules

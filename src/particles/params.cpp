@@ -20,17 +20,7 @@ namespace {
 
 glm::vec4 v4(glm::vec3 v, float w) { return glm::vec4(v, w); }
 
-void require(bool ok, const std::string& object, const char* field, const std::string& expected) {
-    if (!ok) {
-        throw Error(fmt::format("{}: {}: expected {}", object, field, expected));
-    }
-}
-
 bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
-
-std::string label(const char* kind, const std::string& name) {
-    return name.empty() ? std::string(kind) : fmt::format("{} '{}'", kind, name);
-}
 
 // The public limit (include/spindrift/effects.h) is the kernel's array size
 // (src/kernels/types.glsl); the public header cannot include the kernel.
@@ -41,21 +31,49 @@ static_assert(sizeof(kernels::CurveParams::values) / sizeof(kernels::CurveParams
 // (src/kernels/stateless.glsl): a larger burst would run into the next one's.
 static_assert(kEmitterMaxBurstCount == kernels::SD_BURST_SERIAL_STRIDE - 1);
 
+// `color`'s two ends, each channel and the opacity against its rule.
+void checkColorRange(const FieldCheck& check, const ColorRange& color) {
+    for (const glm::vec4& end : {color.min, color.max}) {
+        for (int c = 0; c < 3; ++c) {
+            check.number("color", end[c], emitter_rules::kColorChannel);
+        }
+        check.number("color", end.a, emitter_rules::kColorAlpha);
+    }
+}
+
+// A curve over normalised age: at most kMaxCurveKeys keys (the kernel's
+// array), times strictly increasing in [0, 1], factors >= 0 (a size curve's
+// factor is its value's x).
+void checkCurve(const FieldCheck& check, std::string_view field, const Curve& curve, int channels) {
+    const std::size_t count = curve.keys.size();
+    check.expect(count <= static_cast<std::size_t>(kMaxCurveKeys), field,
+                 fmt::format("at most {} curve keys", kMaxCurveKeys), fmt::format("{}", count));
+    for (std::size_t i = 0; i < count; ++i) {
+        const CurveKey& k = curve.keys[i];
+        const std::string time = fieldPath(field, i, "t");
+        check.number(time, k.t, emitter_rules::kCurveTime);
+        if (i > 0) {
+            const float previous = curve.keys[i - 1].t;
+            check.expect(k.t > previous, time,
+                         fmt::format("t > {} (the previous key's t): curve keys must be in strictly "
+                                     "increasing t",
+                                     previous),
+                         fmt::format("{}", k.t));
+        }
+        for (int c = 0; c < channels; ++c) {
+            check.number(fieldPath(field, i, "value"), k.value[c], emitter_rules::kCurveFactor);
+        }
+    }
+}
+
 }  // namespace
 
-kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what) {
+kernels::CurveParams makeCurveParams(const Curve& curve) {
     kernels::CurveParams c;
     std::memset(&c, 0, sizeof c);
-    require(curve.keys.size() <= static_cast<std::size_t>(kMaxCurveKeys), what, "keys",
-            fmt::format("at most {} keys", kMaxCurveKeys));
-    float previous = -1.0f;
     for (std::size_t i = 0; i < curve.keys.size(); ++i) {
-        const CurveKey& k = curve.keys[i];
-        require(k.t >= 0.0f && k.t <= 1.0f && k.t > previous, what, "keys",
-                "key times strictly increasing in [0, 1]");
-        previous = k.t;
-        c.values[i] = k.value;
-        c.times[i / 4][i % 4] = k.t;
+        c.values[i] = curve.keys[i].value;
+        c.times[i / 4][i % 4] = curve.keys[i].t;
     }
     c.count = static_cast<std::uint32_t>(curve.keys.size());
     return c;
@@ -95,6 +113,10 @@ void validateEmitterDef(const EmitterDef& d) {
     check.range("angular_velocity", d.angularVelocity, rules::kAngularVelocity);
     check.number("mass", d.mass, rules::kMass);
     check.number("collision.life_loss", d.collision.lifeLossOnCollision, rules::kLifeLoss);
+    checkColorRange(check, d.color);
+    checkCurve(check, "color_over_life", d.colorOverLife, 4);
+    checkCurve(check, "size_over_life", d.sizeOverLife, 1);
+    check.number("sprite.stretch", d.sprite.stretch, rules::kSpriteStretch);
 }
 
 kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,
@@ -131,9 +153,8 @@ kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed
     e.capacity = d.capacity;
     e.forceMask = forceMask;
     e.colliderMask = colliderMask;
-    std::string who = label("emitter", d.name);
-    e.colorOverLife = makeCurveParams(d.colorOverLife, who + " color_over_life");
-    e.sizeOverLife = makeCurveParams(d.sizeOverLife, who + " size_over_life");
+    e.colorOverLife = makeCurveParams(d.colorOverLife);
+    e.sizeOverLife = makeCurveParams(d.sizeOverLife);
     return e;
 }
 

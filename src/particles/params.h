@@ -17,7 +17,8 @@ namespace spindrift {
 inline constexpr std::uint32_t kMaxForces = kernels::SD_MAX_FORCES;
 inline constexpr std::uint32_t kMaxColliders = kernels::SD_MAX_COLLIDERS;
 
-kernels::CurveParams makeCurveParams(const Curve& curve, const std::string& what);
+// The kernel's form of a curve that validateEmitterDef accepted.
+kernels::CurveParams makeCurveParams(const Curve& curve);
 /// forceMask and colliderMask select the emitter's forces and colliders.
 kernels::EmitterParams makeEmitterParams(const EmitterDef& def, std::uint32_t seed, std::uint32_t emitterIndex,
                                          std::uint32_t forceMask, std::uint32_t colliderMask);

@@ -6,8 +6,7 @@
 // read with type checks only, angles converted from degrees to the API's
 // radians, and checked once by validateEmitterDef through validateAt. What is
 // checked here is what only a file says: a duration left out for "forever"
-// (so one written is > 0), a burst that fits the capacity, colours and curves
-// as written.
+// (so one written is > 0) and a burst that fits the capacity.
 #include "particles/emitter_rules.h"
 #include "particles/params.h"
 #include "scene/parse_internal.h"
@@ -84,37 +83,37 @@ SpawnShapeDef readShape(const Table& t) {
 
 // --- Colours and curves ------------------------------------------------------
 
-// [r, g, b, a] in linear light: rgb >= 0 (may exceed 1 for HDR glow), alpha in [0, 1].
-glm::vec4 readColor(const Value& v, bool alphaIsFactor) {
+// [r, g, b, a]: four numbers; their ranges (emitter_rules.h) are the API's
+// to check (validateEmitterDef), once.
+glm::vec4 readColor(const Value& v, const FieldRule& rgb, const FieldRule& alpha) {
     if (!v.node().is_array() || v.array().size() != 4) {
         v.failExpected("a colour [r, g, b, a]");
     }
     glm::vec4 c;
     for (std::size_t i = 0; i < 3; ++i) {
-        c[static_cast<int>(i)] = v.element(i).real(Bounds::nonNegative());
+        c[static_cast<int>(i)] = v.element(i).real(rgb);
     }
-    c.a = v.element(3).real(alphaIsFactor ? Bounds::nonNegative() : Bounds::unit());
+    c.a = v.element(3).real(alpha);
     return c;
 }
 
 // `color = [r, g, b, a]` or `color = [[r, g, b, a], [r, g, b, a]]`.
 ColorRange readColorRange(const Value& v) {
     if (v.node().is_array() && v.array().size() == 2 && v.array().get(0)->is_array()) {
-        return {readColor(v.element(0), false), readColor(v.element(1), false)};
+        return {readColor(v.element(0), emitter_rules::kColorChannel, emitter_rules::kColorAlpha),
+                readColor(v.element(1), emitter_rules::kColorChannel, emitter_rules::kColorAlpha)};
     }
     if (!v.node().is_array() || v.array().size() != 4) {
         v.failExpected("a colour [r, g, b, a] or two colours [[r, g, b, a], [r, g, b, a]]");
     }
-    const glm::vec4 c = readColor(v, false);
+    const glm::vec4 c = readColor(v, emitter_rules::kColorChannel, emitter_rules::kColorAlpha);
     return {c, c};
 }
 
-// Keys {t = ..., value = ...}: at most 8, t in [0, 1] strictly increasing.
+// Keys {t = ..., value = ...}; how many, their order and ranges are the
+// API's to check (validateEmitterDef), once.
 Curve readCurve(const Value& v, bool colorValues) {
     const toml::array& keys = v.array();
-    if (keys.size() > static_cast<std::size_t>(kMaxCurveKeys)) {
-        v.fail(fmt::format("expected at most {} curve keys, got {}", kMaxCurveKeys, keys.size()));
-    }
     Curve curve;
     for (std::size_t i = 0; i < keys.size(); ++i) {
         const Value key = v.element(i);
@@ -124,18 +123,11 @@ Curve readCurve(const Value& v, bool colorValues) {
         const Table t(key.context(), *key.node().as_table(), key.path());
         t.allowOnly({"t", "value"}, "a curve key");
         CurveKey k;
-        const Value time = t.require("t", "a number in [0, 1] (normalised age)");
-        k.t = time.real(Bounds::unit());
-        if (!curve.keys.empty() && !(k.t > curve.keys.back().t)) {
-            time.fail(
-                fmt::format("expected t > {} (the previous key's t): curve keys must be in "
-                            "strictly increasing t, got {}",
-                            curve.keys.back().t, k.t));
-        }
+        k.t = t.require("t", "a number in [0, 1] (normalised age)").real(emitter_rules::kCurveTime);
         const Value value =
             t.require("value", colorValues ? "a colour factor [r, g, b, a]" : "a size factor >= 0");
-        k.value =
-            colorValues ? readColor(value, true) : glm::vec4(value.real(Bounds::nonNegative()));
+        k.value = colorValues ? readColor(value, emitter_rules::kCurveFactor, emitter_rules::kCurveFactor)
+                              : glm::vec4(value.real(emitter_rules::kCurveFactor));
         curve.keys.push_back(k);
     }
     return curve;
@@ -306,7 +298,7 @@ SpriteDef readSprite(const Table& t) {
     if (auto v = t.find("blend")) {
         def.blend = v->choice<SpriteBlend>({{"additive", SpriteBlend::Additive}, {"alpha", SpriteBlend::Alpha}});
     }
-    def.stretch = t.real("stretch", def.stretch, Bounds::nonNegative());
+    def.stretch = t.real("stretch", def.stretch, emitter_rules::kSpriteStretch);
     if (auto v = t.find("texture")) {
         def.texture = readPngPath(*v);
     }

@@ -180,6 +180,38 @@ TEST(OneValidationPath, EmitterCapacityHasOneLimit) {
     expectSameError(def, "capacity = 0", 12, "emitter[0].capacity");
 }
 
+// Colours, curves and the sprite's stretch have one rule each too (issue 11:
+// they used to be checked by the file's reader and again, in other words,
+// when the emitter was built).
+TEST(OneValidationPath, EmitterColoursCurvesAndStretchReadTheSame) {
+    EmitterDef def = emitterDef();
+    def.color = {glm::vec4(1.0f, 1.0f, 1.0f, 1.5f), glm::vec4(1.0f, 1.0f, 1.0f, 1.5f)};
+    const FieldError alpha = expectSameError(def, "color = [1, 1, 1, 1.5]", 9, "emitter[0].color");
+    EXPECT_EQ(alpha.message(), "expected a number in [0, 1], got 1.5");
+
+    def = emitterDef();
+    def.sizeOverLife.keys = {{0.5f, glm::vec4(1.0f)}, {0.25f, glm::vec4(2.0f)}};
+    const FieldError order = expectSameError(def, "size_over_life = [{t = 0.5, value = 1}, {t = 0.25, value = 2}]",
+                                             46, "emitter[0].size_over_life[1].t");
+    EXPECT_EQ(order.field(), "size_over_life[1].t");
+
+    def = emitterDef();
+    def.colorOverLife.keys = {{0.0f, glm::vec4(1.0f, -1.0f, 1.0f, 1.0f)}};
+    expectSameError(def, "color_over_life = [{t = 0, value = [1, -1, 1, 1]}]", 36,
+                    "emitter[0].color_over_life[0].value");
+
+    def = emitterDef();
+    def.sprite.stretch = 0.0f;
+    expectAccepted(def, "[emitter.sprite]\nstretch = 0");
+    def.sprite.stretch = -0.1f;
+    const FieldError stretch = emitterApiError(def);
+    EXPECT_EQ(stretch.field(), "sprite.stretch");
+    const SceneError scene = sceneError(emitterScene("[emitter.sprite]\nstretch = -0.1"));
+    EXPECT_EQ(scene.message(), stretch.message());
+    EXPECT_EQ(scene.line(), 4);
+    EXPECT_EQ(scene.keyPath(), "emitter[0].sprite.stretch");
+}
+
 TEST(OneValidationPath, EmitterRateMayBeZeroButNotNegative) {
     EmitterDef def = emitterDef();
     def.rate = 0.0f;

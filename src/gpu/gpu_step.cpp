@@ -27,12 +27,7 @@ std::uint32_t writeSchedule(GpuEmitter& e, std::uint32_t frame, EmitterState& s,
     const auto total = static_cast<std::uint32_t>(b.total());
     static_assert(kEmitterMaxCapacity <= std::numeric_limits<std::uint32_t>::max());
     e.scheduleDropped[frame] = b.dropped;
-    ScheduleHeader h{};
-    h.burstRuns = static_cast<std::uint32_t>(b.bursts.size());
-    h.rateSpan = static_cast<float>(b.t1 - b.t0);
-    h.rateCarry = static_cast<float>(b.carry);
-    h.rate = static_cast<float>(b.rate);
-    h.maxAge = static_cast<float>(b.dt);
+    const ScheduleHeader h = b.header();
     auto* runs = reinterpret_cast<std::uint32_t*>(static_cast<char*>(e.schedules[frame].mapped) + sizeof(h));
     std::uint32_t end = 0;
     for (std::size_t r = 0; r < b.bursts.size(); ++r) {
@@ -40,7 +35,6 @@ std::uint32_t writeSchedule(GpuEmitter& e, std::uint32_t frame, EmitterState& s,
         runs[2 * r] = end;
         std::memcpy(&runs[2 * r + 1], &b.bursts[r].age, 4);
     }
-    h.rateFirst = end;
     std::memcpy(e.schedules[frame].mapped, &h, sizeof(h));
     return static_cast<std::uint32_t>(total);
 }

@@ -1,7 +1,8 @@
-// The one host-side birth-age rule (see birth_schedule.h).
+// The birth schedule of a spawn emitter's step (see birth_schedule.h).
 #include "particles/birth_schedule.h"
 
 #include "core/saturating.h"
+#include "kernels/birth_age.glsl"
 
 #include <algorithm>
 #include <cmath>
@@ -51,9 +52,26 @@ std::uint64_t BirthSchedule::total() const {
     return n;
 }
 
+kernels::ScheduleHeader BirthSchedule::header() const {
+    kernels::ScheduleHeader h{};
+    h.burstRuns = static_cast<std::uint32_t>(bursts.size());
+    std::uint64_t first = 0;
+    for (const BurstRun& b : bursts) {
+        first += b.count;
+    }
+    h.rateFirst = static_cast<std::uint32_t>(first);  // at most the capacity (< 2^32)
+    h.rateSpan = static_cast<float>(t1 - t0);
+    h.rateCarry = static_cast<float>(carry);
+    h.rate = static_cast<float>(rate);
+    h.maxAge = static_cast<float>(dt);
+    return h;
+}
+
 float BirthSchedule::rateAge(std::uint64_t j) const {
-    double bornAfterStart = (static_cast<double>(j) + 1.0 - carry) / rate;
-    return static_cast<float>(std::clamp(t1 - (t0 + bornAfterStart), 0.0, dt));
+    // The kernel's rule on the header's floats, as the Vulkan backend
+    // evaluates it. j < capacity <= 2^24, exact in a float.
+    const kernels::ScheduleHeader h = header();
+    return kernels::rateBirthAge(static_cast<float>(j), h.rateCarry, h.rate, h.rateSpan, h.maxAge);
 }
 
 std::vector<float> BirthSchedule::ages(std::uint64_t limit) const {

@@ -1,12 +1,14 @@
 // The birth schedule of a spawn-mode emitter: how many particles each step
-// owes and how old each is at the end of the step. The one birth-age rule,
-// shared by both backends: the CPU backend (src/effects/emitter_step.cpp)
-// reads ages(); the Vulkan backend uploads the schedule and
-// effects_update.comp evaluates the same rule per birth (scheduleAge there
-// mirrors rateAge here; tests/gpu check the two agree).
+// owes and how old each is at the end of the step. The birth-age rule is the
+// kernel's (src/kernels/birth_age.glsl), on the schedule's header in float:
+// the CPU backend (src/effects/emitter_step.cpp) reads ages(); the Vulkan
+// backend uploads header() and effects_update.comp calls the same rule per
+// birth.
 #pragma once
 
 #include "particles/emitter_state.h"
+
+#include "kernels/layout.glsl"
 
 #include <cstdint>
 #include <vector>
@@ -38,6 +40,9 @@ struct BirthSchedule {
 
     /// Births held: at most the capacity.
     std::uint64_t total() const;
+    /// The schedule as the kernels read it (the burst runs follow it on the
+    /// device).
+    kernels::ScheduleHeader header() const;
     /// Age of the rate's j-th birth of the step.
     float rateAge(std::uint64_t j) const;
     /// The ages of the first min(total(), limit) births.

@@ -127,6 +127,7 @@ float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) { return sampleH
 vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) { return sampleCubeImage(map, direction); }
 
 #include "update.glsl"
+#include "birth_age.glsl"
 
 Particle loadParticle(uint i) {
     Particle p;
@@ -202,16 +203,15 @@ void spawnUpdate(KernelContext ctx, uint i) {
     }
 }
 
-// Age of birth k at the end of the step: BirthSchedule::ages() in float (the
-// CPU works in double; the two agree to a few ulp).
+// Age of birth k at the end of the step: BirthSchedule::ages().
 float birthAge(uint k) {
     for (uint b = 0u; b < schedule.burstRuns; ++b) {
         if (k < runs[b].x) {
             return uintBitsToFloat(runs[b].y);
         }
     }
-    float bornAfterStart = (float(k - schedule.rateFirst) + 1.0f - schedule.rateCarry) / schedule.rate;
-    return clamp(schedule.rateSpan - bornAfterStart, 0.0f, schedule.maxAge);
+    return rateBirthAge(float(k - schedule.rateFirst), schedule.rateCarry, schedule.rate, schedule.rateSpan,
+                        schedule.maxAge);
 }
 
 // step.count births are owed; the dispatch covers at most the capacity of

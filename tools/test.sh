@@ -15,6 +15,10 @@
 # drive still runs: the short fluid tests, SceneBuild.EverySceneBuildsAndRuns
 # (every bundled scene, the showcase and the fluid tanks included, for 2 s)
 # and the two-thread determinism tests of single scenes.
+#
+# The sanitizer build keeps line tables only (-g1, the asan preset): reports
+# still give file and line, and the heaviest file (src/effects/emitter_step.cpp)
+# compiles in 44 s of CPU instead of 77 s with full -g.
 set -euo pipefail
 cd "$(dirname "$0")/.."
 tools/install-deps.sh

@@ -5,6 +5,7 @@
 #include "particles/emitter_rules.h"
 #include "particles/flow_field_rules.h"
 #include "particles/force_rules.h"
+#include "particles/sprite_rules.h"
 
 #include "kernels/random.glsl"
 #include "kernels/stateless.glsl"
@@ -95,6 +96,7 @@ void validateEmitterDef(const EmitterDef& d) {
     check.range("angular_velocity", d.angularVelocity, rules::kAngularVelocity);
     check.number("mass", d.mass, rules::kMass);
     check.number("collision.life_loss", d.collision.lifeLossOnCollision, rules::kLifeLoss);
+    sprite_rules::validateSpriteDef(check, d.sprite);
 }
 
 kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,

@@ -403,6 +403,29 @@ TEST(OneValidationPath, BodyAndJointRulesReadTheSameFromTheApiAndAFile) {
                      14, "joint[0].max_motor_torque");
 }
 
+// Sprite settings: the API and a file refuse the same values with the same
+// words; the sheet's frame count is checked against its rows x columns.
+TEST(OneValidationPath, SpriteFlipbookAndSoftDistanceReadTheSameFromTheApiAndAFile) {
+    EmitterDef def = emitterDef();
+    def.sprite.flipbook.rows = 65;
+    const FieldError api =
+        expectSameError(def, "sprite = { flipbook = { rows = 65 } }", 32, "emitter[0].sprite.flipbook.rows");
+    EXPECT_STREQ(api.what(), "emitter 'e': sprite.flipbook.rows: expected an integer in [1, 64], got 65");
+    def = emitterDef();
+    def.sprite.softDistance = -0.1f;
+    expectSameError(def, "sprite = { soft_distance = -0.1 }", 28, "emitter[0].sprite.soft_distance");
+    def = emitterDef();
+    def.sprite.flipbook.rows = 64;
+    def.sprite.flipbook.frames = 64;
+    def.sprite.texture = "sheet.png";  // a name is enough for the API; a file must exist
+    EXPECT_NO_THROW(validateEmitterDef(def));
+    def.sprite.flipbook.frames = 65;  // past rows x columns
+    EXPECT_EQ(emitterApiError(def).field(), "sprite.flipbook.frames");
+    def.sprite.flipbook.frames = 0;
+    def.sprite.texture.clear();  // an animated sheet needs an image
+    EXPECT_EQ(emitterApiError(def).field(), "sprite.flipbook");
+}
+
 TEST(OneValidationPath, RenderRulesReadTheSameFromTheApiAndAFile) {
     RenderDef def;
     def.fluid.opacity = 0.0f;

@@ -73,8 +73,10 @@ std::string sheetPng() {
     return writePng("sheet.png", 8, 8, [](int x, int y) { return kFrameColours[(y / 4) * 2 + x / 4]; });
 }
 
+// `emitters` (and a collider) stepped for `seconds`, then one frame; the
+// emitters' particles' ages in `ages` (one particle each).
 Frame renderAfter(Backend backend, const std::vector<EmitterDef>& emitters, float seconds, const RenderDef& def,
-                  float* age = nullptr, const ColliderDef* collider = nullptr) {
+                  std::vector<float>* ages = nullptr, const ColliderDef* collider = nullptr) {
     BackendWorld world(backend);
     if (collider) {
         createCollider(world.id, *collider);
@@ -87,98 +89,114 @@ Frame renderAfter(Backend backend, const std::vector<EmitterDef>& emitters, floa
         stepWorld(world.id, seconds / float(steps));
     }
     flushWorld(world.id);
-    if (age) {
-        ParticleSnapshot p = readParticles(world.id, EmitterId{1});
-        EXPECT_EQ(p.count(), 1u);
-        *age = p.count() == 1 ? p.age[0] : -1.0f;
+    for (std::uint32_t i = 0; ages && i < emitters.size(); ++i) {
+        ParticleSnapshot p = readParticles(world.id, EmitterId{i + 1});
+        EXPECT_EQ(p.count(), 1u) << "emitter " << i;
+        ages->push_back(p.count() == 1 ? p.age[0] : -1.0f);
     }
     ScopedRenderer r(world.id, def);
     return renderFrame(r.id);
 }
 
+// One world per backend (a Vulkan world costs seconds to make on lavapipe):
+// 32 px per m, sprites side by side along x at x_i = -3.5 + i m.
+constexpr std::uint32_t kRowWidth = 256;
+RenderDef rowView(glm::vec3 background = glm::vec3(0.0f)) { return orthoView(kRowWidth, 64, 2.0f, background); }
+std::uint32_t columnOf(int i) { return static_cast<std::uint32_t>(kRowWidth / 2 + (-3.5 + i) * 32.0); }
+
 // Over the life: frame floor(4 age / life) of the sheet, read left to right,
-// top row first; the same for the stateless closed form.
+// top row first; stored and stateless alike. Eight emitters whose bursts
+// come at different times show eight ages in one frame.
 TEST_P(SpriteLookTest, FlipbookShowsTheFrameOfTheParticlesAge) {
     const std::string sheet = sheetPng();
-    for (bool stateless : {false, true}) {
-        for (float seconds : {1.0f, 3.0f, 6.0f, 8.5f}) {
-            EmitterDef e = restingBurst({0.0f, 0.0f, 0.0f}, 1.0f, glm::vec4(1.0f));
-            e.stateless = stateless;
-            e.sprite.texture = sheet;
-            e.sprite.flipbook.rows = 2;
-            e.sprite.flipbook.columns = 2;
-            float age = 0.0f;
-            Frame f = renderAfter(GetParam(), {e}, seconds, orthoView(64, 64, 2.0f, glm::vec3(0.0f)), &age);
-            const int frame = static_cast<int>(std::floor(4.0f * age / 10.0f));
-            ASSERT_GE(frame, 0);
-            ASSERT_LT(frame, 4);
-            const float within = 4.0f * age / 10.0f - float(frame);  // away from a frame change
-            ASSERT_GT(within, 0.05f);
-            ASSERT_LT(within, 0.95f);
-            for (int c = 0; c < 3; ++c) {
-                EXPECT_NEAR(pixel(f, 32, 32)[c], kFrameColours[frame][c], kCodeTolerance)
-                    << (stateless ? "stateless" : "stored") << ", age " << age << ", channel " << c;
-            }
+    const float seconds = 9.0f;
+    const float burstAt[4] = {8.0f, 6.0f, 3.0f, 0.5f};  // ages about 1, 3, 6 and 8.5 s: frames 0 to 3
+    std::vector<EmitterDef> emitters;
+    for (int i = 0; i < 8; ++i) {
+        EmitterDef e = restingBurst({-3.5f + float(i), 0.0f, 0.0f}, 0.8f, glm::vec4(1.0f));
+        e.bursts = {BurstDef{burstAt[i % 4], 1}};
+        e.stateless = i >= 4;
+        e.sprite.texture = sheet;
+        e.sprite.flipbook.rows = 2;
+        e.sprite.flipbook.columns = 2;
+        emitters.push_back(e);
+    }
+    std::vector<float> ages;
+    Frame f = renderAfter(GetParam(), emitters, seconds, rowView(), &ages);
+    dumpFrame(f, "flipbook_ages");
+    for (int i = 0; i < 8; ++i) {
+        const float position = 4.0f * ages[i] / 10.0f;
+        const int frame = static_cast<int>(std::floor(position));
+        ASSERT_GE(frame, 0);
+        ASSERT_LT(frame, 4);
+        ASSERT_GT(position - float(frame), 0.05f);  // away from a frame change
+        ASSERT_LT(position - float(frame), 0.95f);
+        EXPECT_EQ(frame, i % 4) << "the bursts' times give frames 0 to 3 in turn";
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(pixel(f, columnOf(i), 32)[c], kFrameColours[frame][c], kCodeTolerance)
+                << (i >= 4 ? "stateless" : "stored") << ", age " << ages[i] << ", channel " << c;
         }
     }
 }
 
 // At a rate with blending: 1 frame/s, so at age a the sheet shows frame
-// floor(a) mod 4 mixed (linear light) toward the next by fract(a).
-TEST_P(SpriteLookTest, FlipbookAtARateLoopsAndCrossFades) {
-    const std::string sheet = sheetPng();
-    EmitterDef e = restingBurst({0.0f, 0.0f, 0.0f}, 1.0f, glm::vec4(1.0f));
-    e.sprite.texture = sheet;
+// floor(a) mod 4 mixed (linear light) toward the next by fract(a). And the
+// image is upright: a sprite of a red-over-blue image is red at its top.
+TEST_P(SpriteLookTest, FlipbookAtARateLoopsAndCrossFadesAndImagesAreUpright) {
+    EmitterDef e = restingBurst({-3.5f, 0.0f, 0.0f}, 0.8f, glm::vec4(1.0f));
+    e.sprite.texture = sheetPng();
     e.sprite.flipbook = {2, 2, 0, 1.0f, true};
-    float age = 0.0f;
-    Frame f = renderAfter(GetParam(), {e}, 7.25f, orthoView(64, 64, 2.0f, glm::vec3(0.0f)), &age);
+    EmitterDef upright = restingBurst({-2.5f, 0.0f, 0.0f}, 1.0f, glm::vec4(1.0f));
+    upright.sprite.texture = writePng("top_red.png", 4, 4, [](int, int y) {
+        return y < 2 ? glm::ivec3(255, 0, 0) : glm::ivec3(0, 0, 255);
+    });
+    std::vector<float> ages;
+    Frame f = renderAfter(GetParam(), {e, upright}, 7.25f, rowView(), &ages);
+    dumpFrame(f, "flipbook_rate");
+    const float age = ages[0];
     const int a = static_cast<int>(std::floor(age)) % 4, b = (a + 1) % 4;
     const double share = age - std::floor(age);
     ASSERT_GT(share, 0.1);  // a real mix, the test can tell
     ASSERT_LT(share, 0.9);
     for (int c = 0; c < 3; ++c) {
         const double linear = (1.0 - share) * (kFrameColours[a][c] / 255.0) + share * (kFrameColours[b][c] / 255.0);
-        EXPECT_NEAR(pixel(f, 32, 32)[c], srgbByte(linear), kCodeTolerance) << "age " << age << ", channel " << c;
+        EXPECT_NEAR(pixel(f, columnOf(0), 32)[c], srgbByte(linear), kCodeTolerance) << "age " << age << ", channel " << c;
     }
-}
-
-// The image's top row is at the sprite's top on screen.
-TEST_P(SpriteLookTest, SpriteImageIsUpright) {
-    EmitterDef e = restingBurst({0.0f, 0.0f, 0.0f}, 1.0f, glm::vec4(1.0f));
-    e.sprite.texture = writePng("top_red.png", 4, 4, [](int, int y) {
-        return y < 2 ? glm::ivec3(255, 0, 0) : glm::ivec3(0, 0, 255);
-    });
-    Frame f = renderAfter(GetParam(), {e}, 0.1f, orthoView(64, 64, 2.0f, glm::vec3(0.0f)));
-    // 32 px per m: the 1 m quad spans rows 16..47; its top quarter is red.
-    EXPECT_GT(pixel(f, 32, 22)[0], 250);
-    EXPECT_EQ(pixel(f, 32, 22)[2], 0);
-    EXPECT_GT(pixel(f, 32, 42)[2], 250);
-    EXPECT_EQ(pixel(f, 32, 42)[0], 0);
+    // The 1 m quad spans rows 16..47; its top quarter is red, its bottom blue.
+    EXPECT_GT(pixel(f, columnOf(1), 22)[0], 250);
+    EXPECT_EQ(pixel(f, columnOf(1), 22)[2], 0);
+    EXPECT_GT(pixel(f, columnOf(1), 42)[2], 250);
+    EXPECT_EQ(pixel(f, columnOf(1), 42)[0], 0);
 }
 
 // Soft particles: a sprite 0.1 m in front of a box's face adds light scaled
 // by gap / distance = 0.25 of what a hard sprite adds; 1 m in front (beyond
-// the distance) all of it.
+// the distance) all of it. Hard and soft sprites side by side, the bare
+// face beside them.
 TEST_P(SpriteLookTest, SoftParticlesFadeByTheGapToTheSurfaceBehind) {
     ColliderDef box;
     box.kind = ColliderKind::Box;
     box.position = {0.0f, 0.0f, -0.5f};
-    box.halfExtents = {3.0f, 3.0f, 0.5f};  // its front face is the plane z = 0
+    box.halfExtents = {5.0f, 3.0f, 0.5f};  // its front face is the plane z = 0
     const std::string white = writePng("white.png", 4, 4, [](int, int) { return glm::ivec3(255); });
-    const RenderDef def = orthoView(64, 64, 2.0f, glm::vec3(0.0f));
-    auto lit = [&](const Frame& f) { return srgbDecode(pixel(f, 32, 32)[1] / 255.0); };
-    const double face = lit(renderAfter(GetParam(), {}, 0.1f, def, nullptr, &box));
-    for (float gap : {0.1f, 1.0f}) {
-        double added[2] = {};
-        for (int soft = 0; soft < 2; ++soft) {
-            EmitterDef e = restingBurst({0.0f, 0.0f, gap}, 1.0f, {0.25f, 0.25f, 0.25f, 1.0f});
-            e.sprite.texture = white;
-            e.sprite.softDistance = soft ? 0.4f : 0.0f;
-            added[soft] = lit(renderAfter(GetParam(), {e}, 0.1f, def, nullptr, &box)) - face;
-        }
-        ASSERT_GT(added[0], 0.1) << "the hard sprite added nothing: the test would not tell";
+    const float gaps[2] = {0.1f, 1.0f};
+    std::vector<EmitterDef> emitters;
+    for (int i = 0; i < 4; ++i) {  // hard, soft at 0.1 m; hard, soft at 1 m
+        EmitterDef e = restingBurst({-3.5f + float(i), 0.0f, gaps[i / 2]}, 0.8f, {0.25f, 0.25f, 0.25f, 1.0f});
+        e.sprite.texture = white;
+        e.sprite.softDistance = i % 2 == 1 ? 0.4f : 0.0f;
+        emitters.push_back(e);
+    }
+    Frame f = renderAfter(GetParam(), emitters, 0.1f, rowView(), nullptr, &box);
+    dumpFrame(f, "soft");
+    auto lit = [&](int i) { return srgbDecode(pixel(f, columnOf(i), 32)[1] / 255.0); };
+    const double face = lit(6);
+    ASSERT_GT(face, 0.0) << "no box face behind the sprites";
+    for (int g = 0; g < 2; ++g) {
+        const double hard = lit(2 * g) - face, soft = lit(2 * g + 1) - face;
+        ASSERT_GT(hard, 0.1) << "the hard sprite added nothing: the test would not tell";
         // One code near 0.4 linear is about 0.005; over the added 0.25: 0.03.
-        EXPECT_NEAR(added[1] / added[0], std::min(1.0, gap / 0.4), 0.04) << "gap " << gap;
+        EXPECT_NEAR(soft / hard, std::min(1.0, gaps[g] / 0.4), 0.04) << "gap " << gaps[g];
     }
 }
 
@@ -199,28 +217,28 @@ TEST_P(SpriteLookTest, OitOfOneLayerIsOver) {
 // Two OIT layers at one depth (equal weights but for alpha): the paper's
 // composite, sum(w c a) / sum(w a) x (1 - prod(1 - a)) + background x
 // prod(1 - a), with w = a x (the depth term, equal here): the same image
-// whichever emitter is drawn first.
+// whichever emitter is drawn first (emitters draw in the order they were
+// made: red then blue at x = -3.5 m, blue then red at x = -2.5 m).
 TEST_P(SpriteLookTest, OitOfTwoLayersIsThePapersCompositeInEitherOrder) {
     const glm::vec3 background(0.1f, 0.1f, 0.1f);
     const glm::vec4 red(1.0f, 0.1f, 0.1f, 0.7f), blue(0.1f, 0.2f, 1.0f, 0.4f);
     const std::string white = writePng("white.png", 4, 4, [](int, int) { return glm::ivec3(255); });
-    auto layer = [&](glm::vec4 c) {
-        EmitterDef e = restingBurst({0.0f, 0.0f, 0.0f}, 1.0f, c);
+    auto layer = [&](glm::vec4 c, float x) {
+        EmitterDef e = restingBurst({x, 0.0f, 0.0f}, 0.8f, c);
         e.sprite.texture = white;
         e.sprite.blend = SpriteBlend::WeightedOit;
         return e;
     };
+    Frame f = renderAfter(GetParam(), {layer(red, -3.5f), layer(blue, -3.5f), layer(blue, -2.5f), layer(red, -2.5f)},
+                          0.1f, rowView(background));
     const double revealed = (1.0 - red.a) * (1.0 - blue.a);
-    for (bool redFirst : {true, false}) {
-        std::vector<EmitterDef> emitters = redFirst ? std::vector{layer(red), layer(blue)}
-                                                    : std::vector{layer(blue), layer(red)};
-        Frame f = renderAfter(GetParam(), emitters, 0.1f, orthoView(64, 64, 2.0f, background));
+    for (int i = 0; i < 2; ++i) {
         for (int k = 0; k < 3; ++k) {
             const double average = (red[k] * red.a * red.a + blue[k] * blue.a * blue.a) /
                                    (red.a * red.a + blue.a * blue.a);
             const double expected = average * (1.0 - revealed) + background[k] * revealed;
-            EXPECT_NEAR(pixel(f, 32, 32)[k], srgbByte(expected), kCodeTolerance)
-                << (redFirst ? "red first" : "blue first") << ", channel " << k;
+            EXPECT_NEAR(pixel(f, columnOf(i), 32)[k], srgbByte(expected), kCodeTolerance)
+                << (i == 0 ? "red first" : "blue first") << ", channel " << k;
         }
     }
 }

@@ -403,6 +403,23 @@ TEST(OneValidationPath, BodyAndJointRulesReadTheSameFromTheApiAndAFile) {
                      14, "joint[0].max_motor_torque");
 }
 
+// A fluid's capacity below what its blocks hold is refused at the key, from
+// the API and a file alike, not later by buildWorld without a location
+// (found by SceneMutation once scenes/campfire.toml shifted its mutants).
+TEST(OneValidationPath, FluidCapacityBelowItsBlocksIsRefusedAtTheKey) {
+    FluidDef def = fluidDef();
+    def.capacity = 1;
+    const FieldError api = apiError(def);
+    EXPECT_EQ(api.field(), "capacity");
+    const SceneError scene = sceneError(fluidScene("capacity = 1"));
+    EXPECT_EQ(scene.message(), api.message());
+    EXPECT_EQ(scene.line(), 3);
+    EXPECT_EQ(scene.keyPath(), "fluid[0].capacity");
+    EXPECT_NE(std::string(scene.what()).find("at least the blocks'"), std::string::npos) << scene.what();
+    def.capacity = 0;  // as many as the blocks hold
+    EXPECT_NO_THROW(validateFluidDef(def));
+}
+
 // Sprite settings: the API and a file refuse the same values with the same
 // words; the sheet's frame count is checked against its rows x columns.
 TEST(OneValidationPath, SpriteFlipbookAndSoftDistanceReadTheSameFromTheApiAndAFile) {

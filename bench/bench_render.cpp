@@ -5,11 +5,13 @@
 // (one command line).
 //
 // Sprites: one recycle emitter of N particles (a fountain under gravity with
-// a ground plane, every slot alive after 1.5 s of warm-up), drawn additive or
-// alpha-blended (then sorted back to front on the device every frame).
+// a ground plane, every slot alive after 1.5 s of warm-up), drawn additive,
+// alpha-blended (then sorted back to front on the device every frame) or with
+// weighted blended OIT (no sort; an accumulation pass and a composite).
 // Argument 0: particles (1: the baseline frame with nothing to draw but the
 // background and the floor); argument 1: world backend (0 cpu: one upload per
-// frame, 1 vulkan: drawn from the world's buffers); argument 2: 1 alpha.
+// frame, 1 vulkan: drawn from the world's buffers); argument 2: blend (0
+// additive, 1 alpha sorted, 2 OIT).
 // Fluid: a 2D block of 100k particles at 1 cm after one step (so neighbour
 // data exists), every splat step on, refraction included.
 // Fluid look at 960x540: the 2D dam break of scenes/fluid_dam_break_2d.toml
@@ -53,6 +55,7 @@ void report(benchmark::State& state, RendererId r) {
     state.counters["surface_field_ms"] = s.surfaceFieldMs;
     state.counters["sprites_ms"] = s.spritesMs;
     state.counters["sort_ms"] = s.sortMs;
+    state.counters["oit_ms"] = s.oitAccumulateMs;
     state.counters["host_ms"] = s.cpuMs;
     state.counters["sprites"] = static_cast<double>(s.sprites);
     state.counters["splats"] = static_cast<double>(s.splats);
@@ -93,7 +96,8 @@ void BM_Sprites(benchmark::State& state) {
         e.lifetime = {1.0f, 1.5f};
         e.size = {0.03f, 0.05f};
         e.color = {{1.0f, 0.6f, 0.2f, 0.5f}, {0.3f, 0.6f, 1.0f, 0.8f}};
-        e.sprite.blend = state.range(2) == 1 ? SpriteBlend::Alpha : SpriteBlend::Additive;
+        const SpriteBlend blends[3] = {SpriteBlend::Additive, SpriteBlend::Alpha, SpriteBlend::WeightedOit};
+        e.sprite.blend = blends[state.range(2)];
         createEmitter(w, e);
         for (int i = 0; i < 90; ++i) {
             stepWorld(w, 1.0f / 60.0f);
@@ -105,11 +109,14 @@ void BM_Sprites(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_Sprites)
-    ->ArgNames({"particles", "vulkan", "alpha"})
+    ->ArgNames({"particles", "vulkan", "blend"})
     ->Args({1, 0, 0})  // the frame without sprites: background, floor, read-back
     ->Args({100000, 0, 0})
     ->Args({100000, 1, 0})
     ->Args({100000, 0, 1})
+    ->Args({100000, 0, 2})  // sorted "over" against OIT, side by side
+    ->Args({100000, 1, 1})
+    ->Args({100000, 1, 2})
     ->Args({1000000, 0, 0})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);

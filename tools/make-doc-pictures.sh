@@ -2,8 +2,8 @@
 # Makes the pictures of docs/rendering.md and docs/tutorial.md with the
 # project's own command: one frame of scenes/fluid_splash.toml at t = 1 s for
 # each Sprinkle splat step (spindrift render --fluid-steps N), the 2D dam
-# break at t = 2 s as the liquid surface and as splats, and the showcase level
-# at three moments. Run after a build (cmake --build --preset release).
+# break at t = 2 s as the liquid surface and as splats, the showcase level
+# at three moments, and the campfire's smoke three ways. Run after a build (cmake --build --preset release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cli=build/release/spindrift
@@ -29,4 +29,18 @@ for t in 1.5 4.0 8.9; do
     --width 640 --height 360 --quiet
   cp "$tmp/showcase-$t/frame_00000.png" "$out/showcase-$t.png"
 done
-echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{surface,splats}.png and $out/showcase-{1.5,4.0,8.9}.png"
+# The campfire (docs/rendering.md, "Sprites"): its smoke with weighted blended
+# OIT and soft edges as the scene has it, sorted back to front instead, and
+# with hard edges; the variants are copies of the scene with one key changed.
+ln -s "$PWD/scenes/data" "$tmp/data"
+sed 's/^blend = "oit".*/blend = "alpha"/' scenes/campfire.toml > "$tmp/campfire-sorted.toml"
+sed 's/^soft_distance = .*//' scenes/campfire.toml > "$tmp/campfire-hard.toml"
+for variant in campfire "$tmp/campfire-sorted" "$tmp/campfire-hard"; do
+  scene="$variant.toml"
+  [ "$variant" = campfire ] && scene=scenes/campfire.toml
+  name=$(basename "$variant")
+  "$cli" render "$scene" --out "$tmp/$name" --start 3.0 --frames 1 --format png --width 480 --height 270 --quiet
+  cp "$tmp/$name/frame_00000.png" "$out/$name.png"
+done
+echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{surface,splats}.png, $out/showcase-{1.5,4.0,8.9}.png" \
+  "and $out/campfire{,-sorted,-hard}.png"

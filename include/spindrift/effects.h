@@ -101,6 +101,26 @@ struct CollisionResponseDef {
 enum class SpriteBlend : std::uint32_t {
     Additive = 0,  ///< colours add up (fire, sparks): order-free
     Alpha = 1,     ///< "over" compositing (smoke), drawn back to front
+    /// Weighted blended order-independent transparency (McGuire and Bavoil
+    /// 2013): "over" approximated without a sort; exact for one layer and for
+    /// layers of one colour.
+    WeightedOit = 2,
+};
+
+/// A sprite sheet of `rows` x `columns` frames, read left to right, top row
+/// first, played over the particle's life or at a frame rate.
+struct FlipbookDef {
+    std::uint32_t rows = 1;
+    std::uint32_t columns = 1;
+    /// Frames used, from the first; 0: rows x columns.
+    std::uint32_t frames = 0;
+    /// Frames per second, looping; 0: the frames spread once over the life.
+    float fps = 0.0f;
+    /// Cross-fade from each frame to the next instead of cutting.
+    bool blend = false;
+
+    bool animated() const { return rows * columns > 1; }
+    std::uint32_t frameCount() const { return frames > 0 ? frames : rows * columns; }
 };
 
 /// How an emitter's particles are drawn (include/spindrift/render.h): a
@@ -113,6 +133,11 @@ struct SpriteDef {
     /// PNG sprite image (its alpha is the coverage); empty: a soft round
     /// procedural spot.
     std::string texture;
+    /// The texture as a sprite sheet (needs `texture` when animated).
+    FlipbookDef flipbook;
+    /// Soft particles: a sprite fades out linearly over this distance (m, along
+    /// the view) in front of opaque geometry; 0: hard intersections.
+    float softDistance = 0.0f;
 };
 
 struct EmitterDef {

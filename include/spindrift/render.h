@@ -118,6 +118,9 @@ struct RenderStats {
     /// The copy of the frame that refraction samples, with the extra pass
     /// it needs (0 when nothing refracts).
     double refractionCopyMs = 0.0;
+    /// Weighted blended OIT's accumulation pass (0 when no emitter uses
+    /// SpriteBlend::WeightedOit); its composite counts in spritesMs.
+    double oitAccumulateMs = 0.0;
     double totalDeviceMs = 0.0;
     double cpuMs = 0.0;
     std::uint64_t sprites = 0;   ///< sprite instances drawn

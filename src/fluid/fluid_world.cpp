@@ -301,6 +301,15 @@ void validateFluidDef(const FluidDef& def) {
     check.number("capacity", def.capacity, rules::kCapacity);
     check.number("rest_density", def.restDensity, rules::kRestDensity);
     for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i);
+    // A capacity given (0: the blocks' own count and room for the jets) holds
+    // every block: checked here, at the key, not when the world is built.
+    std::uint64_t inBlocks = 0;
+    for (const FluidBlockDef& b : def.blocks) inBlocks += blockParticles(def, b);
+    if (def.capacity > 0 && inBlocks > def.capacity) {
+        check.fail("capacity", fmt::format("expected 0 (as many as the blocks hold) or at least the blocks' {} "
+                                           "particles, got {}",
+                                           inBlocks, def.capacity));
+    }
     for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i);
     for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i);
 }

@@ -166,12 +166,13 @@ struct SortPush {
 
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
-// 224 bytes.
+// 240 bytes.
 SD_CONST uint SD_RENDER_SET_FRAME = 0u;
 SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;         // uniform FrameUniforms
 SD_CONST uint SD_RENDER_BINDING_BACKGROUND = 1u;    // sampler2D, the background image
 SD_CONST uint SD_RENDER_BINDING_SCENE_BEHIND = 2u;  // sampler2D, the colour target before the water
-SD_CONST uint SD_RENDER_FRAME_BINDINGS = 3u;
+SD_CONST uint SD_RENDER_BINDING_DEPTH = 3u;         // sampler2D, the opaque depth (pass B's read-only depth)
+SD_CONST uint SD_RENDER_FRAME_BINDINGS = 4u;
 struct FrameUniforms {
     mat4 viewProj;
     vec4 eye;             // xyz camera position (m); w: 1 orthographic, 0 perspective
@@ -184,6 +185,7 @@ struct FrameUniforms {
     vec4 waterColour;     // rgb linear; a: opacity
     vec4 waterFlags;      // x refraction, y edges (0 or 1); z refraction strength (uv units)
     vec4 surface;         // liquid surface: xy one field texel (uv); z depth-tint reach (uv of the frame's height); w field threshold
+    vec4 depthRange;      // the projection's near x and far y planes (m along the view; may be < 0 orthographic); z 1 orthographic
 };
 
 // Effect sprites (src/render/shaders/sprites.*, src/render/sprite_pass.cpp):
@@ -203,13 +205,28 @@ SD_CONST uint SD_SPRITE_BUFFERS = 8u;             // storage buffers before the 
 SD_CONST uint SD_SPRITE_MODE_SLOTS = 0u;      // stored slots in instance order
 SD_CONST uint SD_SPRITE_MODE_ORDERED = 1u;    // stored slots via order[] (back to front)
 SD_CONST uint SD_SPRITE_MODE_STATELESS = 2u;  // stateless runs
-// The sprite pipelines' push constants (vertex and fragment). 16 bytes.
+// The sprite pipelines' push constants (vertex and fragment). 48 bytes.
 struct SpriteDraw {
     uint mode;      // SD_SPRITE_MODE_*
     uint runCount;  // stateless runs
     float stretch;  // s: quad lengthened by speed x stretch (m) along the screen velocity
     uint textured;  // 1: sample the sprite image
+    uint columns;   // flipbook: frames across the image (1: the whole image)
+    uint rows;      // flipbook: frames down the image
+    uint frames;    // flipbook: frames played (rows x columns or fewer)
+    float fps;      // flipbook: frames/s, looping; 0: once over the life
+    uint blendFrames;    // flipbook: 1 cross-fades to the next frame
+    float softDistance;  // m: soft particles' depth fade; 0 off
+    uint pad0;
+    uint pad1;
 };
+
+// Weighted blended OIT (src/render/oit_pass.cpp): the accumulation targets,
+// read by the composite at set 1.
+SD_CONST uint SD_OIT_SET = 1u;
+SD_CONST uint SD_OIT_BINDING_ACCUM = 0u;   // sampler2D: rgb sum of w a c, a product of (1 - a) (the revealage)
+SD_CONST uint SD_OIT_BINDING_WEIGHTS = 1u;  // sampler2D: r sum of w a
+SD_CONST uint SD_OIT_BINDINGS = 2u;
 
 // Fluid splats (src/render/shaders/splats.*, src/render/fluid_splats.cpp):
 // one instance per particle, splash or bubble, set 1 binding 0. 48 bytes.
@@ -256,12 +273,14 @@ static_assert(sizeof(StepPush) == 16);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
 static_assert(sizeof(SortPush) == 48);
 static_assert(offsetof(SortPush, count) == 32);
-static_assert(sizeof(SpriteDraw) == 16);
+static_assert(sizeof(SpriteDraw) == 48);
+static_assert(offsetof(SpriteDraw, softDistance) == 36);
 static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
 static_assert(sizeof(SplatInstance) == 48);
 static_assert(offsetof(SplatInstance, shade) == 32);
 // std140: a mat4 is four vec4 columns, every vec4 16-byte aligned.
-static_assert(sizeof(FrameUniforms) == 224);
+static_assert(sizeof(FrameUniforms) == 240);
+static_assert(offsetof(FrameUniforms, depthRange) == 224);
 static_assert(offsetof(FrameUniforms, eye) == 64);
 static_assert(offsetof(FrameUniforms, waterFlags) == 192);
 static_assert(offsetof(FrameUniforms, surface) == 208);

@@ -51,7 +51,5 @@ inline constexpr FieldRule kCurveTime = FieldRule::number(Bounds::unit());
 /// A curve key's value: a colour curve's factor per channel (alpha included)
 /// or a size curve's factor.
 inline constexpr FieldRule kCurveFactor = FieldRule::number(Bounds::nonNegative());
-/// s: `sprite.stretch`, metres of length per m/s of screen-space speed.
-inline constexpr FieldRule kSpriteStretch = FieldRule::number(Bounds::nonNegative());
 
 }  // namespace spindrift::emitter_rules

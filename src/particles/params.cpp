@@ -5,6 +5,7 @@
 #include "particles/emitter_rules.h"
 #include "particles/flow_field_rules.h"
 #include "particles/force_rules.h"
+#include "particles/sprite_rules.h"
 
 #include "kernels/random.glsl"
 #include "kernels/stateless.glsl"
@@ -116,7 +117,7 @@ void validateEmitterDef(const EmitterDef& d) {
     checkColorRange(check, d.color);
     checkCurve(check, "color_over_life", d.colorOverLife, 4);
     checkCurve(check, "size_over_life", d.sizeOverLife, 1);
-    check.number("sprite.stretch", d.sprite.stretch, rules::kSpriteStretch);
+    sprite_rules::validateSpriteDef(check, d.sprite);
 }
 
 kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,

@@ -27,6 +27,15 @@ VkPipelineColorBlendAttachmentState blendState(Blend blend) {
     if (blend == Blend::None) {
         return b;
     }
+    b.blendEnable = VK_TRUE;
+    b.colorBlendOp = VK_BLEND_OP_ADD;
+    b.alphaBlendOp = VK_BLEND_OP_ADD;
+    if (blend == Blend::WeightedOit) {  // colour sums, alpha the product of (1 - a)
+        b.srcColorBlendFactor = b.dstColorBlendFactor = VK_BLEND_FACTOR_ONE;
+        b.srcAlphaBlendFactor = VK_BLEND_FACTOR_ZERO;
+        b.dstAlphaBlendFactor = VK_BLEND_FACTOR_ONE_MINUS_SRC_ALPHA;
+        return b;
+    }
     // Shaders output colour premultiplied by alpha: "over" is (1, 1 - a);
     // additive light is (1, 1), alpha kept as the destination's.
     b.blendEnable = VK_TRUE;
@@ -125,11 +134,12 @@ VkPipeline createGraphicsPipeline(gpu::Device& d, const PipelineDesc& desc, VkPi
     depth.depthTestEnable = desc.depthTest ? VK_TRUE : VK_FALSE;
     depth.depthWriteEnable = desc.depthWrite ? VK_TRUE : VK_FALSE;
     depth.depthCompareOp = VK_COMPARE_OP_LESS_OR_EQUAL;
-    VkPipelineColorBlendAttachmentState attachment = blendState(desc.blend);
+    // Identical states: the independentBlend feature is not enabled.
+    VkPipelineColorBlendAttachmentState attachments[2] = {blendState(desc.blend), blendState(desc.blend)};
     auto blend = gpu::vkStruct<VkPipelineColorBlendStateCreateInfo>(
         VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
-    blend.attachmentCount = 1;
-    blend.pAttachments = &attachment;
+    blend.attachmentCount = desc.blend == Blend::WeightedOit ? 2u : 1u;
+    blend.pAttachments = attachments;
     VkDynamicState dynamicStates[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     auto dynamic = gpu::vkStruct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
     dynamic.dynamicStateCount = 2;

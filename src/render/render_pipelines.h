@@ -10,7 +10,10 @@
 
 namespace spindrift::render {
 
-enum class Blend { None, Additive, PremultipliedAlpha };
+/// WeightedOit: two colour attachments with one blend state (McGuire and
+/// Bavoil 2013; no independentBlend needed): colour (ONE, ONE) sums, alpha
+/// (ZERO, ONE_MINUS_SRC_ALPHA) multiplies the revealage.
+enum class Blend { None, Additive, PremultipliedAlpha, WeightedOit };
 
 struct PipelineDesc {
     const char* name = "";

@@ -23,18 +23,20 @@ VkAttachmentDescription attachment(VkFormat format, bool clear, VkImageLayout in
     return a;
 }
 
-// Pass A clears and leaves colour ready to be copied and depth for pass B;
-// pass B loads both and leaves colour ready to be copied (read-back or the
-// viewer's blit).
+// Pass A clears and leaves colour ready to be copied and depth read-only for
+// pass B; pass B loads both and leaves colour ready to be copied (read-back
+// or the viewer's blit). Nothing in pass B writes depth, so there it is
+// read-only both as the attachment and as the sampled image soft particles
+// read (a read-only layout may be both at once; Vulkan spec, "Render Pass",
+// attachment and descriptor in the same subpass).
 VkRenderPass createPass(gpu::Device& d, bool first) {
     VkAttachmentDescription attachments[2] = {
         attachment(kColourFormat, first, first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, true),
-        attachment(kDepthFormat, first,
-                   first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL,
-                   VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL, first)};
+        attachment(kDepthFormat, first, first ? VK_IMAGE_LAYOUT_UNDEFINED : kDepthReadLayout, kDepthReadLayout,
+                   first)};
     VkAttachmentReference colourRef{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
-    VkAttachmentReference depthRef{1, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkAttachmentReference depthRef{1, first ? VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL : kDepthReadLayout};
     VkSubpassDescription subpass{};
     subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
     subpass.colorAttachmentCount = 1;
@@ -53,14 +55,14 @@ VkRenderPass createPass(gpu::Device& d, bool first) {
     dependencies[0].dstSubpass = 0;
     dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | attachmentStages;
     dependencies[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | attachmentAccess;
-    dependencies[0].dstStageMask = attachmentStages;
-    dependencies[0].dstAccessMask = attachmentAccess;
+    dependencies[0].dstStageMask = attachmentStages | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    dependencies[0].dstAccessMask = attachmentAccess | VK_ACCESS_SHADER_READ_BIT;
     dependencies[1].srcSubpass = 0;
     dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[1].srcStageMask = attachmentStages;
     dependencies[1].srcAccessMask = attachmentAccess;
-    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | attachmentStages;
-    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | attachmentAccess;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | attachmentStages | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT | attachmentAccess | VK_ACCESS_SHADER_READ_BIT;
     auto info = gpu::vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
     info.attachmentCount = 2;
     info.pAttachments = attachments;
@@ -97,8 +99,8 @@ bool supports(const gpu::Device& d, VkFormat format, VkFormatFeatureFlags needed
 
 RenderPasses createRenderPasses(gpu::Device& d) {
     if (!supports(d, kColourFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) ||
-        !supports(d, kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT)) {
-        throw Error("render: the Vulkan device cannot blend into R8G8B8A8_SRGB or has no D32_SFLOAT depth");
+        !supports(d, kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) {
+        throw Error("render: the Vulkan device cannot blend into R8G8B8A8_SRGB or has no sampled D32_SFLOAT depth");
     }
     RenderPasses p;
     p.first = createPass(d, true);
@@ -116,7 +118,8 @@ RenderTarget createRenderTarget(gpu::Device& d, const RenderPasses& passes, std:
                            VK_IMAGE_ASPECT_COLOR_BIT};
     t.colour = gpu::createSampledImage(d, colour);
     gpu::ImageShape depth{VK_IMAGE_VIEW_TYPE_2D, kDepthFormat, width, height, 1,
-                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT, VK_IMAGE_ASPECT_DEPTH_BIT};
+                          VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
+                          VK_IMAGE_ASPECT_DEPTH_BIT};
     t.depth = gpu::createSampledImage(d, depth);
     gpu::ImageShape behind{VK_IMAGE_VIEW_TYPE_2D, kColourFormat, width, height, 1,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT};

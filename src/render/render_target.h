@@ -11,6 +11,9 @@ namespace spindrift::render {
 /// sRGB-encoded as a PNG expects. 32-bit float depth.
 inline constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_SRGB;
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
+/// Depth after pass A: tested (never written) by pass B and the OIT
+/// accumulation, and sampled by soft particles.
+inline constexpr VkImageLayout kDepthReadLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
 
 struct RenderPasses {
     VkRenderPass first = VK_NULL_HANDLE;   // clears: background, colliders

@@ -7,6 +7,7 @@
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"
 #include "render/collider_mesh.h"
+#include "render/oit_pass.h"
 #include "render/render_images.h"
 #include "render/render_pipelines.h"
 #include "render/splat_pass.h"
@@ -19,6 +20,7 @@
 #include <fmt/format.h>
 #include <glm/gtc/matrix_transform.hpp>
 
+#include <algorithm>
 #include <chrono>
 #include <cstring>
 
@@ -27,9 +29,9 @@ namespace {
 
 // Timestamps written in a frame: start, after the liquid surface's field,
 // after the background, after the colliders (end of pass A), after the copy,
-// after the fluids (surface composite and splats), after the sprites (end of
-// pass B).
-constexpr std::uint32_t kTimestamps = 7;
+// after the OIT accumulation, after the fluids (surface composite and
+// splats), after the sprites (end of pass B).
+constexpr std::uint32_t kTimestamps = 8;
 // The liquid surface's depth tint reaches its deepest this far (m) below the
 // water above a point.
 constexpr float kSurfaceTintDepth = 0.5f;
@@ -49,6 +51,7 @@ void createDescriptors(Renderer& r) {
     frameTypes[kernels::SD_RENDER_BINDING_FRAME] = VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER;
     frameTypes[kernels::SD_RENDER_BINDING_BACKGROUND] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     frameTypes[kernels::SD_RENDER_BINDING_SCENE_BEHIND] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    frameTypes[kernels::SD_RENDER_BINDING_DEPTH] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     r.frameLayout = createSetLayout(d, frameTypes);
     VkDescriptorType spriteTypes[kernels::SD_SPRITE_BUFFERS + 1];
     std::fill(spriteTypes, spriteTypes + kernels::SD_SPRITE_BUFFERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -60,7 +63,7 @@ void createDescriptors(Renderer& r) {
 
     const std::uint32_t sets = static_cast<std::uint32_t>(worldFromId(r.world).emitters.size()) + 2;
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 2 + sets},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 + sets},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * sets + 1}};
     auto info = gpu::vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     info.maxSets = sets;
@@ -85,6 +88,7 @@ void createDescriptors(Renderer& r) {
                                                                                     : r.placeholderImage.view,
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo behind{r.linearSampler, r.target.behind.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo depth{r.nearestSampler, r.target.depth.view, kDepthReadLayout};
     VkWriteDescriptorSet writes[kernels::SD_RENDER_FRAME_BINDINGS];
     for (std::uint32_t i = 0; i < kernels::SD_RENDER_FRAME_BINDINGS; ++i) {
         writes[i] = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
@@ -96,6 +100,7 @@ void createDescriptors(Renderer& r) {
     writes[kernels::SD_RENDER_BINDING_FRAME].pBufferInfo = &uniforms;
     writes[kernels::SD_RENDER_BINDING_BACKGROUND].pImageInfo = &background;
     writes[kernels::SD_RENDER_BINDING_SCENE_BEHIND].pImageInfo = &behind;
+    writes[kernels::SD_RENDER_BINDING_DEPTH].pImageInfo = &depth;
     vkUpdateDescriptorSets(d.device, kernels::SD_RENDER_FRAME_BINDINGS, writes, 0, nullptr);
 }
 
@@ -148,6 +153,11 @@ void createPipelines(Renderer& r) {
     r.spritesAdditive = makePipeline(d, sprites);
     sprites.blend = Blend::PremultipliedAlpha;
     r.spritesAlpha = makePipeline(d, sprites);
+    // Soft particles read the depth: drawn in pass B, where it is read-only.
+    sprites.fragmentCode = code(s::kSpritesSoftFrag, s::kSpritesSoftFragWords);
+    r.spritesAlphaSoft = makePipeline(d, sprites);
+    sprites.blend = Blend::Additive;
+    r.spritesAdditiveSoft = makePipeline(d, sprites);
 }
 
 void destroyPipeline(gpu::Device& d, Pipeline& p) {
@@ -193,6 +203,17 @@ void createCommands(Renderer& r) {
     }
 }
 
+VkSampler nearestSampler(gpu::Device& d) {
+    auto info = gpu::vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
+    info.magFilter = VK_FILTER_NEAREST;
+    info.minFilter = VK_FILTER_NEAREST;
+    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    VkSampler sampler = VK_NULL_HANDLE;
+    gpu::check(vkCreateSampler(d.device, &info, nullptr, &sampler), "vkCreateSampler");
+    return sampler;
+}
+
 void createResources(Renderer& r) {
     gpu::Device& d = *r.device;
     if (!d.graphics) {
@@ -201,6 +222,7 @@ void createResources(Renderer& r) {
     r.passes = createRenderPasses(d);
     r.target = createRenderTarget(d, r.passes, r.def.width, r.def.height);
     r.linearSampler = gpu::createLinearSampler(d);
+    r.nearestSampler = nearestSampler(d);
     r.placeholderImage = whiteImage(d);
     if (r.def.background.kind == BackgroundKind::Image) {
         r.backgroundImage = loadImage(d, r.def.background.image, "render background");
@@ -216,6 +238,9 @@ void createResources(Renderer& r) {
                            ? static_cast<std::uint32_t>(r.staticMesh.size / sizeof(MeshVertex))
                            : 0u;
     createSpriteEmitters(r);
+    createOit(r);
+    r.softSprites = std::any_of(r.emitters.begin(), r.emitters.end(),
+                                [](const SpriteEmitter& s) { return s.softDistance > 0.0f; });
 }
 
 FrameUniforms frameUniforms(const RenderDef& def, double time) {
@@ -227,13 +252,17 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
     const float distance = glm::length(c.target - c.eye);
     const float reach = distance + 4.0f * planeExtent(c, aspect);
     glm::mat4 proj;
+    glm::vec4 depthRange;  // near, far, orthographic: what soft particles undo
     if (c.orthographic) {
         // Near plane behind the eye: in a 2D view nothing in front of the
         // camera plane should be cut away (collider slabs reach toward it).
         const float h = 0.5f * c.orthoHeight;
         proj = glm::orthoRH_ZO(-h * aspect, h * aspect, -h, h, -reach, reach);
+        depthRange = {-reach, reach, 1.0f, 0.0f};
     } else {
-        proj = glm::perspectiveRH_ZO(glm::radians(c.fovDegrees), aspect, std::max(1e-3f, 0.01f * distance), reach);
+        const float nearPlane = std::max(1e-3f, 0.01f * distance);
+        proj = glm::perspectiveRH_ZO(glm::radians(c.fovDegrees), aspect, nearPlane, reach);
+        depthRange = {nearPlane, reach, 0.0f, 0.0f};
     }
     proj[1][1] *= -1.0f;  // Vulkan's clip space has y down
     FrameUniforms u{};
@@ -254,6 +283,7 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
     const float visibleHeight = c.orthographic ? c.orthoHeight
                                                : 2.0f * distance * std::tan(0.5f * glm::radians(c.fovDegrees));
     u.surface = glm::vec4(0.0f, 0.0f, kSurfaceTintDepth / visibleHeight, kSurfaceThreshold);
+    u.depthRange = depthRange;
     return u;
 }
 
@@ -310,9 +340,10 @@ void readFrameTimes(Renderer& r) {
     r.stats.backgroundMs = ms(1, 2);
     r.stats.collidersMs = ms(2, 3);
     r.stats.refractionCopyMs = ms(3, 4);
-    r.stats.fluidMs = ms(4, 5);
-    r.stats.spritesMs = ms(5, 6);
-    r.stats.totalDeviceMs = ms(0, 6);
+    r.stats.oitAccumulateMs = ms(4, 5);
+    r.stats.fluidMs = ms(5, 6);
+    r.stats.spritesMs = ms(6, 7);
+    r.stats.totalDeviceMs = ms(0, 7);
 }
 
 namespace {
@@ -362,6 +393,7 @@ void destroyRenderer(Renderer& r) {
     gpu::Device& d = *r.device;
     if (d.device != VK_NULL_HANDLE) {
         vkDeviceWaitIdle(d.device);
+        destroyOit(r);
         destroySpriteEmitters(r);
         destroySplats(r);
         if (r.surface.pass != VK_NULL_HANDLE) {
@@ -373,7 +405,8 @@ void destroyRenderer(Renderer& r) {
                 gpu::destroyBuffer(d, *b);
             }
         }
-        for (Pipeline* p : {&r.background, &r.mesh, &r.spritesAdditive, &r.spritesAlpha, &r.splats}) {
+        for (Pipeline* p : {&r.background, &r.mesh, &r.spritesAdditive, &r.spritesAlpha, &r.spritesAdditiveSoft,
+                            &r.spritesAlphaSoft, &r.splats}) {
             destroyPipeline(d, *p);
         }
         vkDestroyDescriptorPool(d.device, r.pool, nullptr);
@@ -386,6 +419,7 @@ void destroyRenderer(Renderer& r) {
             }
         }
         vkDestroySampler(d.device, r.linearSampler, nullptr);
+        vkDestroySampler(d.device, r.nearestSampler, nullptr);
         if (r.target.colour.image != VK_NULL_HANDLE) {
             destroyRenderTarget(d, r.target);
         }
@@ -433,8 +467,9 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
     timestamp(r, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
     recordSurfaceField(r, cmd);  // its own passes, before the frame's
     timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
-    // One render pass, or two around a copy of the colour target when
-    // something refracts (the copy is what the water shows behind it; on
+    // One render pass, or two: around a copy of the colour target when
+    // something refracts (the copy is what the water shows behind it), the
+    // OIT accumulation, or so that soft particles can read the depth (on
     // lavapipe each extra pass costs a full-frame store and load).
     const bool refracts = r.def.fluid.refraction && r.splatCount > 0;
     {  // Background and colliders.
@@ -448,20 +483,29 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
         recordMesh(r, cmd, r.dynamicMesh, r.dynamicVertices);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
     }
-    if (refracts) {  // What refraction sees behind the water.
+    const bool oit = r.oit.pass != VK_NULL_HANDLE;
+    if (refracts || oit || r.softSprites) {
         vkCmdEndRenderPass(cmd);
-        recordCopyBehind(cmd, r.target);
+        if (refracts) {  // What refraction sees behind the water.
+            recordCopyBehind(cmd, r.target);
+        }
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
+        recordOitAccumulation(r, cmd);  // needs only pass A's depth
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 5);
         beginPass(r, cmd, false);
+    } else {
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 5);
     }
-    timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 4);
     {  // Fluids (splats, then the liquid surface over the splashes that fell
-       // back into it), then sprites.
+       // back into it), then sprites, then the OIT layer over them.
         recordSplats(r, cmd);
         recordSurfaceComposite(r, cmd);
-        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 5);
-        recordSprites(r, cmd);
-        vkCmdEndRenderPass(cmd);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 6);
+        recordSprites(r, cmd);
+        recordOitComposite(r, cmd);
+        vkCmdEndRenderPass(cmd);
+        timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 7);
     }
 }
 

@@ -4,8 +4,10 @@
 //   before it, when a 2D fluid is drawn as a liquid surface, its field at
 //   reduced resolution: kernels summed, blurred across, blurred down, depth;
 //   copy of the colour target (what refraction sees behind the water);
+//   when an emitter uses weighted blended OIT, its accumulation pass (depth
+//   tested against pass A's, read-only);
 //   pass B (loads): the liquid surface's composite, fluid splats, then effect
-//   sprites (additive, then alpha back to front).
+//   sprites (additive, then alpha back to front, then the OIT composite).
 // Internal, so the viewer (apps/spindrift) can record a frame into its own
 // command buffer and present the colour target.
 #pragma once
@@ -16,6 +18,7 @@
 #include "render/fluid_splats.h"
 #include "render/render_target.h"
 
+#include <spindrift/effects.h>
 #include <spindrift/render.h>
 
 #include <glm/glm.hpp>
@@ -41,9 +44,12 @@ struct Pipeline {
 struct SpriteEmitter {
     std::size_t index = 0;  // into World::emitters
     bool stateless = false;
-    bool alpha = false;
+    SpriteBlend blend = SpriteBlend::Additive;
+    bool alpha = false;  // sorted back to front ("over" with SpriteBlend::Alpha)
     std::uint32_t capacity = 0;
     float stretch = 0.0f;  // SpriteDef::stretch (s)
+    FlipbookDef flipbook;
+    float softDistance = 0.0f;  // m
     // Owned (CPU world, or stateless): host-visible, mapped.
     gpu::Buffer params, positions, velocities, ages, births, rotations, runs;
     gpu::Buffer order;  // device-local: slot per instance (alpha blending)
@@ -80,6 +86,19 @@ struct SurfaceField {
     bool drawn = false;  // this frame: some fluid is a surface
 };
 
+/// Weighted blended OIT (oit_pass.cpp): the sums and the revealage at the
+/// frame's size, their pass (clears, then tests the depth read-only), and
+/// the composite's descriptor set. Made only when an emitter uses it.
+struct OitTargets {
+    gpu::Image sums, weights;  // sums: rgb the weighted colours, a the revealage; weights: their sum
+    VkRenderPass pass = VK_NULL_HANDLE;
+    VkFramebuffer framebuffer = VK_NULL_HANDLE;
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet set = VK_NULL_HANDLE;
+    Pipeline accumulate, composite;
+};
+
 struct Renderer {
     WorldId world;
     RenderDef def;
@@ -91,6 +110,7 @@ struct Renderer {
     RenderPasses passes;
     RenderTarget target;
     VkSampler linearSampler = VK_NULL_HANDLE;
+    VkSampler nearestSampler = VK_NULL_HANDLE;  // the depth soft particles read (texelFetch)
     VkDescriptorSetLayout frameLayout = VK_NULL_HANDLE, spriteLayout = VK_NULL_HANDLE,
                           splatLayout = VK_NULL_HANDLE;
     VkDescriptorPool pool = VK_NULL_HANDLE;
@@ -98,8 +118,11 @@ struct Renderer {
     gpu::Buffer frameUniforms;  // host-visible
     gpu::Image backgroundImage, placeholderImage;
     Pipeline background, mesh, spritesAdditive, spritesAlpha, splats;
+    Pipeline spritesAdditiveSoft, spritesAlphaSoft;  // read the depth: pass B only
+    bool softSprites = false;  // some emitter has SpriteDef::softDistance > 0: pass B is begun
     Pipeline surfaceField, surfaceBlur, surfaceDepth, surfaceComposite;
     SurfaceField surface;
+    OitTargets oit;  // pass == VK_NULL_HANDLE: no emitter uses OIT
 
     // Colliders: the static mesh, built once; bodies are rebuilt each frame.
     gpu::Buffer staticMesh, dynamicMesh;

@@ -76,9 +76,12 @@ void createSpriteEmitters(Renderer& r) {
         SpriteEmitter& s = r.emitters.emplace_back();
         s.index = i;
         s.stateless = e.def.stateless;
-        s.alpha = e.def.sprite.blend == SpriteBlend::Alpha;
+        s.blend = e.def.sprite.blend;
+        s.alpha = s.blend == SpriteBlend::Alpha;
         s.capacity = e.def.capacity;
         s.stretch = e.def.sprite.stretch;
+        s.flipbook = e.def.sprite.flipbook;
+        s.softDistance = e.def.sprite.softDistance;
         const bool onDevice = w.gpu && !s.stateless;
         if (!onDevice) {
             createOwnBuffers(d, s, e);
@@ -214,23 +217,49 @@ void prepareSprites(Renderer& r) {
     }
 }
 
-void recordSprites(Renderer& r, VkCommandBuffer cmd) {
-    for (bool alpha : {false, true}) {
-        const Pipeline& p = alpha ? r.spritesAlpha : r.spritesAdditive;
-        vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipeline);
-        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &r.frameSet, 0, nullptr);
-        for (const SpriteEmitter& s : r.emitters) {
-            if (s.alpha != alpha || s.instances == 0) {
-                continue;
-            }
-            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 1, 1, &s.set, 0, nullptr);
-            SpriteDraw draw{s.stateless ? kModeStateless : (s.alpha ? kModeOrdered : kModeSlots), s.runCount,
-                            s.stretch, s.ownTexture ? 1u : 0u};
-            vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
-                               sizeof(draw), &draw);
-            vkCmdDraw(cmd, 6, s.instances, 0, 0);
+namespace {
+
+SpriteDraw spriteDraw(const SpriteEmitter& s) {
+    SpriteDraw draw{};
+    draw.mode = s.stateless ? kModeStateless : (s.alpha ? kModeOrdered : kModeSlots);
+    draw.runCount = s.runCount;
+    draw.stretch = s.stretch;
+    draw.textured = s.ownTexture ? 1u : 0u;
+    draw.columns = s.flipbook.columns;
+    draw.rows = s.flipbook.rows;
+    draw.frames = s.flipbook.frameCount();
+    draw.fps = s.flipbook.fps;
+    draw.blendFrames = s.flipbook.blend ? 1u : 0u;
+    draw.softDistance = s.softDistance;
+    return draw;
+}
+
+}  // namespace
+
+void recordSpriteGroup(Renderer& r, VkCommandBuffer cmd, const Pipeline& hard, const Pipeline& soft,
+                       SpriteBlend blend) {
+    const Pipeline* bound = nullptr;
+    for (const SpriteEmitter& s : r.emitters) {
+        if (s.blend != blend || s.instances == 0) {
+            continue;
         }
+        const Pipeline& p = s.softDistance > 0.0f ? soft : hard;
+        if (bound != &p) {
+            vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.pipeline);
+            vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 0, 1, &r.frameSet, 0, nullptr);
+            bound = &p;
+        }
+        vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 1, 1, &s.set, 0, nullptr);
+        const SpriteDraw draw = spriteDraw(s);
+        vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(draw),
+                           &draw);
+        vkCmdDraw(cmd, 6, s.instances, 0, 0);
     }
+}
+
+void recordSprites(Renderer& r, VkCommandBuffer cmd) {
+    recordSpriteGroup(r, cmd, r.spritesAdditive, r.spritesAdditiveSoft, SpriteBlend::Additive);
+    recordSpriteGroup(r, cmd, r.spritesAlpha, r.spritesAlphaSoft, SpriteBlend::Alpha);
 }
 
 }  // namespace spindrift::render

@@ -9,6 +9,7 @@
 // (so one written is > 0) and a burst that fits the capacity.
 #include "particles/emitter_rules.h"
 #include "particles/params.h"
+#include "particles/sprite_rules.h"
 #include "scene/parse_internal.h"
 
 #include <fmt/format.h>
@@ -292,15 +293,31 @@ void checkBurstCounts(const Table& t, const EmitterDef& def) {
 
 // --- Drawing -------------------------------------------------------------------
 
+FlipbookDef readFlipbook(const Table& t) {
+    t.allowOnly({"rows", "columns", "frames", "fps", "blend"}, "[emitter.sprite.flipbook]");
+    FlipbookDef def;
+    def.rows = t.whole<std::uint32_t>("rows", def.rows, sprite_rules::kSheetSide);
+    def.columns = t.whole<std::uint32_t>("columns", def.columns, sprite_rules::kSheetSide);
+    def.frames = t.whole<std::uint32_t>("frames", def.frames, sprite_rules::kFrames);
+    def.fps = t.real("fps", def.fps, sprite_rules::kFps);
+    def.blend = t.boolean("blend", def.blend);
+    return def;
+}
+
 SpriteDef readSprite(const Table& t) {
-    t.allowOnly({"blend", "stretch", "texture"}, "[emitter.sprite]");
+    t.allowOnly({"blend", "stretch", "texture", "flipbook", "soft_distance"}, "[emitter.sprite]");
     SpriteDef def;
     if (auto v = t.find("blend")) {
-        def.blend = v->choice<SpriteBlend>({{"additive", SpriteBlend::Additive}, {"alpha", SpriteBlend::Alpha}});
+        def.blend = v->choice<SpriteBlend>(
+            {{"additive", SpriteBlend::Additive}, {"alpha", SpriteBlend::Alpha}, {"oit", SpriteBlend::WeightedOit}});
     }
-    def.stretch = t.real("stretch", def.stretch, emitter_rules::kSpriteStretch);
+    def.stretch = t.real("stretch", def.stretch, sprite_rules::kStretch);
+    def.softDistance = t.real("soft_distance", def.softDistance, sprite_rules::kSoftDistance);
     if (auto v = t.find("texture")) {
         def.texture = readPngPath(*v);
+    }
+    if (auto flipbook = t.subTable("flipbook")) {
+        def.flipbook = readFlipbook(*flipbook);
     }
     return def;
 }

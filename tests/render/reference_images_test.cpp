@@ -108,6 +108,9 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
                                                          "_splats"},
                                            ReferenceCase{"scenes/fluid_dam_break_2d.toml", 1.0, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "cpu"},
+                                           // A flipbook, soft particles and OIT smoke.
+                                           ReferenceCase{"scenes/campfire.toml", 2.0, "cpu"},
+                                           ReferenceCase{"scenes/campfire.toml", 2.0, "vulkan"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "vulkan"}),
                          [](const auto& info) { return stem(info.param) + "_" + info.param.backend; });
 

@@ -435,6 +435,46 @@ TEST(OneValidationPath, BodyAndJointRulesReadTheSameFromTheApiAndAFile) {
                      14, "joint[0].max_motor_torque");
 }
 
+// A fluid's capacity below what its blocks hold is refused at the key, from
+// the API and a file alike, not later by buildWorld without a location
+// (found by SceneMutation once scenes/campfire.toml shifted its mutants).
+TEST(OneValidationPath, FluidCapacityBelowItsBlocksIsRefusedAtTheKey) {
+    FluidDef def = fluidDef();
+    def.capacity = 1;
+    const FieldError api = apiError(def);
+    EXPECT_EQ(api.field(), "capacity");
+    const SceneError scene = sceneError(fluidScene("capacity = 1"));
+    EXPECT_EQ(scene.message(), api.message());
+    EXPECT_EQ(scene.line(), 3);
+    EXPECT_EQ(scene.keyPath(), "fluid[0].capacity");
+    EXPECT_NE(std::string(scene.what()).find("at least the blocks'"), std::string::npos) << scene.what();
+    def.capacity = 0;  // as many as the blocks hold
+    EXPECT_NO_THROW(validateFluidDef(def));
+}
+
+// Sprite settings: the API and a file refuse the same values with the same
+// words; the sheet's frame count is checked against its rows x columns.
+TEST(OneValidationPath, SpriteFlipbookAndSoftDistanceReadTheSameFromTheApiAndAFile) {
+    EmitterDef def = emitterDef();
+    def.sprite.flipbook.rows = 65;
+    const FieldError api =
+        expectSameError(def, "sprite = { flipbook = { rows = 65 } }", 32, "emitter[0].sprite.flipbook.rows");
+    EXPECT_STREQ(api.what(), "emitter 'e': sprite.flipbook.rows: expected an integer in [1, 64], got 65");
+    def = emitterDef();
+    def.sprite.softDistance = -0.1f;
+    expectSameError(def, "sprite = { soft_distance = -0.1 }", 28, "emitter[0].sprite.soft_distance");
+    def = emitterDef();
+    def.sprite.flipbook.rows = 64;
+    def.sprite.flipbook.frames = 64;
+    def.sprite.texture = "sheet.png";  // a name is enough for the API; a file must exist
+    EXPECT_NO_THROW(validateEmitterDef(def));
+    def.sprite.flipbook.frames = 65;  // past rows x columns
+    EXPECT_EQ(emitterApiError(def).field(), "sprite.flipbook.frames");
+    def.sprite.flipbook.frames = 0;
+    def.sprite.texture.clear();  // an animated sheet needs an image
+    EXPECT_EQ(emitterApiError(def).field(), "sprite.flipbook");
+}
+
 TEST(OneValidationPath, RenderRulesReadTheSameFromTheApiAndAFile) {
     RenderDef def;
     def.fluid.opacity = 0.0f;

@@ -493,6 +493,7 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         // drawing
         "[render]", "kind = \"color\"", "kind = \"gradient\"", "kind = \"image\"", "[render.fluid]", "steps = ",
         "[emitter.sprite]", "blend = \"alpha\"", "texture = ",
+        "[emitter.sprite.flipbook]", "soft_distance", "blend = \"oit\"",
         // data sources
         "generate = \"curl_noise\"", "generate = \"uniform\"", "generate = \"vortex\"",
         "file = \"data/swirl.flow\"", "generate = \"hills\"", "image = \"data/hills.png\"",

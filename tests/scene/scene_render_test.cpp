@@ -14,6 +14,7 @@ namespace {
 using spindrift::BackgroundKind;
 using spindrift::SceneError;
 using spindrift::SpriteBlend;
+using spindrift::SpriteDef;
 
 const std::filesystem::path kScenes = std::filesystem::path(SPINDRIFT_SOURCE_DIR) / "scenes";
 
@@ -131,6 +132,47 @@ sprite = { blend = "alpha", stretch = 0.05, texture = "data/spark.png" }
     EXPECT_FLOAT_EQ(scene.emitters[1].sprite.stretch, 0.05f);
     EXPECT_EQ(std::filesystem::path(scene.emitters[1].sprite.texture),
               (kScenes / "data" / "spark.png").lexically_normal());
+}
+
+TEST(SceneRender, SpriteFlipbookSoftAndOit) {
+    const spindrift::SceneDef scene = parse(R"(
+[[emitter]]
+name = "smoke"
+[emitter.sprite]
+blend = "oit"
+texture = "data/spark.png"
+soft_distance = 0.3
+flipbook = { rows = 2, columns = 3, frames = 5, fps = 12, blend = true }
+[[emitter]]
+name = "plain"
+)");
+    const SpriteDef& s = scene.emitters[0].sprite;
+    EXPECT_EQ(s.blend, SpriteBlend::WeightedOit);
+    EXPECT_FLOAT_EQ(s.softDistance, 0.3f);
+    EXPECT_EQ(s.flipbook.rows, 2u);
+    EXPECT_EQ(s.flipbook.columns, 3u);
+    EXPECT_EQ(s.flipbook.frameCount(), 5u);
+    EXPECT_FLOAT_EQ(s.flipbook.fps, 12.0f);
+    EXPECT_TRUE(s.flipbook.blend);
+    const SpriteDef& plain = scene.emitters[1].sprite;  // the defaults: one frame, hard edges
+    EXPECT_FALSE(plain.flipbook.animated());
+    EXPECT_EQ(plain.flipbook.frameCount(), 1u);
+    EXPECT_EQ(plain.softDistance, 0.0f);
+}
+
+TEST(SceneRender, BadFlipbooksAndSoftDistances) {
+    const std::string emitter = "[[emitter]]\nname = \"e\"\n[emitter.sprite]\ntexture = \"data/spark.png\"\n";
+    expectError(emitter + "flipbook = { rows = 0 }\n", {5, 21, "emitter[0].sprite.flipbook.rows", "[1, 64]"});
+    expectError(emitter + "flipbook = { columns = 65 }\n",
+                {5, 24, "emitter[0].sprite.flipbook.columns", "[1, 64]"});
+    expectError(emitter + "flipbook = { rows = 2, columns = 2, frames = 5 }\n",
+                {5, 46, "emitter[0].sprite.flipbook.frames", "at most rows x columns = 4"});
+    expectError(emitter + "flipbook = { fps = -1 }\n", {5, 20, "emitter[0].sprite.flipbook.fps", ">= 0"});
+    expectError(emitter + "flipbook = { rows = 2, loop = true }\n",
+                {5, 24, "emitter[0].sprite.flipbook.loop", "[emitter.sprite.flipbook]"});
+    expectError(emitter + "soft_distance = -0.5\n", {5, 17, "emitter[0].sprite.soft_distance", ">= 0"});
+    expectError("[[emitter]]\nname = \"e\"\nsprite = { flipbook = { rows = 2 } }\n",
+                {3, 23, "emitter[0].sprite.flipbook", "a sprite `texture`"});
 }
 
 TEST(SceneRender, BadRenderKeys) {

@@ -7,6 +7,7 @@
 #include "frame.glsl"
 #include "derived.glsl"
 #include "stateless.glsl"
+#include "sprite_look.glsl"
 
 layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_EMITTER) readonly buffer Emitter {
     EmitterParams emitter;
@@ -33,6 +34,8 @@ layout(push_constant) uniform Draw { SpriteDraw draw; };  // SpriteDraw in layou
 
 layout(location = 0) out vec4 colour;  // linear, premultiplied by alpha
 layout(location = 1) out vec2 local;   // quad coordinates, -1..1
+layout(location = 2) flat out vec4 cells;     // flipbook: xy this frame's column and row, zw the next frame's
+layout(location = 3) flat out float frameMix; // flipbook: share of the next frame
 
 Particle storedParticle(uint slot) {
     Particle p;
@@ -74,6 +77,11 @@ void main() {
     }
     vec2 corner = quadCorner(gl_VertexIndex);
     local = corner;
+    vec3 frames = flipbookFrames(p.age, p.lifetime, draw.frames, draw.fps, draw.blendFrames);
+    uint a = uint(frames.x);
+    uint b = uint(frames.y);
+    cells = vec4(float(a % draw.columns), float(a / draw.columns), float(b % draw.columns), float(b / draw.columns));
+    frameMix = frames.z;
     float half_ = 0.5 * p.size;
     // Axes of the quad in the camera plane: rotated by the particle's rotation,
     // or along its screen-space velocity when stretched.

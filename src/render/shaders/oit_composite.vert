@@ -1,0 +1,7 @@
+#version 450
+// Full-screen triangle (no vertex buffer) for the OIT composite.
+
+void main() {
+    vec2 p = vec2(float((gl_VertexIndex << 1) & 2), float(gl_VertexIndex & 2));
+    gl_Position = vec4(p * 2.0 - 1.0, 0.0, 1.0);
+}

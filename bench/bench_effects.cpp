@@ -13,6 +13,8 @@
 // size over-life curves. Built through the public API only (world.h,
 // effects.h); stepWorld(world, 1/60) per iteration. Argument: threads of the
 // CPU backend (WorldDef::threads), also used by the copy baseline.
+#include "effects/batch_update.h"
+
 #include <spindrift/world.h>
 
 #include <benchmark/benchmark.h>
@@ -241,8 +243,14 @@ BENCHMARK(BM_MemcpyBaseline)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark
 /// standard stack and one copy, timed separately, so both see the same machine
 /// (load, frequency, neighbours). ratio = effect bytes/s / copy bytes/s, both
 /// counting read + written bytes. Target: >= 0.7 with 2 threads.
+// Argument 1: 1 runs the old scalar update for every slot (the vector
+// update's baseline, UpdateTarget::Scalar), 0 the best vector target.
 void BM_StandardStackVsCopy(benchmark::State& state) {
     using Clock = std::chrono::steady_clock;
+    const spindrift::UpdateTarget saved = spindrift::updateTarget();
+    spindrift::setUpdateTarget(state.range(1) != 0 ? spindrift::UpdateTarget::Scalar
+                                                   : spindrift::bestUpdateTarget());
+    state.SetLabel(std::string(spindrift::updateTargetName(spindrift::updateTarget())));
     try {
         StandardStack stack(static_cast<std::uint32_t>(state.range(0)));
         CopyBaseline copy(static_cast<int>(state.range(0)));
@@ -272,8 +280,16 @@ void BM_StandardStackVsCopy(benchmark::State& state) {
     } catch (const std::exception& e) {
         state.SkipWithError(e.what());
     }
+    spindrift::setUpdateTarget(saved);
 }
-BENCHMARK(BM_StandardStackVsCopy)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+BENCHMARK(BM_StandardStackVsCopy)
+    ->ArgNames({"threads", "scalar"})
+    ->Args({1, 0})
+    ->Args({2, 0})
+    ->Args({1, 1})
+    ->Args({2, 1})
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 }  // namespace
 

@@ -43,9 +43,9 @@ constexpr float kDt = 1.0f / 60.0f;
 //   written: position 12, velocity 12, age 4, size 4, rotation 4, colour 16
 //                                                                      = 52 B
 // Lifetime, angular velocity and birth never change after birth; colour and
-// size are recomputed from the start values, not read. (The update of
-// src/effects/emitter_step.cpp loads and stores every array, 64 + 64 B; the
-// figure below is what an update that touched only what it needs would move.)
+// size are recomputed from the start values, not read. (The vector update,
+// src/effects/batch_update.h, moves exactly these; the slots it leaves to the
+// scalar kernel, and the scalar baseline, load and store every array, 64 + 64 B.)
 constexpr double kBytesReadPerParticleStep = 12 + 12 + 4 + 4 + 4 + 4 + 4;
 constexpr double kBytesWrittenPerParticleStep = 12 + 12 + 4 + 4 + 4 + 16;
 constexpr double kBytesPerParticleStep = kBytesReadPerParticleStep + kBytesWrittenPerParticleStep;

@@ -11,8 +11,13 @@
 #include <atomic>
 #include <string>
 
-#if !defined(__x86_64__) && !defined(__i386__)
-#error "the vector update dispatches between x86 instruction sets"
+// On x86 three copies: SSE2 (the baseline), SSE4.2, AVX2. Elsewhere only the
+// baseline copy is built (the compiler's own vector width) and is reported
+// under the Sse2 name; the others are unsupported.
+#if defined(__x86_64__) || defined(__i386__)
+#define SD_X86 1
+#else
+#define SD_X86 0
 #endif
 
 namespace spindrift {
@@ -34,6 +39,7 @@ namespace sse2 {
 #include "effects/batch_update_body.inc"
 }  // namespace sse2
 
+#if SD_X86
 SD_TARGET_BEGIN("sse4.2")
 namespace sse4 {
 #include "effects/batch_update_body.inc"
@@ -45,16 +51,26 @@ namespace avx2 {
 #include "effects/batch_update_body.inc"
 }  // namespace avx2
 SD_TARGET_END
+#else
+namespace sse4 = sse2;  // never dispatched to: supports() is false
+namespace avx2 = sse2;
+#endif
 
 bool supports(UpdateTarget target) {
     switch (target) {
     case UpdateTarget::Scalar:
     case UpdateTarget::Sse2:
         return true;
+#if SD_X86
     case UpdateTarget::Sse4:
         return __builtin_cpu_supports("sse4.2");
     case UpdateTarget::Avx2:
         return __builtin_cpu_supports("avx2");
+#else
+    case UpdateTarget::Sse4:
+    case UpdateTarget::Avx2:
+        return false;
+#endif
     }
     return false;
 }

@@ -12,16 +12,22 @@
 // stack of bench_effects in recycle mode. Argument 0: particles; argument 1:
 // backend (0 = cpu with 2 threads, 1 = vulkan); argument 2: the Vulkan
 // world's frames in flight (1: every step waits for the device; 2: the host
-// records step n + 1 while the device runs step n). On a machine without a GPU the
+// records step n + 1 while the device runs step n); argument 3: on the CPU, 1
+// runs the old scalar update for every slot (UpdateTarget::Scalar, the
+// baseline of the vector update, src/effects/batch_update.h), 0 the best
+// vector target of this CPU. On a machine without a GPU the
 // Vulkan backend runs on Mesa's lavapipe, a CPU implementation, so the numbers
 // here measure the path, not a GPU; 1M particles on lavapipe take about a
 // second per step, too long to repeat here, so the Vulkan case is 100k only.
+#include "effects/batch_update.h"
+
 #include <spindrift/world.h>
 
 #include <benchmark/benchmark.h>
 
 #include <cstdint>
 #include <exception>
+#include <string>
 
 namespace {
 
@@ -82,6 +88,10 @@ void BM_RecycleStack(benchmark::State& state) {
     const auto particles = static_cast<std::uint32_t>(state.range(0));
     const auto backend = state.range(1) == 0 ? spindrift::Backend::Cpu : spindrift::Backend::Vulkan;
     spindrift::WorldId w;
+    const spindrift::UpdateTarget saved = spindrift::updateTarget();
+    spindrift::setUpdateTarget(state.range(3) != 0 ? spindrift::UpdateTarget::Scalar
+                                                   : spindrift::bestUpdateTarget());
+    state.SetLabel(std::string(spindrift::updateTargetName(spindrift::updateTarget())));
     try {
         w = makeWorld(particles, backend, static_cast<std::uint32_t>(state.range(2)));
     } catch (const std::exception& e) {
@@ -106,16 +116,19 @@ void BM_RecycleStack(benchmark::State& state) {
     state.counters["particle_steps_per_second"] =
         benchmark::Counter(static_cast<double>(particles), benchmark::Counter::kIsIterationInvariantRate);
     spindrift::destroyWorld(w);
+    spindrift::setUpdateTarget(saved);
 }
 
 }  // namespace
 
 BENCHMARK(BM_RecycleStack)
-    ->ArgNames({"particles", "vulkan", "frames"})
-    ->Args({100'000, 0, 1})
-    ->Args({100'000, 1, 1})
-    ->Args({100'000, 1, 2})
-    ->Args({1'000'000, 0, 1})
+    ->ArgNames({"particles", "vulkan", "frames", "scalar"})
+    ->Args({100'000, 0, 1, 1})
+    ->Args({100'000, 0, 1, 0})
+    ->Args({100'000, 1, 1, 0})
+    ->Args({100'000, 1, 2, 0})
+    ->Args({1'000'000, 0, 1, 1})
+    ->Args({1'000'000, 0, 1, 0})
     ->Unit(benchmark::kMillisecond)
     ->UseRealTime();
 

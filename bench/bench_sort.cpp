@@ -95,6 +95,23 @@ void BM_SortBackToFront(benchmark::State& state) {
 BENCHMARK(BM_SortBackToFront)
     ->Apply(threadAndDigitArgs);
 
+/// sortBackToFrontQuantised: 16-bit depth keys, two 8-bit passes (not exact:
+/// depths within 1/65534 of the range may swap). Compare with
+/// BM_SortBackToFront/threads:N/bits:8 of the same run.
+void BM_SortBackToFrontQuantised(benchmark::State& state) {
+    const int threads = static_cast<int>(state.range(0));
+    const std::vector<glm::vec3>& p = positions();
+    tbb::task_arena arena(threads);
+    for (auto _ : state) {
+        arena.execute([&] {
+            std::vector<std::uint32_t> order = spindrift::sortBackToFrontQuantised(p, kEye, kForward);
+            benchmark::DoNotOptimize(order.data());
+        });
+    }
+    setSortCounters(state, threads);
+}
+BENCHMARK(BM_SortBackToFrontQuantised)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->UseRealTime();
+
 /// The raw (key, index) radix sort with reused scratch (what a renderer would
 /// call every frame); restoring the unsorted input is not timed.
 void BM_RadixSortKeyIndex(benchmark::State& state) {

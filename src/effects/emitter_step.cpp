@@ -1,6 +1,8 @@
 // One step of one state-preserving emitter on the CPU: a named list of passes.
 #include "effects/emitter_step.h"
 
+#include "effects/batch_update.h"
+
 #include "core/saturating.h"
 #include "particles/birth_schedule.h"
 
@@ -96,9 +98,21 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
     // Update: age, forces, integration, collisions and over-life values of
     // every slot; recycle slots are born and re-born here.
     {
+        // The vector update takes the common case, whole batches of slots at
+        // a time (src/effects/batch_update.h); the scalar kernel the rest.
+        const UpdateTarget target = updateTarget();
+        const bool batches = target != UpdateTarget::Scalar && batchUpdateEligible(ctx, params);
         pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
+            std::uint32_t finished = 0;
             for (std::size_t i = begin; i < end; ++i) {
+                const std::size_t lane = (i - begin) % kBatchLanes;
+                if (lane == 0) {
+                    finished = batches && i + kBatchLanes <= end ? updateBatch(target, ctx, params, a, i, dt) : 0u;
+                }
+                if ((finished >> lane & 1u) != 0u) {
+                    continue;  // done by the vector update: no events
+                }
                 if (spawnMode && a.age[i] < 0.0f) {
                     continue;  // free slot
                 }

@@ -39,6 +39,7 @@
 #endif
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstring>
 #include <limits>
@@ -89,12 +90,14 @@ void forBlocks(const Partition& part, Fn&& fn) {
     }
 }
 
-template <int Bits>
+/// Digits of Bits bits of keys of KeyBits bits (32, or 16 for the quantised
+/// depths of sortBackToFrontQuantised: two passes instead of four).
+template <int Bits, int KeyBits = 32>
 struct Radix {
     static constexpr int kBits = Bits;
     static constexpr std::uint32_t kRadix = 1u << Bits;
     static constexpr std::uint32_t kMask = kRadix - 1;
-    static constexpr int kPasses = (32 + Bits - 1) / Bits;
+    static constexpr int kPasses = (KeyBits + Bits - 1) / Bits;
     static std::uint32_t digit(std::uint32_t key, int pass) {
         return (key >> (pass * Bits)) & kMask;
     }
@@ -447,7 +450,88 @@ std::vector<std::uint32_t> sortBackToFrontImpl(std::span<const glm::vec3> positi
     return order;
 }
 
+/// Depths of positions [begin, end) into `depthBits` (as float bits), and
+/// the smallest and largest finite depth among them (+inf and -inf if none).
+void computeDepths(const glm::vec3* __restrict p, glm::vec3 eye, glm::vec3 f,
+                   std::uint32_t* __restrict depthBits, std::size_t begin, std::size_t end, float& lo,
+                   float& hi) {
+    float smallest = std::numeric_limits<float>::infinity();
+    float largest = -std::numeric_limits<float>::infinity();
+    for (std::size_t i = begin; i < end; ++i) {
+        const float d = kernels::viewDepth(p[i], eye, f);
+        depthBits[i] = std::bit_cast<std::uint32_t>(d);
+        const bool finite = std::fabs(d) <= std::numeric_limits<float>::max();
+        smallest = finite && d < smallest ? d : smallest;
+        largest = finite && d > largest ? d : largest;
+    }
+    lo = smallest;
+    hi = largest;
+}
+
+/// The 16-bit key of a depth: (hi - d) scale, truncated, clamped to
+/// [0, 65534]; +inf 0, -inf 65534, NaN 65535. Non-increasing in d, so a
+/// smaller key is never a nearer depth.
+std::uint32_t quantisedKey(float d, float hi, float scale) {
+    if (d != d) {
+        return 65535u;
+    }
+    if (std::fabs(d) > std::numeric_limits<float>::max()) {
+        return d > 0.0f ? 0u : 65534u;
+    }
+    const float x = (hi - d) * scale;  // finite, >= 0: hi - d <= hi - lo
+    return static_cast<std::uint32_t>(std::min(x, 65534.0f));
+}
+
+std::vector<std::uint32_t> sortBackToFrontQuantisedImpl(std::span<const glm::vec3> positions, glm::vec3 eye,
+                                                        glm::vec3 forward) {
+    using R = Radix<8, 16>;
+    const std::size_t n = positions.size();
+    checkSize(n, "sortBackToFront");
+    if (!std::isfinite(eye.x) || !std::isfinite(eye.y) || !std::isfinite(eye.z)) {
+        throw Error("sortBackToFront: eye must be finite");
+    }
+    const glm::vec3 f = normalizeViewDirection(forward);
+    if (n == 0) {
+        return {};
+    }
+    RadixSortScratch& scratch = backToFrontScratch();
+    scratch.reserve(n);
+    const Partition part(n);
+    Tables<R> t = makeTables<R>(scratch.counts(), part.blocks);
+    std::uint32_t* keys = scratch.keys(1);
+    std::vector<float> blockLo(part.blocks), blockHi(part.blocks);
+    forBlocks(part, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        computeDepths(positions.data(), eye, f, keys, begin, end, blockLo[b], blockHi[b]);
+    });
+    const float lo = *std::min_element(blockLo.begin(), blockLo.end());
+    const float hi = *std::max_element(blockHi.begin(), blockHi.end());
+    // 65534 buckets over [lo, hi]; an overflowing or empty span: one bucket.
+    const float span = hi - lo;
+    const float scale = span > 0.0f && span <= std::numeric_limits<float>::max() ? 65534.0f / span : 0.0f;
+    forBlocks(part, [&](std::size_t b, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            keys[i] = quantisedKey(std::bit_cast<float>(keys[i]), hi, scale);
+        }
+        countAllPasses<R>(keys, begin, end, t.counts(b, 0));
+    });
+    std::vector<int> passes = activePasses<R>(t, n);
+    std::vector<std::uint32_t> order(n);
+    if (passes.empty()) {
+        std::iota(order.begin(), order.end(), 0u);
+        return order;
+    }
+    PassPlan plan{keys, nullptr, nullptr, order.data(),
+                  {scratch.keys(0), scratch.keys(1)}, {scratch.indices(0), scratch.indices(1)}};
+    runPasses<R>(part, passes, t, plan);
+    return order;
+}
+
 }  // namespace
+
+std::vector<std::uint32_t> sortBackToFrontQuantised(std::span<const glm::vec3> positions, glm::vec3 eye,
+                                                    glm::vec3 forward) {
+    return sortBackToFrontQuantisedImpl(positions, eye, forward);
+}
 
 void RadixSortScratch::AlignedDelete::operator()(std::uint32_t* p) const {
     ::operator delete[](p, std::align_val_t{64});

@@ -75,6 +75,16 @@ void radixSortKeyIndex(std::span<std::uint32_t> keys, std::span<std::uint32_t> i
 std::vector<std::uint32_t> sortBackToFront(std::span<const glm::vec3> positions, glm::vec3 eye,
                                            glm::vec3 forward, RadixDigitBits digitBits);
 
+/// Back-to-front order by depth quantised to 16 bits: the finite depths'
+/// range [lo, hi] cut into 65534 equal buckets, farthest bucket first, a
+/// bucket in index order (stable), NaN depths last. Two radix passes instead
+/// of sortBackToFront's four, for a renderer that needs speed more than
+/// exactness (docs/performance.md): a pair out of depth order is never more
+/// than one bucket, (hi - lo) / 65534, apart. Checks its arguments as
+/// sortBackToFront does.
+std::vector<std::uint32_t> sortBackToFrontQuantised(std::span<const glm::vec3> positions, glm::vec3 eye,
+                                                    glm::vec3 forward);
+
 /// The unit view direction sortBackToFront uses: glm::normalize(forward), and
 /// for a finite forward too large or too small for that, forward divided by its
 /// largest |component| first. Throws spindrift::Error for a zero or non-finite

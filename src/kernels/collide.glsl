@@ -50,10 +50,15 @@ SD_FN float contactFraction(float d0, float d1) {
 }
 
 // --- Plane: signed distance dot(p - point, n) --------------------------------
+SD_FN float planeDistance(SD_IN(ColliderParams) c, vec3 p) {
+    return dot(p - vec3(c.position), vec3(c.normal));
+}
+
+// No hit when the end point is on or above the plane (d1 >= 0).
 SD_FN Hit intersectPlane(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     vec3 n = vec3(c.normal);
-    float d0 = dot(p0 - vec3(c.position), n);
-    float d1 = dot(p1 - vec3(c.position), n);
+    float d0 = planeDistance(c, p0);
+    float d1 = planeDistance(c, p1);
     if (d1 >= 0.0f) {
         return noHit();
     }

@@ -72,13 +72,22 @@ SD_FN float stokesCoefficient(float viscosity, float radius) {
 // has s(t + dt) = target + (s - target) exp(-rate dt), the same for any step
 // length (frame-rate independent; "v *= 0.98" per frame is not). Damping is
 // target 0. The direction of motion is kept.
-SD_FN vec3 relaxSpeed(vec3 v, float target, float rate, float dt) {
+// Split in two (the factor exp(-rate dt), then the relaxation by it) so the
+// CPU's vector update can compute the factor once per step when the rate is
+// the same for every particle: the same operations, so the same bits.
+SD_FN float relaxationFactor(float rate, float dt) {
+    return exp(-rate * dt);
+}
+SD_FN vec3 relaxSpeedBy(vec3 v, float target, float factor) {
     float s = length(v);
     if (s <= 1e-20f) {
         return v;
     }
-    float relaxed = target + (s - target) * exp(-rate * dt);
+    float relaxed = target + (s - target) * factor;
     return v * (max(relaxed, 0.0f) / s);
+}
+SD_FN vec3 relaxSpeed(vec3 v, float target, float rate, float dt) {
+    return relaxSpeedBy(v, target, relaxationFactor(rate, dt));
 }
 
 // Local damping: the rate falls linearly to 0 at `range` from the position.

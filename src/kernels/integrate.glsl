@@ -55,15 +55,26 @@ struct Motion {
     vec3 velocity;
 };
 
+// The Euler steps (explicit, and semi-implicit for any other integrator id)
+// from the acceleration at the start, a0; shared with the CPU's vector update.
+SD_FN Motion eulerMotion(uint integrator, vec3 p, vec3 v, vec3 a0, float dt) {
+    Motion m;
+    if (integrator == SD_INTEGRATE_EXPLICIT_EULER) {
+        m.position = p + v * dt;
+        m.velocity = v + a0 * dt;
+    } else {
+        m.velocity = v + a0 * dt;
+        m.position = p + m.velocity * dt;
+    }
+    return m;
+}
+
 SD_FN Motion integrateMotion(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p, vec3 v, float mass, float radius,
                              float dt) {
     Motion m;
     uint integrator = integratorOf(e);
     vec3 a0 = accelerationAt(ctx, e, p, v, mass, radius);
-    if (integrator == SD_INTEGRATE_EXPLICIT_EULER) {
-        m.position = p + v * dt;
-        m.velocity = v + a0 * dt;
-    } else if (integrator == SD_INTEGRATE_VERLET) {
+    if (integrator == SD_INTEGRATE_VERLET) {
         // Velocity Verlet; the new acceleration sees the Euler-predicted velocity
         // (exact for position-only forces, second order with drag).
         m.position = p + v * dt + a0 * (0.5f * dt * dt);
@@ -85,8 +96,7 @@ SD_FN Motion integrateMotion(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, v
         m.position = p + (v + (v2 + v3) * 2.0f + v4) * (dt / 6.0f);
         m.velocity = v + (a0 + (a2 + a3) * 2.0f + a4) * (dt / 6.0f);
     } else {
-        m.velocity = v + a0 * dt;
-        m.position = p + m.velocity * dt;
+        m = eulerMotion(integrator, p, v, a0, dt);
     }
     return m;
 }

@@ -349,3 +349,93 @@ TEST(SortRadix, RejectsMismatchedSpans) {
 }
 
 }  // namespace
+
+// The quantised sort (16-bit depth keys, two passes): a permutation; any pair
+// out of depth order lies within one bucket, (hi - lo) / 65534, of each other
+// and keeps index order (stable within a bucket); NaN depths last; the same
+// for 1 and 2 threads. Reference: the depths themselves, computed here.
+namespace {
+
+TEST(SortBackToFrontQuantised, OrderedToOneBucketAndStable) {
+    std::mt19937 rng(7);
+    std::uniform_real_distribution<float> unit(-100.0f, 100.0f);
+    const std::size_t n = 300'000;  // several blocks of the partition
+    std::vector<glm::vec3> p(n);
+    for (glm::vec3& v : p) {
+        v = glm::vec3(unit(rng), unit(rng), unit(rng));
+    }
+    for (std::size_t i = 0; i < n; i += 97) {
+        p[i] = p[i / 2];  // exact duplicates: ties
+    }
+    p[12345].x = std::numeric_limits<float>::quiet_NaN();
+    const glm::vec3 eye(-150.0f, 0.0f, 0.0f);
+    const glm::vec3 forward(1.0f, 0.2f, 0.1f);
+    const glm::vec3 f = spindrift::normalizeViewDirection(forward);
+    std::vector<std::uint32_t> order = spindrift::sortBackToFrontQuantised(p, eye, forward);
+    ASSERT_EQ(order.size(), n);
+    std::vector<std::uint32_t> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < n; ++i) {
+        ASSERT_EQ(sorted[i], i);
+    }
+    std::vector<float> depth(n);
+    float lo = std::numeric_limits<float>::infinity(), hi = -lo;
+    for (std::size_t i = 0; i < n; ++i) {
+        depth[i] = glm::dot(p[i] - eye, f);
+        if (std::isfinite(depth[i])) {
+            lo = std::min(lo, depth[i]);
+            hi = std::max(hi, depth[i]);
+        }
+    }
+    EXPECT_EQ(order.back(), 12345u);  // the NaN depth
+    // One bucket, plus rounding of the key's two float operations.
+    const float bucket = (hi - lo) / 65534.0f * 1.01f;
+    std::size_t inverted = 0;
+    for (std::size_t k = 0; k + 2 < n; ++k) {
+        const std::uint32_t a = order[k], b = order[k + 1];
+        if (depth[a] < depth[b]) {
+            ++inverted;
+            EXPECT_LE(depth[b] - depth[a], bucket) << "position " << k;
+            EXPECT_LT(a, b) << "position " << k;  // same bucket: index order
+        }
+    }
+    EXPECT_GT(inverted, 0u);  // not vacuous: 300k depths share 65534 buckets
+    tbb::task_arena one(1);
+    std::vector<std::uint32_t> single;
+    one.execute([&] { single = spindrift::sortBackToFrontQuantised(p, eye, forward); });
+    EXPECT_EQ(single, order);
+}
+
+TEST(SortBackToFrontQuantised, EqualDepthsAndHardInputs) {
+    std::vector<glm::vec3> same(5000, glm::vec3(1.0f, 2.0f, 3.0f));
+    std::vector<std::uint32_t> order = spindrift::sortBackToFrontQuantised(same, glm::vec3(0.0f), glm::vec3(0, 0, 1));
+    for (std::size_t i = 0; i < order.size(); ++i) {
+        ASSERT_EQ(order[i], i);
+    }
+    // Infinite and overflowing depths: a permutation, every +inf depth
+    // before every -inf one.
+    std::vector<glm::vec3> hard = hardPositions(50'000, 3);
+    order = spindrift::sortBackToFrontQuantised(hard, glm::vec3(0.0f), glm::vec3(0.0f, 0.0f, 1.0f));
+    std::vector<std::uint32_t> sorted = order;
+    std::sort(sorted.begin(), sorted.end());
+    for (std::size_t i = 0; i < sorted.size(); ++i) {
+        ASSERT_EQ(sorted[i], i);
+    }
+    bool seenMinusInf = false;
+    std::size_t infinities = 0;
+    for (std::uint32_t i : order) {
+        const float d = hard[i].z;
+        if (d == std::numeric_limits<float>::infinity()) {
+            EXPECT_FALSE(seenMinusInf);
+            ++infinities;
+        }
+        if (d == -std::numeric_limits<float>::infinity()) {
+            seenMinusInf = true;
+            ++infinities;
+        }
+    }
+    EXPECT_GT(infinities, 0u);
+    EXPECT_THROW(spindrift::sortBackToFrontQuantised(hard, glm::vec3(0.0f), glm::vec3(0.0f)), spindrift::Error);
+}
+
+}  // namespace

@@ -1,0 +1,156 @@
+// Run-time dispatch of the vector update: batch_update_body.inc compiled three
+// times in this file, once per instruction set, each copy in its own namespace
+// under a target pragma. Only functions defined after the pragma get the
+// target; the headers above (glm, the kernels) keep the baseline one, and
+// always-inline kernels are inlined into each copy, so no AVX2 code can leak
+// into a function the baseline build calls.
+#include "effects/batch_update.h"
+
+#include <spindrift/errors.h>
+
+#include <atomic>
+#include <string>
+
+// On x86 three copies: SSE2 (the baseline), SSE4.2, AVX2. Elsewhere only the
+// baseline copy is built (the compiler's own vector width) and is reported
+// under the Sse2 name; the others are unsupported.
+#if defined(__x86_64__) || defined(__i386__)
+#define SD_X86 1
+#else
+#define SD_X86 0
+#endif
+
+namespace spindrift {
+namespace {
+
+#define SD_PRAGMA(...) _Pragma(#__VA_ARGS__)
+#if defined(__clang__)
+#define SD_TARGET_BEGIN(isa) SD_PRAGMA(clang attribute push(__attribute__((target(isa))), apply_to = function))
+#define SD_TARGET_END SD_PRAGMA(clang attribute pop)
+#else
+#define SD_TARGET_BEGIN(isa) SD_PRAGMA(GCC push_options) SD_PRAGMA(GCC target(isa))
+#define SD_TARGET_END SD_PRAGMA(GCC pop_options)
+#endif
+
+// Each lane loop: vectorise it, the lanes being independent.
+#define SD_LANES _Pragma("omp simd")
+
+namespace sse2 {
+#include "effects/batch_update_body.inc"
+}  // namespace sse2
+
+#if SD_X86
+SD_TARGET_BEGIN("sse4.2")
+namespace sse4 {
+#include "effects/batch_update_body.inc"
+}  // namespace sse4
+SD_TARGET_END
+
+SD_TARGET_BEGIN("avx2")
+namespace avx2 {
+#include "effects/batch_update_body.inc"
+}  // namespace avx2
+SD_TARGET_END
+#else
+namespace sse4 = sse2;  // never dispatched to: supports() is false
+namespace avx2 = sse2;
+#endif
+
+bool supports(UpdateTarget target) {
+    switch (target) {
+    case UpdateTarget::Scalar:
+    case UpdateTarget::Sse2:
+        return true;
+#if SD_X86
+    case UpdateTarget::Sse4:
+        return __builtin_cpu_supports("sse4.2");
+    case UpdateTarget::Avx2:
+        return __builtin_cpu_supports("avx2");
+#else
+    case UpdateTarget::Sse4:
+    case UpdateTarget::Avx2:
+        return false;
+#endif
+    }
+    return false;
+}
+
+std::atomic<UpdateTarget>& currentTarget() {
+    static std::atomic<UpdateTarget> target{bestUpdateTarget()};
+    return target;
+}
+
+}  // namespace
+
+std::vector<UpdateTarget> supportedUpdateTargets() {
+    std::vector<UpdateTarget> out;
+    for (UpdateTarget t : {UpdateTarget::Scalar, UpdateTarget::Sse2, UpdateTarget::Sse4, UpdateTarget::Avx2}) {
+        if (supports(t)) {
+            out.push_back(t);
+        }
+    }
+    return out;
+}
+
+UpdateTarget bestUpdateTarget() {
+    if (supports(UpdateTarget::Avx2)) return UpdateTarget::Avx2;
+    if (supports(UpdateTarget::Sse4)) return UpdateTarget::Sse4;
+    return UpdateTarget::Sse2;
+}
+
+void setUpdateTarget(UpdateTarget target) {
+    if (!supports(target)) {
+        throw Error("setUpdateTarget: this CPU cannot run " + std::string(updateTargetName(target)));
+    }
+    currentTarget().store(target);
+}
+
+UpdateTarget updateTarget() { return currentTarget().load(); }
+
+std::string_view updateTargetName(UpdateTarget target) {
+    switch (target) {
+    case UpdateTarget::Scalar: return "scalar";
+    case UpdateTarget::Sse2: return "sse2";
+    case UpdateTarget::Sse4: return "sse4.2";
+    case UpdateTarget::Avx2: return "avx2";
+    }
+    return "?";
+}
+
+bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::EmitterParams& e) {
+    using namespace kernels;
+    if (e.integrator == SD_INTEGRATE_VERLET || e.integrator == SD_INTEGRATE_RK4) {
+        return false;
+    }
+    for (uint i = 0u; i < ctx.forceTotal; ++i) {
+        // The kinds the lane loops know; a new kind runs the scalar kernel
+        // until it has its lane loop.
+        const uint kind = ctx.forces[i].kind;
+        const bool known = kind == SD_FORCE_GRAVITY || kind == SD_FORCE_WIND || kind == SD_FORCE_ATTRACTOR ||
+                           kind == SD_FORCE_VORTEX || kind == SD_FORCE_DAMPING || kind == SD_FORCE_UNDAMPING;
+        if ((e.forceMask & (1u << i)) != 0u && !known) {
+            return false;
+        }
+    }
+    if ((e.flags & SD_EMITTER_COLLISIONS) != 0u) {
+        for (uint i = 0u; i < ctx.colliderTotal; ++i) {
+            if ((e.colliderMask & (1u << i)) != 0u && ctx.colliders[i].kind != SD_COLLIDER_PLANE) {
+                return false;
+            }
+        }
+    }
+    return true;
+}
+
+std::uint32_t updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
+                          ParticleArrays& a, std::size_t first, float dt) {
+    switch (target) {
+    case UpdateTarget::Scalar: return 0u;
+    case UpdateTarget::Sse2: return sse2::updateBatch(ctx, e, a, first, dt);
+    case UpdateTarget::Sse4: return sse4::updateBatch(ctx, e, a, first, dt);
+    case UpdateTarget::Avx2: return avx2::updateBatch(ctx, e, a, first, dt);
+    }
+    return 0u;
+}
+
+}  // namespace spindrift

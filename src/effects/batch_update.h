@@ -1,0 +1,54 @@
+// The CPU backend's vector update: the common case of a step (a live particle
+// that is not born, does not die and hits no collider) for kBatchLanes slots at
+// once, with SIMD lanes chosen at run time; everything else stays with the
+// scalar kernel, updateParticle. Bit-identical to the scalar kernel at every
+// SIMD width (docs/performance.md, "Vectorised update"; tests/effects/
+// vector_update_test.cpp).
+#pragma once
+
+#include "particles/cpu_kernels.h"
+#include "particles/emitter_state.h"
+
+#include <cstddef>
+#include <cstdint>
+#include <string_view>
+#include <vector>
+
+namespace spindrift {
+
+/// Slots per batch: a multiple of every SIMD width dispatched to (4 and 8
+/// floats), and under 32 (the returned lane mask, with all lanes set, fits).
+inline constexpr std::size_t kBatchLanes = 16;
+static_assert(kBatchLanes % 8 == 0 && kBatchLanes < 32);
+
+/// Which code runs the update. Scalar: the scalar kernel for every slot (the
+/// path before the vector update, kept as the benchmarks' baseline). The
+/// others: the vector update compiled for that instruction set (Sse2 is the
+/// baseline x86-64 build, 4 lanes; Sse4: SSE4.2, 4 lanes; Avx2: 8 lanes).
+enum class UpdateTarget : std::uint8_t { Scalar, Sse2, Sse4, Avx2 };
+
+/// The targets this CPU can run, Scalar first.
+std::vector<UpdateTarget> supportedUpdateTargets();
+
+/// The best target this CPU supports.
+UpdateTarget bestUpdateTarget();
+
+/// Sets the target of every CPU update in the process (tests and benchmarks;
+/// the default is bestUpdateTarget()). Throws spindrift::Error if the CPU
+/// cannot run it.
+void setUpdateTarget(UpdateTarget target);
+UpdateTarget updateTarget();
+std::string_view updateTargetName(UpdateTarget target);
+
+/// Whether the vector update can take emitter e's slots this step: Euler
+/// integrators, no flow fields, only plane colliders (anything else runs the
+/// scalar kernel, as before).
+bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::EmitterParams& e);
+
+/// Updates the slots first .. first + kBatchLanes - 1 that take the common case
+/// and returns them as a lane mask (bit l: slot first + l); the other slots are
+/// untouched, for the scalar kernel. Requires batchUpdateEligible.
+std::uint32_t updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
+                          ParticleArrays& a, std::size_t first, float dt);
+
+}  // namespace spindrift

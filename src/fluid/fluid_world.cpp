@@ -212,23 +212,10 @@ Vec<D> inDimension(glm::vec3 x) {
 template <int D>
 std::uint32_t removeWithin(Particles<D>& p, glm::vec3 centre, float radius) {
     const Vec<D> c = inDimension<D>(centre);
-    std::vector<std::uint8_t> keep(p.size());
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    return static_cast<std::uint32_t>(p.keepIf([&](std::size_t i) {
         const Vec<D> d = p.position[i] - c;
-        keep[i] = glm::dot(d, d) > radius * radius;
-        kept += keep[i];
-    }
-    const auto removed = static_cast<std::uint32_t>(p.size() - kept);
-    p.forEachKept([&](auto& array) {
-        std::size_t to = 0;
-        for (std::size_t i = 0; i < keep.size(); ++i) {
-            if (keep[i]) array[to++] = array[i];
-        }
-        array.resize(kept);
-    });
-    if (p.pseudo.size() > kept) p.pseudo.resize(kept);  // refilled every step
-    return removed;
+        return glm::dot(d, d) > radius * radius;
+    }));
 }
 
 template <int D>

@@ -146,6 +146,9 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
     const float wakeSpeed = kWakeFactor * f.def.sleepSpeed;
     const float sleepTime = f.def.sleepTime;
     const float drift = f.def.sleepSpeed * f.def.sleepTime;  // m
+    // Every body shape within this distance (m) of a particle is in its grid
+    // cell's list (beginSubstep grows each shape's box by at least it).
+    const float binnedReach = f.radius + f.def.spacing;
     // Particles whose numbers became NaN or infinite in this substep, or
     // whose squared speed did (a blow-up under extreme but legal values): marked with a NaN position
     // and removed below, before the next substep bins them or a cache
@@ -220,10 +223,12 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             }
             if constexpr (D == 2) {
                 // Rigid bodies (already at their end-of-substep poses): an end
-                // point inside goes out through the nearest surface. Position
+                // point inside goes out through the nearest surface, a path
+                // across an edge or chain segment stops before it. Position
                 // only, so momentum stays with the contact impulses.
                 if (f.bodies != nullptr) {
-                    const glm::vec2 x = pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, glm::vec2(x1));
+                    const glm::vec2 x =
+                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1));
                     x1 = glm::vec3(x, 0.0f);
                 }
             }

@@ -288,6 +288,15 @@ void validateFluidDef(const FluidDef& def) {
     check.number("capacity", def.capacity, rules::kCapacity);
     check.number("rest_density", def.restDensity, rules::kRestDensity);
     for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i);
+    // A capacity given must hold the blocks (a mutant with `capacity = 1`
+    // passed validation and then failed in createFluid without a location).
+    std::uint64_t blocks = 0;
+    for (const FluidBlockDef& b : def.blocks) blocks += blockParticles(def, b);
+    if (def.capacity > 0 && blocks > def.capacity) {
+        check.fail("capacity", fmt::format("expected room for the blocks' {} particles (or 0: as many as they "
+                                           "hold, plus the jets'), got {}",
+                                           blocks, def.capacity));
+    }
     for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i);
     for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i);
 }

@@ -171,4 +171,19 @@ TEST(SceneNames, BlankNamesAreRefusedAtTheValue) {
     EXPECT_NO_THROW(spindrift::parseScene("[[force]]\nname = \" g \"\nkind = \"gravity\"\n", "ok.toml", "."));
 }
 
+// Found by the 3,000-mutant campaign: a fluid capacity smaller than its
+// blocks passed validation and failed in createFluid without a location.
+// 0.6 m x 1.2 m at 2 cm is 30 x 60 = 1800 particles.
+TEST(SceneFluidCapacity, ACapacityUnderTheBlocksIsRefusedAtTheKey) {
+    const std::string fluid = "[[fluid]]\nname = \"water\"\ncapacity = {}\nspacing = 0.02\n"
+                              "[[fluid.block]]\nmin = [0.0, 0.0, 0.0]\nmax = [0.6, 1.2, 0.0]\n";
+    const auto withCapacity = [&](int n) {
+        std::string text = fluid;
+        return text.replace(text.find("{}"), 2, std::to_string(n));
+    };
+    expectError(withCapacity(1), {3, 12, "fluid[0].capacity", "room for the blocks' 1800 particles"});
+    expectError(withCapacity(1799), {3, 12, "fluid[0].capacity", "got 1799"});
+    EXPECT_NO_THROW(spindrift::parseScene(withCapacity(1800), "ok.toml", "."));
+}
+
 }  // namespace

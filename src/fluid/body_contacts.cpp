@@ -298,7 +298,7 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
     // end moved off one line may sit across the other). The cell lists the
     // shapes within binnedReach of x0; a longer path (the solver can throw a
     // particle at a corner far faster than the step began with) may cross any
-    // segment, so it tests them all.
+    // segment or end in any shape, so it tests them all.
     const bool longPath = glm::distance(x0, x1) > binnedReach;
     const std::uint32_t first = longPath ? 0u : s.cellStart[cell];
     const std::uint32_t last = longPath ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
@@ -317,8 +317,9 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
         }
         if (!crossed) break;
     }
-    for (std::uint32_t k = s.cellStart[cell]; k < s.cellStart[cell + 1]; ++k) {
-        const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(s.shapes[s.cellShapes[k]], glm::vec3(x1, 0.0f));
+    for (std::uint32_t k = first; k < last; ++k) {
+        const kernels::FluidSurface surface =
+            kernels::fluidBodyShapeSurface(s.shapes[longPath ? k : s.cellShapes[k]], glm::vec3(x1, 0.0f));
         if (surface.distance < 0.0f) x1 += glm::vec2(surface.normal) * (kSkin - surface.distance);
     }
     return x1;

@@ -264,9 +264,9 @@ TEST(SceneMutation, MutantsOfTheBundledScenesLoadOrFailWithALocation) {
     // The mutations are not all fatal, nor all harmless: both paths are taken.
     EXPECT_GT(accepted, perScene);
     EXPECT_GT(refused, 5 * perScene);
-    std::printf("%d mutants: %d accepted (%d steps each, %d with non-finite output), %d refused (%d without a "
-                "location), %d other errors, %d over %.0f s; slowest %.3f s\n",
-                accepted + refused + otherErrors, accepted, steps, nonFinite, refused, unlocated, otherErrors, slow,
+    std::printf("%d mutants: %d accepted (%d steps each, %d with non-finite output, %d failed to build or step), "
+                "%d refused (%d without a location), %d over %.0f s; slowest %.3f s\n",
+                accepted + refused, accepted, steps, nonFinite, otherErrors, refused, unlocated, slow,
                 limit, worst);
 }
 

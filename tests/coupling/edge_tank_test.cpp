@@ -9,6 +9,7 @@
 #include <gtest/gtest.h>
 
 #include <cmath>
+#include <string>
 
 namespace spindrift {
 namespace {
@@ -75,7 +76,11 @@ INSTANTIATE_TEST_SUITE_P(CornerLaunches, EdgeTank,
                          ::testing::Values(Launch{0.05f, 100.0f, {-1.0f, -1.0f}, 10000},
                                            Launch{0.05f, 100.0f, {1.0f, 0.3f}, 300},
                                            Launch{0.02f, 20.0f, {-1.0f, -1.0f}, 300},
-                                           Launch{0.02f, 20.0f, {1.0f, -1.0f}, 300}));
+                                           Launch{0.02f, 20.0f, {1.0f, -1.0f}, 300}),
+                         [](const ::testing::TestParamInfo<Launch>& info) {
+                             return "Launch" + std::to_string(info.index) + "At" +
+                                    std::to_string(static_cast<int>(info.param.speed)) + "MetresPerSecond";
+                         });
 
 }  // namespace
 }  // namespace spindrift

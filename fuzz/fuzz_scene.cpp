@@ -1,17 +1,48 @@
 // libFuzzer target: the scene parser and world builder (issue 14). Every
 // input must either load or be refused with a located SceneError; an
-// accepted scene is built on the CPU and stepped twice. Anything else (a
-// crash, a sanitizer report, another exception, an error without a line)
-// stops the fuzzer with the input saved. docs/fuzzing.md says how to build and
+// accepted scene is built on the CPU and stepped twice, and what it then
+// shows (particles, fluids, bodies) must be finite. Anything else (a crash,
+// a sanitizer report, another exception, an error without a line, a NaN or
+// an infinity) stops the fuzzer with the input saved. docs/fuzzing.md says how to build and
 // run it; the bundled scenes are its seed corpus.
 #include <spindrift/scene.h>
 #include <spindrift/world.h>
 
+#include <cmath>
 #include <cstdint>
 #include <cstdio>
 #include <cstdlib>
 #include <exception>
 #include <string_view>
+
+namespace {
+
+bool finite(glm::vec3 v) { return std::isfinite(v.x) && std::isfinite(v.y) && std::isfinite(v.z); }
+
+// Aborts (a finding) if anything the world shows is NaN or infinite.
+void checkFinite(spindrift::WorldId world) {
+    bool ok = true;
+    for (std::uint32_t e = 1; e <= spindrift::emitterCount(world); ++e) {
+        const spindrift::ParticleSnapshot p = spindrift::readParticles(world, spindrift::EmitterId{e});
+        for (std::size_t i = 0; i < p.count(); ++i) {
+            ok = ok && finite(p.position[i]) && finite(p.velocity[i]) && std::isfinite(p.size[i]) &&
+                 std::isfinite(p.rotation[i]) && finite(glm::vec3(p.color[i])) && std::isfinite(p.color[i].a);
+        }
+    }
+    for (std::uint32_t f = 1; f <= spindrift::fluidCount(world); ++f) {
+        const spindrift::FluidSnapshot s = spindrift::readFluid(world, spindrift::FluidId{f});
+        for (std::size_t i = 0; i < s.position.size(); ++i) ok = ok && finite(s.position[i]) && finite(s.velocity[i]);
+    }
+    for (const spindrift::BodySnapshot& b : spindrift::readBodies(world)) {
+        ok = ok && finite(glm::vec3(b.position, b.angle)) && finite(glm::vec3(b.linearVelocity, b.angularVelocity));
+    }
+    if (!ok) {
+        std::fprintf(stderr, "a NaN or an infinity in the world's output\n");
+        std::abort();
+    }
+}
+
+}  // namespace
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
     const std::string_view text(reinterpret_cast<const char*>(data), size);
@@ -36,6 +67,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const spindrift::WorldId world = spindrift::buildWorld(scene);
     spindrift::stepWorld(world, scene.run.dt);
     spindrift::stepWorld(world, scene.run.dt);
+    checkFinite(world);
     spindrift::destroyWorld(world);
     return 0;
 }

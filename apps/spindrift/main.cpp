@@ -84,6 +84,15 @@ struct RenderOptions {
 };
 
 /// CLI11 validator for a finite number > 0 ("inf" and "nan" parse as doubles).
+/// An output directory: `--out ''` used to write nothing and exit 0.
+CLI::Validator nonEmptyPath() {
+    return CLI::Validator(
+        [](std::string& text) -> std::string {
+            return text.empty() ? std::string("must name a directory, got an empty path") : std::string();
+        },
+        "DIR");
+}
+
 CLI::Validator positiveFinite() {
     return CLI::Validator(
         [](std::string& text) -> std::string {
@@ -534,7 +543,7 @@ void addRunOptions(CLI::App& run, RunOptions& o) {
         ->check(CLI::IsMember({"cpu", "vulkan", "auto"}));
     run.add_option("--threads,-j", o.threads, "CPU worker threads, 0 = all (default: the scene's)");
     run.add_option("--seed", o.seed, "Seed of the random streams (default: the scene's)");
-    auto* out = run.add_option("--out,-o", o.out, "Directory for particle caches and summary.json");
+    auto* out = run.add_option("--out,-o", o.out, "Directory for particle caches and summary.json")->check(nonEmptyPath());
     run.add_option("--every,-e", o.every, "Write caches every K steps and after the last")
         ->capture_default_str()
         ->check(CLI::Range(1u, std::numeric_limits<std::uint32_t>::max()))
@@ -558,7 +567,7 @@ void noteGiven(const CLI::App& run, RunOptions& o) {
 
 void addRenderOptions(CLI::App& render, RenderOptions& o) {
     render.add_option("scene", o.scene, "Scene file (TOML)")->required();
-    render.add_option("--out,-o", o.out, "Directory for the video and the PNG frames")->required();
+    render.add_option("--out,-o", o.out, "Directory for the video and the PNG frames")->required()->check(nonEmptyPath());
     render.add_option("--width", o.width, "Frame width in pixels (default: the scene's render.width)")
         ->check(CLI::Range(1u, 16384u));
     render.add_option("--height", o.height, "Frame height in pixels (default: the scene's render.height)")

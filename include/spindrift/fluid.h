@@ -162,6 +162,9 @@ struct FluidStepStats {
     std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours), all substeps
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
     std::uint64_t bodyContacts = 0;     ///< particle-body contacts, all substeps
+    /// Particles removed because their position or velocity became NaN or
+    /// infinite (all substeps), in the substep where it arose.
+    std::uint64_t nonFinite = 0;
     /// Wall time (ms) of each pass, summed over the substeps: binning,
     /// neighbours and constraint setup, contact search, solver, integration.
     double gridMs = 0.0, setupMs = 0.0, contactsMs = 0.0, solveMs = 0.0, integrateMs = 0.0;

@@ -70,6 +70,15 @@ struct StepStats {
     std::uint64_t born = 0;
     std::uint64_t died = 0;
     std::uint64_t collisions = 0;
+    /// Effect particles removed because a number of theirs became NaN or
+    /// infinite in this step (an attractor 1e-7 m away with strength 1e30):
+    /// taken out where it arises, not counted in `died`, never stored. Fluid
+    /// particles: FluidStepStats::nonFinite.
+    std::uint64_t nonFinite = 0;
+    /// Rigid bodies frozen in this step because their pose or velocity became
+    /// NaN or infinite: each is put back at its last finite pose, made static
+    /// with zero velocity and stays so; the rest of the world goes on.
+    std::vector<BodyId> frozenBodies;
     /// Births asked for beyond capacity in this step (spawn mode), dropped.
     /// They are counted, never stored: memory does not grow with the rate or
     /// dt. Saturates at the largest std::uint64_t (a rate of 3e38 per second).

@@ -270,7 +270,41 @@ void beginBodyStep(BodyWorld& b, float dt) {
     }
 }
 
-void stepBodies(BodyWorld& b, float dt) { b.world.Step(dt, kVelocityIterations, kPositionIterations); }
+namespace {
+
+bool finiteBody(const b2Body& body) {
+    return finite(fromB2(body.GetPosition())) && std::isfinite(body.GetAngle()) &&
+           finite(fromB2(body.GetLinearVelocity())) && std::isfinite(body.GetAngularVelocity());
+}
+
+/// Freezes the bodies that are no longer finite (before Box2D sees them: its
+/// broad phase asserts on a NaN bound) and records the others' poses.
+void freezeNonFinite(BodyWorld& b, std::vector<BodyId>& frozen) {
+    for (std::size_t i = 0; i < b.bodies.size(); ++i) {
+        BodySlot& s = b.bodies[i];
+        if (s.body == nullptr) continue;
+        if (finiteBody(*s.body)) {
+            s.lastPosition = s.body->GetPosition();
+            s.lastAngle = s.body->GetAngle();
+            continue;
+        }
+        s.body->SetTransform(s.lastPosition, s.lastAngle);
+        s.body->SetLinearVelocity(b2Vec2(0.0f, 0.0f));
+        s.body->SetAngularVelocity(0.0f);
+        s.body->SetType(b2_staticBody);
+        frozen.push_back(BodyId{static_cast<std::uint32_t>(i + 1)});
+    }
+}
+
+}  // namespace
+
+std::vector<BodyId> stepBodies(BodyWorld& b, float dt) {
+    std::vector<BodyId> frozen;
+    freezeNonFinite(b, frozen);
+    b.world.Step(dt, kVelocityIterations, kPositionIterations);
+    freezeNonFinite(b, frozen);
+    return frozen;
+}
 
 fluid::JetMount jetMount(const BodyWorld* bodies, BodyId id) {
     fluid::JetMount m;
@@ -404,7 +438,7 @@ BodyId createBody(BodyWorld& b, const BodyDef& def) {
     bd.userData.pointer = static_cast<uintptr_t>(b.bodies.size() + 1);
     b2Body* body = b.world.CreateBody(&bd);
     for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::addFixture(body, def, def.shapes[i], i);
-    b.bodies.push_back({body, def, coupling::fluidShapes(def)});
+    b.bodies.push_back({body, def, coupling::fluidShapes(def), bd.position, bd.angle});
     b.alive += 1;
     return {static_cast<std::uint32_t>(b.bodies.size())};
 }

@@ -24,6 +24,10 @@ struct BodySlot {
     b2Body* body = nullptr;  // null once destroyed
     BodyDef def;
     std::vector<LocalShape> fluidShapes;
+    /// Its pose before the step being taken: where a body whose numbers
+    /// become NaN or infinite is frozen (stepBodies).
+    b2Vec2 lastPosition{0.0f, 0.0f};
+    float lastAngle = 0.0f;
 };
 
 struct JointSlot {
@@ -56,8 +60,11 @@ BodySlot& bodyFromId(BodyWorld& bodies, BodyId id);
 /// Before the fluids: dynamic bodies get this step's gravity (m/s^2 x dt).
 void beginBodyStep(BodyWorld& bodies, float dt);
 /// After the fluids: Box2D steps the bodies by dt (body contacts, joints,
-/// integration of the velocities the water left them).
-void stepBodies(BodyWorld& bodies, float dt);
+/// integration of the velocities the water left them). A body whose pose or
+/// velocity is NaN or infinite, before the step (the water's impulses) or
+/// after it, is frozen: put back at its pose before the step, made static
+/// with zero velocity; returns those frozen in this step.
+std::vector<BodyId> stepBodies(BodyWorld& bodies, float dt);
 
 /// Where a jet riding `body` is this step (index 0: fixed in the world; a
 /// destroyed body: inactive).

@@ -19,6 +19,7 @@ constexpr std::size_t kChunk = 4096;
 struct ChunkResult {
     std::uint64_t born = 0;
     std::uint64_t died = 0;
+    std::uint64_t nonFinite = 0;  // removed: a number became NaN or infinite
     std::uint64_t hits[32] = {};
     std::vector<std::uint32_t> dead;  // spawn mode: slots that died, ascending
     std::vector<kernels::EventRecord> events;
@@ -58,6 +59,7 @@ void countUpdate(const kernels::Particle& before, const kernels::ParticleUpdate&
                  float speed, bool recordEvents, ChunkResult& out) {
     out.born += (r.events & kernels::SD_EVENT_BORN) != 0u ? 1 : 0;
     out.died += (r.events & kernels::SD_EVENT_DIED) != 0u ? 1 : 0;
+    out.nonFinite += (r.events & kernels::SD_EVENT_NON_FINITE) != 0u ? 1 : 0;
     for (std::uint32_t mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
         out.hits[std::countr_zero(mask)] += 1;
     }
@@ -67,10 +69,15 @@ void countUpdate(const kernels::Particle& before, const kernels::ParticleUpdate&
     }
 }
 
+// The slot of an update is free again: its particle died or was removed.
+bool slotFreed(const kernels::ParticleUpdate& r) {
+    return (r.events & (kernels::SD_EVENT_DIED | kernels::SD_EVENT_NON_FINITE)) != 0u;
+}
+
 // Adds chunk results to the step's counts and events in chunk order
 // (deterministic) and returns their dead slots to the free list.
 void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& stats, StepEvents& events,
-                 std::uint64_t& born, std::uint64_t& died) {
+                 std::uint64_t& born, std::uint64_t& died, std::uint64_t& nonFinite) {
     for (ChunkResult& c : chunks) {
         std::size_t room = events.capacity - std::min<std::size_t>(events.capacity, events.records.size());
         std::size_t kept = std::min(room, c.events.size());
@@ -78,6 +85,7 @@ void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& s
         events.dropped += c.events.size() - kept;
         born += c.born;
         died += c.died;
+        nonFinite += c.nonFinite;
         for (std::size_t k = 0; k < stats.colliderHits.size() && k < 32; ++k) {
             stats.colliderHits[k].hits += c.hits[k];
         }
@@ -120,7 +128,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                 kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
                 storeParticle(a, i, r.particle);
                 countUpdate(p, r, index, glm::length(p.velocity), recordEvents, out);
-                if (spawnMode && (r.events & kernels::SD_EVENT_DIED) != 0u) {
+                if (spawnMode && slotFreed(r)) {
                     out.dead.push_back(static_cast<std::uint32_t>(i));
                 }
             }
@@ -128,8 +136,8 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
     }
 
     // Free the dead: their slots go on the free list in slot order.
-    std::uint64_t born = 0, died = 0;
-    mergeChunks(chunks, e, stats, events, born, died);
+    std::uint64_t born = 0, died = 0, nonFinite = 0;
+    mergeChunks(chunks, e, stats, events, born, died, nonFinite);
 
     // Emission (spawn mode): births owed this step take free slots; beyond
     // capacity they are dropped and counted, never overwriting live particles.
@@ -154,19 +162,20 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                 }
                 storeParticle(a, slot, r.particle);
                 countUpdate(r.particle, r, index, glm::length(r.particle.velocity), recordEvents, birthChunks[c]);
-                if ((r.events & kernels::SD_EVENT_DIED) != 0u) {
+                if (slotFreed(r)) {
                     birthChunks[c].dead.push_back(slot);
                 }
             }
         });
         e.nextSerial += static_cast<std::uint32_t>(count);
-        mergeChunks(birthChunks, e, stats, events, born, died);
+        mergeChunks(birthChunks, e, stats, events, born, died, nonFinite);
     }
 
     // Tally.
-    e.alive = e.alive + born - died;
+    e.alive = e.alive + born - died - nonFinite;
     stats.born += born;
     stats.died += died;
+    stats.nonFinite += nonFinite;
 }
 
 }  // namespace spindrift

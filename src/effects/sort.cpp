@@ -215,6 +215,7 @@ void scatterBlock(const PassIo& io, std::size_t begin, std::size_t end,
     const int shift = io.shift;
     auto indexAt = [indicesIn](std::size_t i) {
         if constexpr (Identity) {
+            (void)indicesIn;  // clang's -Wunused-lambda-capture (the fuzz preset)
             return static_cast<std::uint32_t>(i);
         } else {
             return indicesIn[i];

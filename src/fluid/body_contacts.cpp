@@ -265,9 +265,61 @@ void advanceBodies(FluidBodyStep& s, float dt) {
     }
 }
 
-glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, glm::vec2 x1) {
-    for (std::uint32_t k = s.cellStart[cell]; k < s.cellStart[cell + 1]; ++k) {
-        const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(s.shapes[s.cellShapes[k]], glm::vec3(x1, 0.0f));
+namespace {
+
+/// The path x0 -> x1 stopped before the segment a-b if it crosses it (an end
+/// on the line counts): kSkin short of the crossing along the path and kSkin
+/// off the line on x0's side, so the end is strictly on x0's side of this
+/// segment and, at a corner where two segments join, of the other one too
+/// (the crossing point is then the shared vertex, and backing along the path
+/// goes back inside). A path that starts on the line has no side: left alone.
+bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1) {
+    const glm::vec2 edge = b - a;
+    const float len2 = glm::dot(edge, edge);
+    const float s0 = cross(edge, x0 - a), s1 = cross(edge, x1 - a);
+    if (len2 <= 0.0f || s0 == 0.0f || (s0 > 0.0f ? s1 > 0.0f : s1 < 0.0f)) return false;
+    const float t = s0 / (s0 - s1);  // in (0, 1]: where the path meets the line
+    const glm::vec2 path = x1 - x0;
+    const glm::vec2 p = x0 + path * t;
+    const float u = glm::dot(p - a, edge) / len2;
+    const float slack = kSkin / std::sqrt(len2);  // the vertices themselves stop a path
+    if (u < -slack || u > 1.0f + slack) return false;
+    const glm::vec2 side = glm::vec2(-edge.y, edge.x) * ((s0 > 0.0f ? 1.0f : -1.0f) / std::sqrt(len2));
+    const float length = glm::length(path);
+    x1 = p + side * kSkin - (length > 0.0f ? path / length : glm::vec2(0.0f)) * kSkin;
+    return true;
+}
+
+}  // namespace
+
+glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1) {
+    // Segments first, against the path: each pass stops it before the
+    // crossings it finds; a few passes settle a corner of joined segments (the
+    // end moved off one line may sit across the other). The cell lists the
+    // shapes within binnedReach of x0; a longer path (the solver can throw a
+    // particle at a corner far faster than the step began with) may cross any
+    // segment or end in any shape, so it tests them all.
+    const bool longPath = glm::distance(x0, x1) > binnedReach;
+    const std::uint32_t first = longPath ? 0u : s.cellStart[cell];
+    const std::uint32_t last = longPath ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
+    for (int pass = 0; pass < 3; ++pass) {
+        bool crossed = false;
+        for (std::uint32_t k = first; k < last; ++k) {
+            const kernels::FluidBodyShape& shape = s.shapes[longPath ? k : s.cellShapes[k]];
+            if (shape.kind != kernels::SD_BODY_SHAPE_SEGMENT) continue;
+            // Still segments only: x0 is where the particle was against the
+            // shape's pose at the start of the substep, and a moving one is
+            // at its end pose here (the contacts keep those out).
+            const StepBody& b = s.bodies[shape.body];
+            if (b.velocity != glm::vec2(0.0f) || b.angularVelocity != 0.0f) continue;
+            const glm::vec4 g = shape.geometry;
+            crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), x0, x1) || crossed;
+        }
+        if (!crossed) break;
+    }
+    for (std::uint32_t k = first; k < last; ++k) {
+        const kernels::FluidSurface surface =
+            kernels::fluidBodyShapeSurface(s.shapes[longPath ? k : s.cellShapes[k]], glm::vec3(x1, 0.0f));
         if (surface.distance < 0.0f) x1 += glm::vec2(surface.normal) * (kSkin - surface.distance);
     }
     return x1;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 namespace spindrift::fluid {
 namespace {
@@ -21,6 +22,17 @@ constexpr float kOverlapPush = 0.2f;
 constexpr float kSkin = 1e-5f;
 /// A sleeping particle wakes above this many times FluidDef::sleepSpeed.
 constexpr float kWakeFactor = 2.0f;
+
+/// |x| <= this is false for NaN and both infinities.
+constexpr float kFloatMax = 3.40282347e38f;
+
+bool finite(glm::vec3 v) {
+    return std::abs(v.x) <= kFloatMax && std::abs(v.y) <= kFloatMax && std::abs(v.z) <= kFloatMax;
+}
+
+/// A velocity the solver can square: contacts, speeds and the substep count
+/// take its length, which overflows above 1.8e19 m/s.
+bool finiteSpeed(glm::vec3 v) { return finite(v) && glm::dot(v, v) <= kFloatMax; }
 
 template <int D>
 glm::vec3 to3(Vec<D> v) {
@@ -134,6 +146,18 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
     const float wakeSpeed = kWakeFactor * f.def.sleepSpeed;
     const float sleepTime = f.def.sleepTime;
     const float drift = f.def.sleepSpeed * f.def.sleepTime;  // m
+    // Every body shape within this distance (m) of a particle is in its grid
+    // cell's list (beginSubstep grows each shape's box by at least it).
+    const float binnedReach = f.radius + f.def.spacing;
+    // Particles whose numbers became NaN or infinite in this substep, or
+    // whose squared speed did (a blow-up under extreme but legal values): marked with a NaN position
+    // and removed below, before the next substep bins them or a cache
+    // stores them (issue 14).
+    std::vector<std::uint32_t> nonFinite(maxSpeed.size(), 0);
+    const auto removeLater = [&](std::size_t chunk, std::size_t i) {
+        p.position[i] = Vec<D>(std::numeric_limits<float>::quiet_NaN());
+        nonFinite[chunk] += 1;
+    };
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         float fastest = 0.0f;
         glm::vec2 range(3.0e38f, -3.0e38f);
@@ -172,6 +196,10 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             }
             const glm::vec3 motion = p.pseudo.empty() ? v : v + to3<D>(p.pseudo[i]);
             glm::vec3 x1 = x0 + motion * dt;
+            if (!finite(x1) || !finiteSpeed(v)) {
+                removeLater(chunk, i);
+                continue;
+            }
             // Path tests (as the effects' collisions): a path that crosses a
             // plane, sphere or box ends at the contact, moving no further in.
             for (const kernels::ColliderParams& c : world.colliders) {
@@ -195,12 +223,18 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             }
             if constexpr (D == 2) {
                 // Rigid bodies (already at their end-of-substep poses): an end
-                // point inside goes out through the nearest surface. Position
+                // point inside goes out through the nearest surface, a path
+                // across an edge or chain segment stops before it. Position
                 // only, so momentum stays with the contact impulses.
                 if (f.bodies != nullptr) {
-                    const glm::vec2 x = pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, glm::vec2(x1));
+                    const glm::vec2 x =
+                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1));
                     x1 = glm::vec3(x, 0.0f);
                 }
+            }
+            if (!finite(x1) || !finiteSpeed(v)) {
+                removeLater(chunk, i);
+                continue;
             }
             p.position[i] = from3<D>(x1);
             p.velocity[i] = from3<D>(v);
@@ -215,6 +249,12 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
     glm::vec2 range(3.0e38f, -3.0e38f);
     for (glm::vec2 r : pressed) range = glm::vec2(std::min(range.x, r.x), std::max(range.y, r.y));
     f.pressedDepth = range.y > range.x ? range.y - range.x : 0.0f;
+    std::uint64_t removed = 0;
+    for (std::uint32_t n : nonFinite) removed += n;
+    if (removed > 0) {
+        p.keepIf([&](std::size_t i) { return finite(to3<D>(p.position[i])); });
+        stats.nonFinite += removed;
+    }
 }
 
 template void findContacts<2>(WorkerPool&, FluidState&, const StepContext&, float);

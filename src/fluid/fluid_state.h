@@ -59,6 +59,27 @@ struct Particles {
         fn(anchor);
         fn(still);
     }
+    /// Keeps the particles for which keep(i) is true, in their order, and
+    /// returns how many were removed (pseudo is only resized: it is refilled
+    /// every step).
+    template <class Keep>
+    std::size_t keepIf(Keep&& keep) {
+        std::vector<std::uint8_t> kept(size());
+        std::size_t n = 0;
+        for (std::size_t i = 0; i < kept.size(); ++i) {
+            kept[i] = keep(i) ? 1 : 0;
+            n += kept[i];
+        }
+        forEachKept([&](auto& array) {
+            std::size_t to = 0;
+            for (std::size_t i = 0; i < kept.size(); ++i) {
+                if (kept[i]) array[to++] = array[i];
+            }
+            array.resize(n);
+        });
+        if (pseudo.size() > n) pseudo.resize(n);
+        return kept.size() - n;
+    }
     void push(Vec<D> x, Vec<D> v, std::uint32_t serial) {
         position.push_back(x);
         velocity.push_back(v);

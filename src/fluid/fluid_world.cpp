@@ -212,23 +212,10 @@ Vec<D> inDimension(glm::vec3 x) {
 template <int D>
 std::uint32_t removeWithin(Particles<D>& p, glm::vec3 centre, float radius) {
     const Vec<D> c = inDimension<D>(centre);
-    std::vector<std::uint8_t> keep(p.size());
-    std::size_t kept = 0;
-    for (std::size_t i = 0; i < p.size(); ++i) {
+    return static_cast<std::uint32_t>(p.keepIf([&](std::size_t i) {
         const Vec<D> d = p.position[i] - c;
-        keep[i] = glm::dot(d, d) > radius * radius;
-        kept += keep[i];
-    }
-    const auto removed = static_cast<std::uint32_t>(p.size() - kept);
-    p.forEachKept([&](auto& array) {
-        std::size_t to = 0;
-        for (std::size_t i = 0; i < keep.size(); ++i) {
-            if (keep[i]) array[to++] = array[i];
-        }
-        array.resize(kept);
-    });
-    if (p.pseudo.size() > kept) p.pseudo.resize(kept);  // refilled every step
-    return removed;
+        return glm::dot(d, d) > radius * radius;
+    }));
 }
 
 template <int D>
@@ -301,14 +288,14 @@ void validateFluidDef(const FluidDef& def) {
     check.number("capacity", def.capacity, rules::kCapacity);
     check.number("rest_density", def.restDensity, rules::kRestDensity);
     for (std::size_t i = 0; i < def.blocks.size(); ++i) validateBlock(def, def.blocks[i], i);
-    // A capacity given (0: the blocks' own count and room for the jets) holds
-    // every block: checked here, at the key, not when the world is built.
-    std::uint64_t inBlocks = 0;
-    for (const FluidBlockDef& b : def.blocks) inBlocks += blockParticles(def, b);
-    if (def.capacity > 0 && inBlocks > def.capacity) {
-        check.fail("capacity", fmt::format("expected 0 (as many as the blocks hold) or at least the blocks' {} "
-                                           "particles, got {}",
-                                           inBlocks, def.capacity));
+    // A capacity given must hold the blocks (a mutant with `capacity = 1`
+    // passed validation and then failed in createFluid without a location).
+    std::uint64_t blocks = 0;
+    for (const FluidBlockDef& b : def.blocks) blocks += blockParticles(def, b);
+    if (def.capacity > 0 && blocks > def.capacity) {
+        check.fail("capacity", fmt::format("expected room for the blocks' {} particles (or 0: as many as they "
+                                           "hold, plus the jets'), got {}",
+                                           blocks, def.capacity));
     }
     for (std::size_t i = 0; i < def.jets.size(); ++i) validateJet(def, def.jets[i], i);
     for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i);

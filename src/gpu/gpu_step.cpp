@@ -60,9 +60,10 @@ void collectCounters(GpuEmitter& e, std::uint32_t frame, EmitterState& s, StepSt
     for (std::size_t k = 0; k < stats.colliderHits.size() && k < kernels::SD_MAX_COLLIDERS; ++k) {
         stats.colliderHits[k].hits += c.hits[k];
     }
-    s.alive = s.alive + c.born - c.died;
+    s.alive = s.alive + c.born - c.died - c.nonFinite;
     stats.born += c.born;
     stats.died += c.died;
+    stats.nonFinite += c.nonFinite;
     stats.clamped = saturatingAdd(stats.clamped, saturatingAdd(c.clamped, e.scheduleDropped[frame]));
     e.scheduleDropped[frame] = 0;
     if (e.spawn) {

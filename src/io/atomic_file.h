@@ -7,6 +7,25 @@
 
 namespace spindrift::io {
 
+/// A file buffer that keeps the errno of its first failed write, flush or
+/// close: a stream only says that it failed, and by the time a caller looks
+/// (commit) errno is long gone, so a full disk read "I/O error" instead of
+/// "No space left on device".
+class ErrnoFileBuf : public std::filebuf {
+public:
+    /// errno of the first failure, 0 if none.
+    int error() const { return error_; }
+
+protected:
+    int_type overflow(int_type c) override;
+    std::streamsize xsputn(const char_type* s, std::streamsize n) override;
+    int sync() override;
+
+private:
+    void note(bool failed);
+    int error_ = 0;
+};
+
 /// Writes to a temporary file beside `target` and renames it over `target` on
 /// commit(). rename() within one directory replaces the file atomically on
 /// POSIX, so a crash or a full disk leaves either the old file or the new one,
@@ -28,7 +47,8 @@ public:
 private:
     std::filesystem::path target_;
     std::filesystem::path temp_;
-    std::ofstream out_;
+    ErrnoFileBuf buffer_;
+    std::ostream out_{&buffer_};
     bool committed_ = false;
 };
 

@@ -111,6 +111,8 @@ void writeFluidStep(JsonWriter& json, const FluidStepStats& f, const FluidNumber
     json.value(f.neighbourOverflows);
     json.key("substeps");
     json.value(f.substeps);
+    json.key("non_finite");
+    json.value(f.nonFinite);
     if (density != nullptr) {
         json.key("number_density_median");
         json.value(density->median);
@@ -127,7 +129,7 @@ void writeFluidTotals(JsonWriter& json, const RunSummary& s) {
     json.beginArray();
     for (std::size_t k = 0; k < s.fluidNames.size(); ++k) {
         double meanError = 0.0, maxError = 0.0, maxSpeed = 0.0;
-        std::uint64_t overflows = 0, particles = 0, born = 0, steps = 0;
+        std::uint64_t overflows = 0, particles = 0, born = 0, steps = 0, nonFinite = 0;
         for (const StepStats& step : s.steps) {
             if (k >= step.fluids.size()) continue;
             const FluidStepStats& f = step.fluids[k];
@@ -136,6 +138,7 @@ void writeFluidTotals(JsonWriter& json, const RunSummary& s) {
             maxSpeed = std::max(maxSpeed, f.maxSpeed);
             overflows += f.neighbourOverflows;
             born += f.born;
+            nonFinite += f.nonFinite;
             particles = f.particles;
             ++steps;
         }
@@ -144,6 +147,8 @@ void writeFluidTotals(JsonWriter& json, const RunSummary& s) {
         json.value(particles);
         json.key("born");
         json.value(born);
+        json.key("non_finite");
+        json.value(nonFinite);
         json.key("mean_density_error");
         json.value(steps > 0 ? meanError / static_cast<double>(steps) : 0.0);
         json.key("max_density_error");
@@ -192,6 +197,14 @@ void writeStep(JsonWriter& json, const StepStats& step, const RunSummary& s) {
     json.value(step.collisions);
     json.key("clamped");
     json.value(step.clamped);
+    json.key("non_finite");
+    json.value(step.nonFinite);
+    if (!step.frozenBodies.empty()) {
+        json.key("frozen_bodies");
+        json.beginArray();
+        for (BodyId b : step.frozenBodies) json.value(b.index);
+        json.endArray();
+    }
     json.key("ms");
     json.value(step.milliseconds);
     json.key("collider_hits");
@@ -210,7 +223,7 @@ void writeStep(JsonWriter& json, const StepStats& step, const RunSummary& s) {
 }
 
 struct Totals {
-    std::uint64_t born = 0, died = 0, collisions = 0, clamped = 0;
+    std::uint64_t born = 0, died = 0, collisions = 0, clamped = 0, nonFinite = 0, frozenBodies = 0;
     double milliseconds = 0.0;
     std::vector<std::uint64_t> colliderHits;
 };
@@ -223,6 +236,8 @@ Totals sumSteps(const RunSummary& s) {
         t.died += step.died;
         t.collisions += step.collisions;
         t.clamped = saturatingAdd(t.clamped, step.clamped);
+        t.nonFinite += step.nonFinite;
+        t.frozenBodies += step.frozenBodies.size();
         t.milliseconds += step.milliseconds;
         const auto hits = denseHits(step, s.colliderNames.size());
         for (std::size_t i = 0; i < hits.size(); ++i) t.colliderHits[i] += hits[i];
@@ -241,6 +256,10 @@ void writeTotals(JsonWriter& json, const RunSummary& s) {
     json.value(t.collisions);
     json.key("clamped");
     json.value(t.clamped);
+    json.key("non_finite");
+    json.value(t.nonFinite);
+    json.key("frozen_bodies");
+    json.value(t.frozenBodies);
     json.key("collider_hits");
     writeCounts(json, t.colliderHits);
     json.key("step_ms");

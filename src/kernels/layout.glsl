@@ -113,7 +113,7 @@ struct StepCounters {
     uint born;
     uint died;
     uint clamped;  // births without a free slot
-    uint pad;
+    uint nonFinite;  // removed: a number became NaN or infinite (SD_EVENT_NON_FINITE)
     uint hits[SD_MAX_COLLIDERS];  // per collider
 };
 

@@ -10,6 +10,10 @@ SD_BEGIN
 
 SD_CONST uint SD_EVENT_BORN = 1u;
 SD_CONST uint SD_EVENT_DIED = 2u;
+// The particle of the update was removed because a number of it became NaN or
+// infinite (issue 14): not a death (no event, which would carry the NaN), but
+// counted on its own (StepStats::nonFinite) and its slot freed like a death's.
+SD_CONST uint SD_EVENT_NON_FINITE = 4u;
 
 struct ParticleUpdate {
     Particle particle;
@@ -30,7 +34,45 @@ SD_FN ParticleUpdate quietUpdate(Particle p) {
     return r;
 }
 
-// Motion, damping, collisions and spin over dt for a live particle.
+// Largest finite float: |x| <= it is false for NaN and for both infinities
+// (plain comparisons, which GLSL and C++ without -ffast-math both keep).
+SD_CONST float SD_FLOAT_MAX = 3.40282347e38f;
+
+SD_FN bool finite3(vec3 v) {
+    return all(lessThanEqual(abs(v), vec3(SD_FLOAT_MAX)));
+}
+
+// Finite numbers, and a speed whose square is finite too: speeds, lengths
+// and drag all square the velocity, which overflows above 1.8e19 m/s and
+// would put infinity into events and statistics.
+SD_FN bool finiteParticle(Particle p) {
+    return finite3(p.position) && finite3(p.velocity) && dot(p.velocity, p.velocity) <= SD_FLOAT_MAX &&
+           finite3(vec3(p.rotation, p.angularVelocity, p.size)) &&
+           all(lessThanEqual(abs(p.color), vec4(SD_FLOAT_MAX)));
+}
+
+// A particle whose numbers left the finite range (an attractor 1e-7 m away
+// with strength 1e30 throws it at 1.7e32 m/s; speeds near 3e38): removed where it arises, with zeros
+// in place of its numbers so no buffer, snapshot or event ever holds NaN or
+// infinity. Its hits are dropped with it (their positions are not finite).
+SD_FN ParticleUpdate removedUpdate(ParticleUpdate r) {
+    Particle p = r.particle;
+    p.position = vec3(0.0f);
+    p.velocity = vec3(0.0f);
+    p.rotation = 0.0f;
+    p.angularVelocity = 0.0f;
+    p.size = 0.0f;
+    p.color = vec4(0.0f);
+    p.age = SD_DEAD_AGE;
+    p.alive = 0u;
+    r.particle = p;
+    r.hitMask = 0u;
+    r.events = r.events | SD_EVENT_NON_FINITE;
+    return r;
+}
+
+// Motion, damping, collisions and spin over dt for a live particle; one whose
+// numbers became non-finite comes back removed (SD_EVENT_NON_FINITE).
 SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float dt) {
     ParticleUpdate r = quietUpdate(p);
     vec3 start = p.position;
@@ -69,7 +111,7 @@ SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterPar
         }
     }
     r.particle = applyOverLife(e, p);
-    return r;
+    return finiteParticle(r.particle) ? r : removedUpdate(r);
 }
 
 // A fresh particle with serial `serial` that has lived `age` seconds of this step.

@@ -1,6 +1,8 @@
 // Images the renderer samples (see render_images.h).
 #include "render/render_images.h"
 
+#include "render/render_rules.h"
+
 #include <spindrift/effects.h>
 
 #include <fmt/format.h>
@@ -22,12 +24,17 @@ gpu::Image uploadRgba(gpu::Device& d, std::uint32_t width, std::uint32_t height,
 
 gpu::Image loadImage(gpu::Device& d, const std::string& path, const std::string& what) {
     int w = 0, h = 0, channels = 0;
+    // The size from the header first: decoding is what would take the memory.
+    if (stbi_info(path.c_str(), &w, &h, &channels) == 0) {
+        throw Error(fmt::format("{}: cannot read image '{}': {}", what, path, stbi_failure_reason()));
+    }
+    if (w > static_cast<int>(render_rules::kMaxImageSide) || h > static_cast<int>(render_rules::kMaxImageSide)) {
+        throw Error(fmt::format("{}: image '{}' is {} x {}; at most {} x {}", what, path, w, h,
+                                render_rules::kMaxImageSide, render_rules::kMaxImageSide));
+    }
     std::unique_ptr<stbi_uc, void (*)(void*)> pixels(stbi_load(path.c_str(), &w, &h, &channels, 4), stbi_image_free);
     if (!pixels) {
         throw Error(fmt::format("{}: cannot read image '{}': {}", what, path, stbi_failure_reason()));
-    }
-    if (w > 16384 || h > 16384) {
-        throw Error(fmt::format("{}: image '{}' is {} x {}; at most 16384 x 16384", what, path, w, h));
     }
     return uploadRgba(d, static_cast<std::uint32_t>(w), static_cast<std::uint32_t>(h), pixels.get());
 }

@@ -14,6 +14,11 @@ namespace spindrift::render_rules {
 /// Pixels a side: the smallest maxImageDimension2D a desktop driver reports is
 /// far above what a frame needs; lavapipe allows 16384.
 inline constexpr FieldRule kFrameSide = FieldRule::whole(Bounds::between(1, kRenderMaxFrameSide));
+/// Pixels a side of a sprite texture or background image: lavapipe's and a
+/// typical desktop driver's maxImageDimension2D. The scene loader checks it
+/// from the PNG header, before anything is decoded (a 60000 x 60000 PNG of a
+/// few kB would decode to 14 GB).
+inline constexpr std::uint32_t kMaxImageSide = 16384;
 inline constexpr FieldRule kFps = FieldRule::number(Bounds::positive());
 inline constexpr FieldRule kSeconds = FieldRule::number(Bounds::positive());  ///< s
 /// Linear RGB, each channel; above 1 is allowed (HDR).

@@ -45,7 +45,9 @@ public:
             }
         }
         tokens_.clear();
-        ++line_;  // errors about a missing line point just past the end
+        // Errors about a missing line point at the file's last line (a line
+        // past the end is one an editor cannot show), line 1 when it is empty.
+        line_ = std::max(line_, 1);
         return false;
     }
 

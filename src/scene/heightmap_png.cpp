@@ -9,6 +9,7 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <cstring>
 #include <memory>
 
@@ -46,11 +47,20 @@ bool decodeChannel(const std::string& bytes, Load load, float fullScale, GreyIma
     return true;
 }
 
+// The header's size against the limit, before a pixel is decoded.
+bool withinSide(int w, int h, std::uint32_t maxSide, std::string& error) {
+    if (w > static_cast<std::int64_t>(maxSide) || h > static_cast<std::int64_t>(maxSide)) {
+        error = fmt::format("the image is {} x {} pixels; at most {} a side", w, h, maxSide);
+        return false;
+    }
+    return true;
+}
+
 #endif
 
 }  // namespace
 
-bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& error) {
+bool decodeGreyPng(const std::string& bytes, std::uint32_t maxSide, GreyImage& image, std::string& error) {
     if (!hasPngSignature(bytes)) {
         error = "not a PNG file (the PNG signature is missing)";
         return false;
@@ -65,6 +75,9 @@ bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& erro
         error = fmt::format("cannot decode the PNG: {}", stbi_failure_reason());
         return false;
     }
+    if (!withinSide(w, h, maxSide, error)) {
+        return false;
+    }
     // 1 = grey, 2 = grey + alpha; colour would need a guess at what "height" means.
     if (channels > 2) {
         error = fmt::format("expected a greyscale PNG, got {} colour channels", channels);
@@ -76,12 +89,13 @@ bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& erro
     return decodeChannel<stbi_uc>(bytes, &stbi_load_from_memory, 255.0f, image, error);
 #else
     (void)image;
+    (void)maxSide;
     error = "this build of spindrift reads no PNG files (it was built without stb_image)";
     return false;
 #endif
 }
 
-bool checkPng(const std::string& bytes, std::string& error) {
+bool checkPng(const std::string& bytes, std::uint32_t maxSide, std::string& error) {
     if (!hasPngSignature(bytes)) {
         error = "not a PNG file (the PNG signature is missing)";
         return false;
@@ -95,8 +109,9 @@ bool checkPng(const std::string& bytes, std::string& error) {
         error = fmt::format("cannot decode the PNG: {}", stbi_failure_reason());
         return false;
     }
-    return true;
+    return withinSide(w, h, maxSide, error);
 #else
+    (void)maxSide;
     error = "this build of spindrift reads no PNG files (it was built without stb_image)";
     return false;
 #endif

@@ -19,11 +19,13 @@ struct GreyImage {
 
 /// Decodes an 8- or 16-bit greyscale PNG (an alpha channel is ignored). On
 /// failure returns false and says why in `error`; colour images are refused
-/// rather than silently converted.
-bool decodeGreyPng(const std::string& bytes, GreyImage& image, std::string& error);
+/// rather than silently converted, and images wider or taller than maxSide
+/// pixels before anything is decoded (from the header's size).
+bool decodeGreyPng(const std::string& bytes, std::uint32_t maxSide, GreyImage& image, std::string& error);
 
 /// Checks that `bytes` are a PNG that stb_image can decode (any channel
-/// count); on failure returns false and says why in `error`.
-bool checkPng(const std::string& bytes, std::string& error);
+/// count) of at most maxSide pixels a side, from its header; on failure
+/// returns false and says why in `error`.
+bool checkPng(const std::string& bytes, std::uint32_t maxSide, std::string& error);
 
 }  // namespace spindrift::scene

@@ -109,7 +109,7 @@ void readImageHeights(const Table& t, ColliderDef& def) {
     const std::string bytes = readDataFile(file, ref);
     GreyImage image;
     std::string error;
-    if (!decodeGreyPng(bytes, image, error)) {
+    if (!decodeGreyPng(bytes, kTerrainMaxAxis, image, error)) {
         file.fail(fmt::format("cannot use \"{}\" as a height map: {}", ref.display, error));
     }
     // The image is the grid: its size is checked as the resolution would be,

@@ -78,6 +78,12 @@ void checkCount(const std::vector<Table>& tables, std::size_t limit, std::string
 std::string NameTable::add(const Table& table) {
     const Value value = table.require("name", "a string naming this " + kind_);
     std::string name = value.string();
+    // Names are shown in messages, the viewer and cache file names: one that
+    // is empty or only blanks would be an object nobody can see or name.
+    if (name.find_first_not_of(" \t\n\r\f\v") == std::string::npos) {
+        value.fail(fmt::format("expected a {} name with a visible character, got \"{}\"", kind_,
+                               name.size() <= 16 ? name : name.substr(0, 16) + "..."));
+    }
     const auto line = value.node().source().begin.line;
     const auto [it, inserted] =
         entries_.try_emplace(name, Entry{static_cast<std::uint32_t>(entries_.size()), line});
@@ -145,7 +151,7 @@ std::string readPngPath(const Value& value) {
     DataFileRef ref;
     const std::string bytes = readDataFile(value, ref);
     std::string error;
-    if (!checkPng(bytes, error)) {
+    if (!checkPng(bytes, render_rules::kMaxImageSide, error)) {
         value.fail(fmt::format("\"{}\" (resolved to \"{}\"): {}", value.string(), ref.display, error));
     }
     return ref.display;

@@ -352,7 +352,7 @@ StepStats stepWorld(WorldId id, float dt) {
     // 4. Bodies: Box2D steps them once by dt with what the water left them.
     if (w.bodies) {
         const auto bodiesStart = std::chrono::steady_clock::now();
-        coupling::stepBodies(*w.bodies, dt);
+        stats.frozenBodies = coupling::stepBodies(*w.bodies, dt);
         stats.bodiesMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bodiesStart).count();
     }
 

@@ -115,6 +115,8 @@ TEST_F(CliTest, BadUsageExitsWith2AndSaysWhy) {
                          "run x.toml --out d --format csv,obj",
                          "run x.toml --every 5",
                          "run x.toml --out d --every 0",
+                         "run x.toml --out ''",  // wrote nothing and exited 0 (issue 14)
+                         "render x.toml --out ''",
                          "run x.toml --no-such-option",
                          "validate",
                          "render x.toml",

@@ -113,6 +113,23 @@ TEST(IoSummary, TotalsAddUpTheSteps) {
     EXPECT_EQ(query(json, "totals/cache_files"), "12");
 }
 
+// Particles removed as non-finite and bodies frozen (issue 14): per step
+// where they happen, summed in the totals (each body counted once).
+TEST(IoSummary, NonFiniteRemovalsAndFrozenBodiesArePerStepAndSummed) {
+    RunSummary s = makeSummary(4);
+    s.steps[1].nonFinite = 5;
+    s.steps[3].nonFinite = 2;
+    s.steps[2].frozenBodies = {spindrift::BodyId{3}, spindrift::BodyId{1}};
+    const std::string json = toJson(s);
+    ASSERT_EQ(jsonError(json), "") << json;
+    EXPECT_EQ(query(json, "per_step/0/non_finite"), "0");
+    EXPECT_EQ(query(json, "per_step/1/non_finite"), "5");
+    EXPECT_EQ(query(json, "per_step/2/frozen_bodies/#"), "2");
+    EXPECT_EQ(query(json, "per_step/2/frozen_bodies/0"), "3");
+    EXPECT_EQ(query(json, "totals/non_finite"), "7");
+    EXPECT_EQ(query(json, "totals/frozen_bodies"), "2");
+}
+
 TEST(IoSummary, FluidNumberDensityOnTheMeasuredFramesAndInTheTotals) {
     RunSummary s = makeSummary(25);
     s.fluidNames = {"water"};

@@ -447,7 +447,7 @@ TEST(OneValidationPath, FluidCapacityBelowItsBlocksIsRefusedAtTheKey) {
     EXPECT_EQ(scene.message(), api.message());
     EXPECT_EQ(scene.line(), 3);
     EXPECT_EQ(scene.keyPath(), "fluid[0].capacity");
-    EXPECT_NE(std::string(scene.what()).find("at least the blocks'"), std::string::npos) << scene.what();
+    EXPECT_NE(std::string(scene.what()).find("room for the blocks'"), std::string::npos) << scene.what();
     def.capacity = 0;  // as many as the blocks hold
     EXPECT_NO_THROW(validateFluidDef(def));
 }

@@ -129,4 +129,61 @@ TEST(SceneDataLimitsNul, NulInANameIsRefusedAtTheValue) {
     expectError("[[emitter]]\nname = \"a\\u0000b\"\n", {2, 8, "emitter[0].name", "without NUL"});
 }
 
+// A PNG's size is checked from its header, before decoding: a header that
+// says 20000 x 20000 (what stb_image would decode to 400 MB, or 1.6 GB as
+// RGBA) and holds no pixels at all is refused for its size, which only the
+// header can have told. At most 16384 a side for textures and backgrounds
+// (render_rules::kMaxImageSide), 4096 for height maps (kTerrainMaxAxis).
+std::string pngHeader(std::uint32_t width, std::uint32_t height) {
+    std::string png("\x89PNG\r\n\x1a\n", 8);
+    const auto be32 = [&](std::uint32_t v) {
+        for (int shift = 24; shift >= 0; shift -= 8) png.push_back(static_cast<char>((v >> shift) & 0xFF));
+    };
+    be32(13);
+    png += "IHDR";
+    be32(width);
+    be32(height);
+    png += std::string("\x08\x00\x00\x00\x00", 5);  // 8-bit grey, deflate, no filter, no interlace
+    be32(0);                                             // CRC: stb_image does not check it
+    return png;
+}
+
+TEST_F(SceneDataLimits, PngSizeIsCheckedFromItsHeaderBeforeDecoding) {
+    std::ofstream(dir_ / "big.png", std::ios::binary) << pngHeader(20000, 20000);
+    std::ofstream(dir_ / "tall.png", std::ios::binary) << pngHeader(2, 5000);
+    expectError("[[emitter]]\nname = \"e\"\nsprite = { texture = \"big.png\" }\n",
+                {3, 22, "emitter[0].sprite.texture", "20000 x 20000 pixels; at most 16384 a side"}, dir_.string());
+    expectError("[render.background]\nkind = \"image\"\nimage = \"big.png\"\n",
+                {3, 9, "render.background.image", "at most 16384 a side"}, dir_.string());
+    expectError("[[collider]]\nname = \"t\"\nkind = \"terrain\"\nsize = [1, 1]\nimage = \"tall.png\"\n",
+                {5, 9, "collider[0].image", "2 x 5000 pixels; at most 4096 a side"}, dir_.string());
+}
+
+// Names that are empty or only blanks name nothing anyone can see; refused
+// at the value, for every kind of object.
+TEST(SceneNames, BlankNamesAreRefusedAtTheValue) {
+    expectError("[[emitter]]\nname = \"  \\t \"\n", {2, 8, "emitter[0].name", "visible character"});
+    expectError("[[emitter]]\nname = \"\"\n", {2, 8, "emitter[0].name", "non-empty string"});
+    expectError("[[force]]\nname = \"\\n\"\nkind = \"gravity\"\n", {2, 8, "force[0].name", "visible character"});
+    expectError("[[collider]]\nname = \" \"\nkind = \"plane\"\n", {2, 8, "collider[0].name", "visible character"});
+    expectError("[[body]]\nname = \" \"\n", {2, 8, "body[0].name", "visible character"});
+    // A name with blanks around a visible character is a name.
+    EXPECT_NO_THROW(spindrift::parseScene("[[force]]\nname = \" g \"\nkind = \"gravity\"\n", "ok.toml", "."));
+}
+
+// Found by the 3,000-mutant campaign: a fluid capacity smaller than its
+// blocks passed validation and failed in createFluid without a location.
+// 0.6 m x 1.2 m at 2 cm is 30 x 60 = 1800 particles.
+TEST(SceneFluidCapacity, ACapacityUnderTheBlocksIsRefusedAtTheKey) {
+    const std::string fluid = "[[fluid]]\nname = \"water\"\ncapacity = {}\nspacing = 0.02\n"
+                              "[[fluid.block]]\nmin = [0.0, 0.0, 0.0]\nmax = [0.6, 1.2, 0.0]\n";
+    const auto withCapacity = [&](int n) {
+        std::string text = fluid;
+        return text.replace(text.find("{}"), 2, std::to_string(n));
+    };
+    expectError(withCapacity(1), {3, 12, "fluid[0].capacity", "room for the blocks' 1800 particles"});
+    expectError(withCapacity(1799), {3, 12, "fluid[0].capacity", "got 1799"});
+    EXPECT_NO_THROW(spindrift::parseScene(withCapacity(1800), "ok.toml", "."));
+}
+
 }  // namespace

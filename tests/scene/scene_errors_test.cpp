@@ -415,13 +415,26 @@ TEST_F(SceneDataFileErrors, FlowFileNan) {
 
 TEST_F(SceneDataFileErrors, FlowFileTooShort) {
     write("f.flow", "spindrift-flow 1 2 2 1 0 0 0 1 1 1\n1 0 0\n1 0 0\n");
-    expectDataError(kFlowScene, "f.flow", 4, 1, "flow_field[0].file", "after 2 of 4");
+    // At the file's last line, line 3 (a line past the end no editor shows).
+    expectDataError(kFlowScene, "f.flow", 3, 1, "flow_field[0].file", "after 2 of 4");
 }
 
 TEST_F(SceneDataFileErrors, FlowFileInvertedBounds) {
     write("f.flow", "spindrift-flow 1 1 1 1 0 0 0 1 -1 1\n0 0 0\n");
     // Token 10 of the header, "-1", starts at column 32.
     expectDataError(kFlowScene, "f.flow", 1, 32, "flow_field[0].file", "max > min along y");
+}
+
+// A truncated .cube file (issue 14 found one reported at a line past its end):
+// at its last line, with or without a final newline; an empty one at line 1.
+TEST_F(SceneDataFileErrors, CubeFileTruncatedAtItsLastLine) {
+    const std::string scene = "[[collider]]\nname = \"c\"\nkind = \"cube_map\"\nfile = \"c.cube\"\n";
+    write("c.cube", "spindrift-cubemap 1 2\n1 1\n1 1\n");
+    expectDataError(scene, "c.cube", 3, 1, "collider[0].file", "ends after 2 of 12 rows");
+    write("c.cube", "spindrift-cubemap 1 2\n1 1\n\n# comment\n1 1");
+    expectDataError(scene, "c.cube", 5, 1, "collider[0].file", "ends after 2 of 12 rows");
+    write("c.cube", "");
+    expectDataError(scene, "c.cube", 1, 1, "collider[0].file", "expected the header");
 }
 
 TEST_F(SceneDataFileErrors, CubeFileNegativeDepth) {

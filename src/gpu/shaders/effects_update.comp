@@ -165,6 +165,9 @@ void countEvents(Particle before, ParticleUpdate r, float speed) {
     if ((r.events & SD_EVENT_DIED) != 0u) {
         atomicAdd(counters.died, 1u);
     }
+    if ((r.events & SD_EVENT_NON_FINITE) != 0u) {
+        atomicAdd(counters.nonFinite, 1u);
+    }
     for (uint mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
         atomicAdd(counters.hits[findLSB(mask)], 1u);
     }
@@ -196,7 +199,7 @@ void spawnUpdate(KernelContext ctx, uint i) {
     ParticleUpdate r = updateParticle(ctx, emitter, p, step.dt);
     storeParticle(slot, r.particle, r.events);
     countEvents(p, r, length(p.velocity));
-    if ((r.events & SD_EVENT_DIED) != 0u) {
+    if ((r.events & (SD_EVENT_DIED | SD_EVENT_NON_FINITE)) != 0u) {
         deadSlots[atomicAdd(dead.deadCount, 1u)] = slot;
     } else {
         aliveOut[atomicAdd(aliveOutTable.count, 1u)] = slot;
@@ -230,6 +233,11 @@ void spawnEmit(KernelContext ctx, uint k) {
     }
     ParticleUpdate r = bornParticle(ctx, emitter, dead.nextSerial + k, birthAge(k));
     float speed = length(r.particle.velocity);
+    if ((r.events & SD_EVENT_NON_FINITE) != 0u) {
+        // Removed at once (a number became NaN or infinite): its slot stays free.
+        countEvents(r.particle, r, 0.0f);
+        return;
+    }
     if (r.particle.age >= r.particle.lifetime) {
         // Killed at once by a collision: born and dead, its slot stays free.
         r.events = r.events | SD_EVENT_DIED;

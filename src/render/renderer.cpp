@@ -1,5 +1,7 @@
 // The renderer: creation, the frame's uniforms and its passes (see
-// renderer.h for the order).
+// renderer.h for the order). About 500 lines: the frame's pass list reads top
+// to bottom here; each pass's own work is in its file (sprite_pass,
+// surface_pass, oit_pass, ...).
 #include "render/renderer.h"
 
 #include "world/world.h"

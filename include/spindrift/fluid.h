@@ -159,7 +159,10 @@ struct FluidStepStats {
     double maxDensityError = 0.0;       ///< max of rho / rho0 - 1
     double meanNeighbours = 0.0;
     double maxSpeed = 0.0;              ///< m/s, after the step
-    std::uint64_t neighbourOverflows = 0;  ///< neighbours dropped (over maxNeighbours), all substeps
+    /// Neighbours dropped, all substeps: over maxNeighbours, or not read in a
+    /// region crushed past 8 times the particles per area (volume) at rest,
+    /// which bounds what a crushed fluid costs (docs/fluid.md).
+    std::uint64_t neighbourOverflows = 0;
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
     std::uint64_t bodyContacts = 0;     ///< particle-body contacts, all substeps
     /// Particles removed because their position or velocity became NaN or

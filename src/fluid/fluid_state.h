@@ -136,6 +136,15 @@ inline std::size_t approachBin(float speed) {
     return b > 0.0f ? static_cast<std::size_t>(std::min(b, 63.0f)) : 0u;  // NaN: 0
 }
 
+/// How crushed a sub-cell may be before the setup stops reading it, in
+/// multiples of its particle count at rest. Far from any fluid the solver
+/// holds (the 100k dam break's column, crushed before the compression rule,
+/// reached a mean density of 1.41 times rest; the 10k dam break reads no
+/// sub-cell past it, so its results are bit-identical), and it bounds the
+/// pairs a crushed fluid costs to 3^D sub-cells of eight times the rest count
+/// per particle (docs/fluid.md).
+inline constexpr double kCrushedSubCell = 8.0;
+
 /// Per-particle constraint data of one step (slide 35).
 struct Constraints {
     std::vector<float> bias;      // m/s
@@ -211,6 +220,10 @@ struct FluidState {
     float restDensity = 0.0f;  // kernel-sum units
     float radius = 0.0f;       // m, particle radius against colliders
     std::uint32_t maxNeighbours = 0;
+    /// Most particles the setup reads from one sub-cell (h wide): kCrushedSubCell
+    /// times the lattice's count at rest. Bounds the cost of a crushed fluid
+    /// (neighbours.cpp).
+    std::uint32_t subCellReadLimit = 0;
     std::uint32_t capacity = 0;
     std::uint32_t nextSerial = 0;
     std::vector<kernels::FluidPolygon> polygons;

@@ -330,6 +330,9 @@ void initialiseFluid(FluidState& f) {
     f.radius = 0.5f * def.spacing;
     buildWallTable(f);
     f.maxNeighbours = def.maxNeighbours > 0 ? def.maxNeighbours : std::numeric_limits<std::uint32_t>::max();
+    // A sub-cell is h wide: (h / spacing)^dimension particles at rest.
+    const double atRest = std::pow(static_cast<double>(f.h / def.spacing), static_cast<double>(def.dimension));
+    f.subCellReadLimit = static_cast<std::uint32_t>(std::ceil(kCrushedSubCell * std::max(atRest, 1.0)));
     std::uint64_t capacity = def.capacity;
     if (capacity == 0) {
         for (const FluidBlockDef& b : def.blocks) capacity += blockParticles(def, b);

@@ -121,7 +121,17 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                         const int sx = sc[0] + dx;
                         if (sx < 0 || sx >= subCells[0]) continue;
                         const std::uint32_t k = keyOfSubCell<D>(g, sx, sy, sz);
-                        gatherNear<D>(p, xi, i, h2, g.keyStart[k], g.keyStart[k + 1], near, nearCount);
+                        // A sub-cell crushed past kCrushedSubCell times its
+                        // count at rest (fluid_state.h) is read only that
+                        // far: the rest count as overflows. Without the bound
+                        // a fluid squeezed into a point makes every particle
+                        // every other's neighbour, and a step costs seconds
+                        // (docs/fuzzing.md: a jet of 16,777,217 particles/s,
+                        // a tank of zero width).
+                        const std::uint32_t first = g.keyStart[k];
+                        const std::uint32_t last = std::min(g.keyStart[k + 1], first + f.subCellReadLimit);
+                        s.overflows += g.keyStart[k + 1] - last;
+                        gatherNear<D>(p, xi, i, h2, first, last, near, nearCount);
                     }
                 }
             }

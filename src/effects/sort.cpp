@@ -33,8 +33,6 @@
 // apart they would need a header of internals for a single caller.
 #include "effects/sort.h"
 
-#include "core/parallel.h"
-
 #include <spindrift/effects.h>
 #include <spindrift/world.h>
 
@@ -88,17 +86,12 @@ void forBlocks(const Partition& part, Fn&& fn) {
     if (part.blocks == 1) {
         fn(std::size_t{0}, std::size_t{0}, part.n);
     } else if (part.blocks > 1) {
-        LoopEdges edges;  // core/parallel.h: TBB's ordering, told to ThreadSanitizer
-        edges.beforeLoop();
         tbb::parallel_for(tbb::blocked_range<std::size_t>(0, part.blocks, 1),
                           [&](const tbb::blocked_range<std::size_t>& r) {
-                              edges.chunkBegins();
                               for (std::size_t b = r.begin(); b != r.end(); ++b) {
                                   fn(b, part.begin(b), part.end(b));
                               }
-                              edges.chunkEnds();
                           });
-        edges.afterLoop();
     }
 }
 

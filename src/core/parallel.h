@@ -11,6 +11,10 @@
 #include <cstddef>
 #include <memory>
 
+#if defined(__SANITIZE_THREAD__)
+#include "core/plain_threads.h"
+#endif
+
 namespace spindrift {
 
 class WorkerPool {
@@ -18,7 +22,12 @@ public:
     /// threads == 0: all hardware threads.
     explicit WorkerPool(unsigned threads)
         : arena_(std::make_unique<tbb::task_arena>(threads == 0 ? tbb::task_arena::automatic
-                                                                : static_cast<int>(threads))) {}
+                                                                : static_cast<int>(threads)))
+#if defined(__SANITIZE_THREAD__)
+        , plain_(std::make_unique<PlainThreads>(static_cast<unsigned>(arena_->max_concurrency())))
+#endif
+    {
+    }
     int concurrency() const { return arena_->max_concurrency(); }
 
     /// Calls fn(chunk, begin, end) for every chunk [begin, end) of `grain` items.
@@ -28,17 +37,23 @@ public:
         if (chunks == 0) {
             return;
         }
+        auto chunk = [&](std::size_t c) {
+            std::size_t begin = c * grain;
+            std::size_t end = begin + grain < count ? begin + grain : count;
+            fn(c, begin, end);
+        };
+#if defined(__SANITIZE_THREAD__)
+        // ThreadSanitizer cannot see oneTBB's synchronisation (plain_threads.h).
+        plain_->run(chunks, chunk);
+#else
         arena_->execute([&] {
             tbb::parallel_for(tbb::blocked_range<std::size_t>(0, chunks, 1),
                               [&](const tbb::blocked_range<std::size_t>& r) {
-                                  for (std::size_t c = r.begin(); c != r.end(); ++c) {
-                                      std::size_t begin = c * grain;
-                                      std::size_t end = begin + grain < count ? begin + grain : count;
-                                      fn(c, begin, end);
-                                  }
+                                  for (std::size_t c = r.begin(); c != r.end(); ++c) chunk(c);
                               },
                               tbb::simple_partitioner());
         });
+#endif
     }
 
     static std::size_t chunkCount(std::size_t count, std::size_t grain) {
@@ -47,6 +62,9 @@ public:
 
 private:
     std::unique_ptr<tbb::task_arena> arena_;
+#if defined(__SANITIZE_THREAD__)
+    std::unique_ptr<PlainThreads> plain_;
+#endif
 };
 
 }  // namespace spindrift

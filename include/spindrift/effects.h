@@ -43,6 +43,10 @@ enum class Lifecycle : std::uint32_t {
     Spawn = 1,    ///< rate + bursts, dead slots go to a free list
 };
 
+/// How a particle's motion is stepped. Every integrator solves linear drag
+/// (ForceKind::Wind and ForceKind::FlowField) exactly over the step: the
+/// velocity relaxes toward the medium's by exp(-k dt / m), stable for any k,
+/// mass and dt (docs/scene-format.md, "Integrators").
 enum class Integrator : std::uint32_t {
     ExplicitEuler = 0,      ///< x += v dt; v += a dt (both from the old state)
     SemiImplicitEuler = 1,  ///< v += a dt; x += v dt (symplectic)

@@ -167,6 +167,13 @@ struct EmitterDef {
 
     Curve colorOverLife;  ///< multiplies the start colour
     Curve sizeOverLife;   ///< multiplies the start size (uses .x)
+    /// Colour and size by speed: curves over the particle's speed |v| mapped
+    /// onto [0, 1] by `overSpeedRange` (t = 0 at or below min, 1 at or above
+    /// max; with min = max a step at that speed). They multiply the start
+    /// values together with the over-life curves.
+    FloatRange overSpeedRange{0.0f, 1.0f};  ///< m/s, 0 <= min <= max
+    Curve colorOverSpeed;  ///< multiplies the colour (after colorOverLife)
+    Curve sizeOverSpeed;   ///< multiplies the size (after sizeOverLife; uses .x)
 
     Integrator integrator = Integrator::SemiImplicitEuler;
     /// Forces acting on this emitter; empty means every force in the world.

@@ -59,9 +59,9 @@ SD_FN vec3 vortexForce(SD_IN(ForceParams) f, vec3 p) {
 
 // Linear drag toward a medium's velocity: F = k (u - v). Wind uses a user
 // coefficient k (kg/s); a flow field uses Stokes' law for a sphere,
-// k = 6 pi eta r (GPU particle talk, flow fields). It is not a force of
-// accelerationAt: the integrators solve it exactly over the step
-// (integrate.glsl), so every drag term of a particle is summed here first.
+// k = 6 pi eta r (GPU particle talk, flow fields). It is not part of
+// forcingAt's acceleration: the integrators solve it exactly over the step
+// (integrate.glsl), so forcingAt first sums every drag term of a particle.
 // Several drags F_i = k_i (u_i - v) are one drag k (u - v) with k = sum k_i and
 // u = sum k_i u_i / sum k_i (the k-weighted medium velocity).
 struct DragSum {

@@ -43,6 +43,10 @@ enum class Lifecycle : std::uint32_t {
     Spawn = 1,    ///< rate + bursts, dead slots go to a free list
 };
 
+/// How a particle's motion is stepped. Every integrator solves linear drag
+/// (ForceKind::Wind and ForceKind::FlowField) exactly over the step: the
+/// velocity relaxes toward the medium's by exp(-k dt / m), stable for any k,
+/// mass and dt (docs/scene-format.md, "Integrators").
 enum class Integrator : std::uint32_t {
     ExplicitEuler = 0,      ///< x += v dt; v += a dt (both from the old state)
     SemiImplicitEuler = 1,  ///< v += a dt; x += v dt (symplectic)
@@ -163,6 +167,13 @@ struct EmitterDef {
 
     Curve colorOverLife;  ///< multiplies the start colour
     Curve sizeOverLife;   ///< multiplies the start size (uses .x)
+    /// Colour and size by speed: curves over the particle's speed |v| mapped
+    /// onto [0, 1] by `overSpeedRange` (t = 0 at or below min, 1 at or above
+    /// max; with min = max a step at that speed). They multiply the start
+    /// values together with the over-life curves.
+    FloatRange overSpeedRange{0.0f, 1.0f};  ///< m/s, 0 <= min <= max
+    Curve colorOverSpeed;  ///< multiplies the colour (after colorOverLife)
+    Curve sizeOverSpeed;   ///< multiplies the size (after sizeOverLife; uses .x)
 
     Integrator integrator = Integrator::SemiImplicitEuler;
     /// Forces acting on this emitter; empty means every force in the world.

@@ -122,6 +122,10 @@ bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::Emitt
     if (e.integrator == SD_INTEGRATE_VERLET || e.integrator == SD_INTEGRATE_RK4) {
         return false;
     }
+    // Colour and size by speed have no lane loop: the scalar kernel's.
+    if (e.colorOverSpeed.count != 0u || e.sizeOverSpeed.count != 0u) {
+        return false;
+    }
     for (uint i = 0u; i < ctx.forceTotal; ++i) {
         // The kinds the lane loops know; a new kind runs the scalar kernel
         // until it has its lane loop.

@@ -41,8 +41,8 @@ UpdateTarget updateTarget();
 std::string_view updateTargetName(UpdateTarget target);
 
 /// Whether the vector update can take emitter e's slots this step: Euler
-/// integrators, no flow fields, only plane colliders (anything else runs the
-/// scalar kernel, as before).
+/// integrators, no flow fields, only plane colliders, no over-speed curves
+/// (anything else runs the scalar kernel, as before).
 bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::EmitterParams& e);
 
 /// Updates the slots first .. first + kBatchLanes - 1 that take the common case

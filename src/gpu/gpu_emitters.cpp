@@ -239,6 +239,7 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterP
         kernels::Particle q{};
         q.age = p.age[i];
         q.birth = p.birth[i];
+        q.velocity = p.velocity[i];  // the over-speed curves read it
         q = kernels::restoreDerived(params, q);
         p.lifetime[i] = q.lifetime;
         p.angularVelocity[i] = q.angularVelocity;

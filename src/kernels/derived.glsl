@@ -6,24 +6,50 @@
 #include "spawn.glsl"
 SD_BEGIN
 
-// Colour and size over life: start values (re-derived from the key) times the
-// curves at normalised age.
+// The over-speed curves' t for velocity v: the speed mapped from
+// [overSpeedMin, overSpeedMax] (m/s) onto [0, 1], clamped; with min = max a
+// step from 0 to 1 at that speed.
+SD_FN float overSpeedT(SD_IN(EmitterParams) e, vec3 v) {
+    float s = length(v);
+    float range = e.overSpeedMax - e.overSpeedMin;
+    if (range > 0.0f) {
+        return clamp((s - e.overSpeedMin) / range, 0.0f, 1.0f);
+    }
+    return s >= e.overSpeedMax ? 1.0f : 0.0f;
+}
+
+// Colour and size by speed: p's colour and size times the over-speed curves
+// at its velocity (none: p unchanged).
+SD_FN Particle applyOverSpeed(SD_IN(EmitterParams) e, Particle p) {
+    if (e.colorOverSpeed.count == 0u && e.sizeOverSpeed.count == 0u) {
+        return p;
+    }
+    float t = overSpeedT(e, p.velocity);
+    p.color = p.color * evaluateCurve(e.colorOverSpeed, t);
+    p.size = p.size * evaluateCurve(e.sizeOverSpeed, t).x;
+    return p;
+}
+
+// Colour and size over life and by speed: start values (re-derived from the
+// key) times the curves at normalised age, then times the curves at the
+// current speed.
 SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
-    if (e.colorOverLife.count == 0u && e.sizeOverLife.count == 0u) {
+    if (e.colorOverLife.count == 0u && e.sizeOverLife.count == 0u && e.colorOverSpeed.count == 0u &&
+        e.sizeOverSpeed.count == 0u) {
         return p;
     }
     uint key = particleKey(e.keyBase, p.birth);
     float t = clamp(p.age / p.lifetime, 0.0f, 1.0f);
     p.color = startColor(e, key) * evaluateCurve(e.colorOverLife, t);
     p.size = startSize(e, key) * evaluateCurve(e.sizeOverLife, t).x;
-    return p;
+    return applyOverSpeed(e, p);
 }
 
 // What a slot need not store: lifetime, angular velocity, colour and size are
-// pure functions of the emitter, the birth serial's key and the age (nothing
-// changes them after birth but the curves, which read the age), so a backend
-// that keeps only position, velocity, age, rotation and birth restores them
-// here. The values equal those the update computed when it stored the age,
+// pure functions of the emitter, the birth serial's key, the age and the
+// velocity (nothing changes them after birth but the curves, which read the
+// age and the speed), so a backend that keeps only position, velocity, age,
+// rotation and birth restores them here. The values equal those the update computed when it stored the age,
 // bit for bit: the same expressions of the same inputs.
 SD_FN Particle restoreDerived(SD_IN(EmitterParams) e, Particle p) {
     uint key = particleKey(e.keyBase, p.birth);

@@ -57,11 +57,42 @@ SD_FN vec3 vortexForce(SD_IN(ForceParams) f, vec3 p) {
     return cross(axis, radial) * (falloffMagnitude(f, d) / d);
 }
 
-// Linear drag toward a medium's velocity: F = k (v_medium - v). Wind uses a
-// user coefficient k (kg/s); a flow field uses Stokes' law for a sphere,
-// k = 6 pi eta r (GPU particle talk, flow fields).
-SD_FN vec3 dragForce(float k, vec3 mediumVelocity, vec3 v) {
-    return (mediumVelocity - v) * k;
+// Linear drag toward a medium's velocity: F = k (u - v). Wind uses a user
+// coefficient k (kg/s); a flow field uses Stokes' law for a sphere,
+// k = 6 pi eta r (GPU particle talk, flow fields). It is not part of
+// forcingAt's acceleration: the integrators solve it exactly over the step
+// (integrate.glsl), so forcingAt first sums every drag term of a particle.
+// Several drags F_i = k_i (u_i - v) are one drag k (u - v) with k = sum k_i and
+// u = sum k_i u_i / sum k_i (the k-weighted medium velocity).
+struct DragSum {
+    vec3 momentum;      // sum k_i u_i (N)
+    float coefficient;  // sum k_i (kg/s)
+};
+
+SD_FN DragSum noDrag() {
+    DragSum d;
+    d.momentum = vec3(0.0f);
+    d.coefficient = 0.0f;
+    return d;
+}
+
+SD_FN DragSum addDrag(DragSum d, float k, vec3 mediumVelocity) {
+    d.momentum = d.momentum + mediumVelocity * k;
+    d.coefficient = d.coefficient + k;
+    return d;
+}
+
+// The summed drag of a particle of mass m as dv/dt = rate (medium - v).
+struct LinearDrag {
+    vec3 medium;  // m/s; 0 when there is no drag
+    float rate;   // k / m (1/s)
+};
+
+SD_FN LinearDrag linearDrag(DragSum d, float mass) {
+    LinearDrag l;
+    l.medium = d.coefficient > 0.0f ? d.momentum / d.coefficient : vec3(0.0f);
+    l.rate = d.coefficient / mass;
+    return l;
 }
 
 SD_FN float stokesCoefficient(float viscosity, float radius) {

@@ -3,8 +3,7 @@
 // it is needed; nothing is stored. No hooks needed.
 #ifndef SPINDRIFT_KERNELS_STATELESS
 #define SPINDRIFT_KERNELS_STATELESS
-#include "curves.glsl"
-#include "spawn.glsl"
+#include "derived.glsl"
 SD_BEGIN
 
 // Serials of burst particles live above the rate's: burst b, particle j has
@@ -23,6 +22,7 @@ SD_FN Particle evaluateStatelessParticle(SD_IN(EmitterParams) e, uint serial, fl
     float t = clamp(age / p.lifetime, 0.0f, 1.0f);
     p.color = p.color * evaluateCurve(e.colorOverLife, t);
     p.size = p.size * evaluateCurve(e.sizeOverLife, t).x;
+    p = applyOverSpeed(e, p);
     p.alive = age < p.lifetime ? 1u : 0u;
     return p;
 }

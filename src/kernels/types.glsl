@@ -41,7 +41,7 @@ SD_CONST uint SD_INTEGRATE_VERLET = 2u;
 SD_CONST uint SD_INTEGRATE_RK4 = 3u;
 
 // Everything the update and spawn kernels need to know about one emitter.
-// 528 bytes.
+// 896 bytes.
 struct EmitterParams {
     vec4 shapeCenter;       // xyz (m), w: shape radius (m)
     vec4 shapeHalfExtents;  // xyz (m), w: spread half-angle (rad)
@@ -56,6 +56,9 @@ struct EmitterParams {
     uint emitterIndex, capacity, forceMask, colliderMask;
     CurveParams colorOverLife;
     CurveParams sizeOverLife;
+    float overSpeedMin, overSpeedMax, pad0, pad1;  // m/s: speeds at t = 0 and 1 of the over-speed curves
+    CurveParams colorOverSpeed;
+    CurveParams sizeOverSpeed;
 };
 
 SD_CONST uint SD_FORCE_GRAVITY = 0u;
@@ -129,12 +132,15 @@ static_assert(sizeof(CurveParams) == 176);
 static_assert(offsetof(CurveParams, times) == 128);
 static_assert(offsetof(CurveParams, count) == 160);
 
-static_assert(sizeof(EmitterParams) == 528);
+static_assert(sizeof(EmitterParams) == 896);
 static_assert(offsetof(EmitterParams, speedMin) == 96);
 static_assert(offsetof(EmitterParams, shapeKind) == 144);
 static_assert(offsetof(EmitterParams, emitterIndex) == 160);
 static_assert(offsetof(EmitterParams, colorOverLife) == 176);
 static_assert(offsetof(EmitterParams, sizeOverLife) == 352);
+static_assert(offsetof(EmitterParams, overSpeedMin) == 528);
+static_assert(offsetof(EmitterParams, colorOverSpeed) == 544);
+static_assert(offsetof(EmitterParams, sizeOverSpeed) == 720);
 
 static_assert(sizeof(ForceParams) == 112);
 static_assert(offsetof(ForceParams, kind) == 80);

@@ -46,10 +46,13 @@ inline constexpr FieldRule kBurstCount = FieldRule::whole(Bounds::between(0, kEm
 /// additive light), and an opacity in [0, 1].
 inline constexpr FieldRule kColorChannel = FieldRule::number(Bounds::nonNegative());
 inline constexpr FieldRule kColorAlpha = FieldRule::number(Bounds::unit());
-/// A curve key's time: the particle's normalised age.
+/// A curve key's time: the particle's normalised age (over-life curves) or
+/// speed (over-speed curves).
 inline constexpr FieldRule kCurveTime = FieldRule::number(Bounds::unit());
 /// A curve key's value: a colour curve's factor per channel (alpha included)
 /// or a size curve's factor.
 inline constexpr FieldRule kCurveFactor = FieldRule::number(Bounds::nonNegative());
+/// m/s, each end of the speeds the over-speed curves span.
+inline constexpr FieldRule kOverSpeed = FieldRule::number(Bounds::nonNegative());
 
 }  // namespace spindrift::emitter_rules

@@ -117,6 +117,9 @@ void validateEmitterDef(const EmitterDef& d) {
     checkColorRange(check, d.color);
     checkCurve(check, "color_over_life", d.colorOverLife, 4);
     checkCurve(check, "size_over_life", d.sizeOverLife, 1);
+    check.range("over_speed_range", d.overSpeedRange, rules::kOverSpeed);
+    checkCurve(check, "color_over_speed", d.colorOverSpeed, 4);
+    checkCurve(check, "size_over_speed", d.sizeOverSpeed, 1);
     sprite_rules::validateSpriteDef(check, d.sprite);
 }
 
@@ -156,6 +159,10 @@ kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed
     e.colliderMask = colliderMask;
     e.colorOverLife = makeCurveParams(d.colorOverLife);
     e.sizeOverLife = makeCurveParams(d.sizeOverLife);
+    e.overSpeedMin = d.overSpeedRange.min;
+    e.overSpeedMax = d.overSpeedRange.max;
+    e.colorOverSpeed = makeCurveParams(d.colorOverSpeed);
+    e.sizeOverSpeed = makeCurveParams(d.sizeOverSpeed);
     return e;
 }
 

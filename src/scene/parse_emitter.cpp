@@ -32,7 +32,8 @@ const std::vector<std::string_view> kEmitterKeys = {
     "color",          "mass",       "color_over_life",
     "size_over_life", "integrator", "forces",
     "collision",      "stateless",  "stateless_gravity",
-    "sprite"};
+    "sprite",         "over_speed_range", "color_over_speed",
+    "size_over_speed"};
 
 FloatRange toRadians(FloatRange degrees) {
     return {degrees.min * kRadiansPerDegree, degrees.max * kRadiansPerDegree};
@@ -124,7 +125,7 @@ Curve readCurve(const Value& v, bool colorValues) {
         const Table t(key.context(), *key.node().as_table(), key.path());
         t.allowOnly({"t", "value"}, "a curve key");
         CurveKey k;
-        k.t = t.require("t", "a number in [0, 1] (normalised age)").real(emitter_rules::kCurveTime);
+        k.t = t.require("t", "a number in [0, 1] (normalised age or speed)").real(emitter_rules::kCurveTime);
         const Value value =
             t.require("value", colorValues ? "a colour factor [r, g, b, a]" : "a size factor >= 0");
         k.value = colorValues ? readColor(value, emitter_rules::kCurveFactor, emitter_rules::kCurveFactor)
@@ -204,6 +205,13 @@ void readParticleRanges(const Table& t, EmitterDef& def) {
     }
     if (auto v = t.find("size_over_life")) {
         def.sizeOverLife = readCurve(*v, false);
+    }
+    def.overSpeedRange = t.range("over_speed_range", def.overSpeedRange, emitter_rules::kOverSpeed);
+    if (auto v = t.find("color_over_speed")) {
+        def.colorOverSpeed = readCurve(*v, true);
+    }
+    if (auto v = t.find("size_over_speed")) {
+        def.sizeOverSpeed = readCurve(*v, false);
     }
 }
 

@@ -3,6 +3,7 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace spindrift {
@@ -47,6 +48,37 @@ TEST(Stateless, ParticlesFollowTheClosedForm) {
         }
     }
     EXPECT_GT(matched, 0);
+}
+
+// Colour and size by speed on a stateless emitter: its speed changes along
+// the arc (|v0 + g a|), and each particle's colour and size are the start
+// values times the curve at its own speed. One colour and one size for every
+// particle, no over-life curves: colour = (2, 2, 2, 1) * mix(1, 0, t) and size
+// 0.1 * (1 + t) with t = clamp((|v| - 1) / 5, 0, 1) from the snapshot's own
+// velocity. Float rounding of a few operations: 1e-5.
+TEST(Stateless, ColourAndSizeFollowTheSpeed) {
+    EmitterDef e = sparks();
+    e.color = {glm::vec4(2.0f, 2.0f, 2.0f, 1.0f), glm::vec4(2.0f, 2.0f, 2.0f, 1.0f)};
+    e.size = {0.1f, 0.1f};
+    e.overSpeedRange = {1.0f, 6.0f};
+    e.colorOverSpeed.keys = {{0.0f, glm::vec4(1.0f)}, {1.0f, glm::vec4(0.0f)}};
+    e.sizeOverSpeed.keys = {{0.0f, glm::vec4(1.0f)}, {1.0f, glm::vec4(2.0f)}};
+    ParticleSnapshot s = evaluateStateless(e, 3, 0, 0.6f);
+    ASSERT_GT(s.count(), 10u);
+    float slowest = 1e9f, fastest = 0.0f;
+    for (std::size_t i = 0; i < s.count(); ++i) {
+        const float speed = glm::length(s.velocity[i]);
+        slowest = std::min(slowest, speed);
+        fastest = std::max(fastest, speed);
+        const float t = std::clamp((speed - 1.0f) / 5.0f, 0.0f, 1.0f);
+        EXPECT_NEAR(s.color[i].x, 2.0f * (1.0f - t), 1e-5f) << i;
+        EXPECT_NEAR(s.color[i].w, 1.0f - t, 1e-5f) << i;
+        EXPECT_NEAR(s.size[i], 0.1f * (1.0f + t), 1e-5f) << i;
+    }
+    // Not vacuous: the speeds span the range (launch 2 to 6 m/s, slowed and
+    // sped up by gravity over up to 0.6 s).
+    EXPECT_LT(slowest, 3.0f);
+    EXPECT_GT(fastest, 4.0f);
 }
 
 // How many are alive: the rate's particles born within their lifetime before

@@ -212,6 +212,31 @@ TEST(OneValidationPath, EmitterColoursCurvesAndStretchReadTheSame) {
     EXPECT_EQ(scene.keyPath(), "emitter[0].sprite.stretch");
 }
 
+// Colour and size by speed: the speed range and both curves are checked by
+// the rule table once, the same from the API and from a file.
+TEST(OneValidationPath, EmitterOverSpeedRangeAndCurvesReadTheSame) {
+    EmitterDef def = emitterDef();
+    def.overSpeedRange = {2.0f, 2.0f};
+    expectAccepted(def, "over_speed_range = [2, 2]");  // a step at 2 m/s
+    def.overSpeedRange = {-1.0f, 2.0f};
+    const FieldError negative = expectSameError(def, "over_speed_range = [-1, 2]", 21, "emitter[0].over_speed_range[0]");
+    EXPECT_EQ(negative.message(), "expected a number >= 0, got -1");
+    def.overSpeedRange = {3.0f, 1.0f};
+    const FieldError order = expectSameError(def, "over_speed_range = [3, 1]", 20, "emitter[0].over_speed_range");
+    EXPECT_EQ(order.field(), "over_speed_range");
+
+    def = emitterDef();
+    def.colorOverSpeed.keys = {{0.0f, glm::vec4(1.0f, -1.0f, 1.0f, 1.0f)}};
+    expectSameError(def, "color_over_speed = [{t = 0, value = [1, -1, 1, 1]}]", 37,
+                    "emitter[0].color_over_speed[0].value");
+
+    def = emitterDef();
+    def.sizeOverSpeed.keys = {{0.5f, glm::vec4(1.0f)}, {0.25f, glm::vec4(2.0f)}};
+    const FieldError keys = expectSameError(def, "size_over_speed = [{t = 0.5, value = 1}, {t = 0.25, value = 2}]",
+                                            47, "emitter[0].size_over_speed[1].t");
+    EXPECT_EQ(keys.field(), "size_over_speed[1].t");
+}
+
 TEST(OneValidationPath, EmitterRateMayBeZeroButNotNegative) {
     EmitterDef def = emitterDef();
     def.rate = 0.0f;

@@ -82,7 +82,7 @@ layout(set = SD_SET_FIELDS, binding = SD_BINDING_CUBE_MAPS) uniform samplerCube 
 // two reasons. lavapipe (Mesa 22.3) lacks shaderSampledImageArrayDynamicIndexing,
 // so a sampler array may only be indexed by constants: the hooks below switch
 // over literal indices. And llvmpipe compiles every inlined sample site of the
-// kernels at pipeline creation (RK4's four accelerationAt, the sampled-collider
+// kernels at pipeline creation (RK4's four forcingAt, the sampled-collider
 // march, bisection and normals): with all 8 elements of all 3 arrays live that
 // took minutes per pipeline. The constants let the driver drop the elements a
 // world does not use and the integrators an emitter does not run.

@@ -1,6 +1,7 @@
 // Every bundled effects scene on both backends: 100 steps of the same scene file on the
 // CPU backend and on Vulkan (lavapipe here), particles matched by birth serial.
 #include "gpu_test_util.h"
+#include "scene_run.h"
 
 #include <spindrift/scene.h>
 
@@ -17,34 +18,8 @@ namespace {
 
 using test::GpuTest;
 
-struct SceneRun {
-    std::vector<StepStats> steps;
-    std::vector<ParticleSnapshot> snapshots;  // every emitter's, stateless ones evaluated
-    double seconds = 0.0;                     // wall time, world creation included
-};
-
-SceneRun runScene(SceneDef scene, Backend backend, int steps) {
-    scene.world.backend = backend;
-    scene.world.threads = 1;
-    scene.world.framesInFlight = 1;  // each StepStats counts its own step
-    auto start = std::chrono::steady_clock::now();
-    WorldId w = buildWorld(scene);
-    SceneRun r;
-    try {
-        for (int s = 0; s < steps; ++s) {
-            r.steps.push_back(stepWorld(w, scene.run.dt));
-        }
-        for (std::uint32_t e = 0; e < emitterCount(w); ++e) {
-            r.snapshots.push_back(readParticles(w, EmitterId{e + 1}));
-        }
-    } catch (...) {
-        destroyWorld(w);
-        throw;
-    }
-    destroyWorld(w);
-    r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    return r;
-}
+using test::SceneRun;
+using test::runScene;
 
 // How far apart the two backends' copies of each particle are.
 struct Divergence {

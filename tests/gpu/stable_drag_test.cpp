@@ -7,6 +7,7 @@
 // launch velocity and the terminal velocity T = u + g m / k, which it reaches
 // within a few time constants (1 / K = 3.3 ms).
 #include "gpu_test_util.h"
+#include "scene_run.h"
 
 #include <spindrift/scene.h>
 
@@ -19,32 +20,6 @@ namespace spindrift {
 namespace {
 
 using test::GpuTest;
-
-struct GaleRun {
-    std::vector<StepStats> steps;
-    std::vector<ParticleSnapshot> snapshots;
-};
-
-GaleRun runGale(SceneDef scene, Backend backend, int steps) {
-    scene.world.backend = backend;
-    scene.world.threads = 1;
-    scene.world.framesInFlight = 1;
-    WorldId w = buildWorld(scene);
-    GaleRun r;
-    try {
-        for (int s = 0; s < steps; ++s) {
-            r.steps.push_back(stepWorld(w, scene.run.dt));
-        }
-        for (std::uint32_t e = 0; e < emitterCount(w); ++e) {
-            r.snapshots.push_back(readParticles(w, EmitterId{e + 1}));
-        }
-    } catch (...) {
-        destroyWorld(w);
-        throw;
-    }
-    destroyWorld(w);
-    return r;
-}
 
 class GaleScene : public GpuTest, public ::testing::WithParamInterface<Integrator> {};
 
@@ -69,8 +44,8 @@ TEST_P(GaleScene, LightParticlesRelaxToTheWindOnBothBackends) {
         e.integrator = GetParam();
     }
     const int steps = 60;  // 1 s: every ember lives longer, so all are alive and relaxed
-    GaleRun cpu = runGale(scene, Backend::Cpu, steps);
-    GaleRun gpu = runGale(scene, Backend::Vulkan, steps);
+    test::SceneRun cpu = test::runScene(scene, Backend::Cpu, steps);
+    test::SceneRun gpu = test::runScene(scene, Backend::Vulkan, steps);
     for (int s = 0; s < steps; ++s) {
         EXPECT_EQ(cpu.steps[s].nonFinite, 0u) << "step " << s;
         EXPECT_EQ(gpu.steps[s].nonFinite, 0u) << "step " << s;

@@ -7,6 +7,8 @@
 
 #include "fluid/fluid_state.h"
 
+#include <spindrift/bodies.h>
+
 #include <span>
 
 namespace spindrift::fluid {
@@ -34,10 +36,18 @@ FluidView<D> viewFluid(const FluidState& f);
 
 /// True when the straight path x0 -> x1 of a point meets one of the fluid's
 /// obstacles: a plane, sphere or box among the world's `colliders` (the
-/// solver's own path tests from src/kernels/collide.glsl), or one of the
-/// fluid's polygons (end point inside, as integratePositions tests them). In
-/// 2D pass z = 0.
-bool pathMeetsObstacle(std::span<const kernels::ColliderParams> colliders, const FluidState& f, glm::vec3 x0,
-                       glm::vec3 x1);
+/// solver's own path tests from src/kernels/collide.glsl), one of the
+/// fluid's polygons (end point inside, as integratePositions tests them), or,
+/// for a 2D fluid, a shape of one of the `bodies` at its pose now
+/// (pathMeetsBodyShape). In 2D pass z = 0.
+bool pathMeetsObstacle(std::span<const kernels::ColliderParams> colliders, const FluidState& f,
+                       std::span<const BodySnapshot> bodies, glm::vec3 x0, glm::vec3 x1);
+
+/// True when the path x0 -> x1 (m, the body plane) meets a body shape: it
+/// crosses one of its segments (a polygon's sides, an edge, a chain's links),
+/// ends inside a polygon, or comes within a circle's radius of its centre.
+/// Crossing, not only ending inside, so a fast point cannot pass through a
+/// thin shape between two frames.
+bool pathMeetsBodyShape(const BodyShapeView& shape, glm::vec2 x0, glm::vec2 x1);
 
 }  // namespace spindrift::fluid

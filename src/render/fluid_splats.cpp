@@ -140,6 +140,7 @@ struct FrameContext {
     float radius;       // m, rule 1's splat radius
     glm::vec3 gravity;  // m/s^2 (2D: z = 0)
     glm::vec3 up;
+    std::vector<BodySnapshot> bodies;  // at their poses now (2D fluids only: splashes stop at them)
 };
 
 SplatOrientation& orientationOf(FluidSplatState& state, std::uint32_t id) {
@@ -196,7 +197,7 @@ void advanceSplashes(FluidSplatState& state, const FrameContext& c) {
         const glm::vec3 x0 = splashPosition(s, c.gravity, s.age);
         s.age += c.dt;
         const glm::vec3 x1 = splashPosition(s, c.gravity, s.age);
-        return s.age > kSplashMaxAge || fluid::pathMeetsObstacle(c.world->colliders, *c.fluid, x0, x1);
+        return s.age > kSplashMaxAge || fluid::pathMeetsObstacle(c.world->colliders, *c.fluid, c.bodies, x0, x1);
     });
 }
 
@@ -279,8 +280,9 @@ void updateFluidSplats(FluidSplatState& state, WorldId worldId, FluidId fluidId,
     const fluid::FluidState& f = fluidStateFromId(world, fluidId);
     const std::uint32_t dimension = f.def.dimension;
     const glm::vec3 gravity = flatIf2D(f.def.gravity, dimension);
-    const FrameContext c{&world, &f, &settings, std::max(dt, 0.0f),
-                         settings.radiusScale * f.def.spacing * kRadiusPerSpacing, gravity, upOf(gravity)};
+    FrameContext c{&world, &f, &settings, std::max(dt, 0.0f),
+                   settings.radiusScale * f.def.spacing * kRadiusPerSpacing, gravity, upOf(gravity), {}};
+    if (dimension == 2 && settings.splashes && dt > 0.0f) c.bodies = readBodies(worldId);
     if (dimension == 2) update<2>(state, c, out); else update<3>(state, c, out);
 }
 

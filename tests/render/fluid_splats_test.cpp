@@ -3,6 +3,7 @@
 #include "render/fluid_splats.h"
 
 #include "fluid/fluid_test_util.h"
+#include "fluid/fluid_view.h"
 
 #include <spindrift/fluid.h>
 
@@ -320,6 +321,55 @@ TEST(FluidSplats, SplashRemovedAtFluidPolygon) {
     }
     render::updateFluidSplats(state, world.id, fluid, FluidRenderDef::upTo(6), kDt, out);
     EXPECT_TRUE(out.empty());
+}
+
+// Rule 6 and issue 15: bodies stop splashes as colliders do, at their pose
+// now. The same flight as above (y(t) = 1 + 2t - 4.905t^2, x(t) = t: y = 0 at
+// t = 0.6993 s, between frames 41 and 42) over each body shape whose top is y
+// = 0 under x = 0.699 m: alive at frame 41, gone at 42. The edge is thin (no
+// inside), so only the crossing test can stop the splash there.
+TEST(FluidSplats, SplashRemovedAtBodies) {
+    const std::vector<BodyShapeDef> grounds = {
+        boxShape({2.0f, 1.0f}, {0.0f, -1.0f}),
+        circleShape(10.0f, {0.699f, -10.0f}),
+        polygonShape({{-2.0f, -1.0f}, {2.0f, -1.0f}, {2.0f, 0.0f}, {-2.0f, 0.0f}}),
+        edgeShape({-2.0f, 0.0f}, {2.0f, 0.0f}),
+        chainShape({{-2.0f, 0.0f}, {2.0f, 0.0f}, {2.0f, -1.0f}}, false),
+    };
+    for (std::size_t k = 0; k < grounds.size(); ++k) {
+        test::FluidWorld world;
+        BodyDef ground;
+        ground.type = BodyType::Static;
+        ground.shapes = {grounds[k]};
+        createBody(world.id, ground);
+        FluidDef def;
+        def.spacing = kSpacing;
+        const FluidId fluid = createFluid(world.id, def);
+        FluidSplatState state;
+        state.splashes.push_back(render::Splash{{0.0f, 1.0f, 0.0f}, {1.0f, 2.0f, 0.0f}, 0.0f});
+        std::vector<SplatInstance> out;
+        for (int frame = 1; frame <= 41; ++frame) {
+            render::updateFluidSplats(state, world.id, fluid, FluidRenderDef::upTo(6), kDt, out);
+            ASSERT_EQ(out.size(), 1u) << "shape " << k << ", frame " << frame;
+        }
+        render::updateFluidSplats(state, world.id, fluid, FluidRenderDef::upTo(6), kDt, out);
+        EXPECT_TRUE(out.empty()) << "shape " << k;
+    }
+}
+
+// A splash flying over a body's corner without touching it lives on, and one
+// whose frame's chord clips the corner is removed though both of its ends
+// are outside: the chord is tested, not only where it ends.
+TEST(FluidSplats, SplashChordAgainstABodyCorner) {
+    const BodyShapeView square{BodyShapeView::Kind::Polygon, {}, 0.0f,
+                               {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}}, false};
+    // The line x + y = 2.1 passes 0.07 m outside the corner (1, 1); x + y = 1.9 cuts it.
+    EXPECT_FALSE(fluid::pathMeetsBodyShape(square, {0.6f, 1.5f}, {1.5f, 0.6f}));
+    EXPECT_TRUE(fluid::pathMeetsBodyShape(square, {0.6f, 1.3f}, {1.3f, 0.6f}));
+    EXPECT_TRUE(fluid::pathMeetsBodyShape(square, {0.5f, 0.5f}, {0.6f, 0.6f}));  // inside
+    const BodyShapeView circle{BodyShapeView::Kind::Circle, {0.0f, 0.0f}, 1.0f, {}, false};
+    EXPECT_FALSE(fluid::pathMeetsBodyShape(circle, {-2.0f, 1.1f}, {2.0f, 1.1f}));
+    EXPECT_TRUE(fluid::pathMeetsBodyShape(circle, {-2.0f, 0.9f}, {2.0f, 0.9f}));  // both ends outside
 }
 
 /// A 2D block flung upward whose rest density is ten times what the lattice

@@ -10,6 +10,7 @@
 
 #include <array>
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace spindrift::fluid {
@@ -279,6 +280,12 @@ void validateFluidDef(const FluidDef& def);
 float latticeRestDensity(std::uint32_t dimension, float spacing, float h);
 
 void addBlock(FluidState& f, const FluidBlockDef& block);
+/// Throws FieldError at "block[i].min" when a block of `def` (all of them, or
+/// only block `only`) lays a particle inside one of `colliders` (planes,
+/// spheres and boxes, by the solver's own surface test) or inside one of the
+/// fluid's polygons.
+void checkBlocksClear(const FluidDef& def, std::span<const ColliderDef> colliders,
+                      std::size_t only = static_cast<std::size_t>(-1));
 /// Where a jet's nozzle is this step: the pose and motion of the body it
 /// rides on (identity and at rest for a jet fixed in the world); the recoil
 /// its particles give the body comes back out.

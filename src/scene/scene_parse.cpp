@@ -1,5 +1,6 @@
 // Scene files: the top level (world, camera, run) and the order in which the
 // object arrays are read. See docs/scene-format.md for the format.
+#include "fluid/fluid_state.h"
 #include "render/render_rules.h"
 #include "scene/heightmap_png.h"
 #include "scene/limits.h"
@@ -212,7 +213,8 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     }
     // Fluids after bodies: a jet may ride on a body.
     scene::NameTable fluidNames("fluid");
-    for (const Table& t : scene::tableArray(root, "fluid")) {
+    const std::vector<Table> fluids = scene::tableArray(root, "fluid");
+    for (const Table& t : fluids) {
         scene.fluids.push_back(scene::parseFluid(t, fluidNames, bodyNames));
     }
     scene::NameTable jointNames("joint");
@@ -231,6 +233,10 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
                 colliders[i].fail("a scene with a [[fluid]] may use plane, sphere and box colliders only (fluids do "
                                   "not collide with terrain or cube maps yet)");
             }
+        }
+        // Each block clear of the colliders, as createFluid checks it.
+        for (std::size_t i = 0; i < fluids.size(); ++i) {
+            scene::validateAt(fluids[i], [&] { fluid::checkBlocksClear(scene.fluids[i], scene.colliders); });
         }
     }
     return scene;

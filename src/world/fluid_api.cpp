@@ -62,6 +62,7 @@ FluidId createFluid(WorldId id, const FluidDef& def) {
     // here (the kernels in src/kernels/fluid.glsl are ready for a GPU port).
     fluid::validateFluidDef(def);
     checkColliders(w);
+    fluid::checkBlocksClear(def, w.colliderDefs);
     for (const FluidJetDef& j : def.jets) coupling::checkJetBody(w.bodies.get(), j);
     std::unique_ptr<fluid::FluidState, FluidStateDeleter> f(new fluid::FluidState);
     f->def = def;
@@ -76,6 +77,9 @@ void addFluidBlock(WorldId id, FluidId fluidId, const FluidBlockDef& block) {
     World& w = worldFromId(id);
     fluid::FluidState& f = fluidFromId(w, fluidId);
     fluid::validateBlock(f.def, block, f.def.blocks.size());
+    FluidDef withBlock = f.def;
+    withBlock.blocks.push_back(block);
+    fluid::checkBlocksClear(withBlock, w.colliderDefs, f.def.blocks.size());
     fluid::addBlock(f, block);
     f.def.blocks.push_back(block);
 }

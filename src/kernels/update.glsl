@@ -71,6 +71,27 @@ SD_FN ParticleUpdate removedUpdate(ParticleUpdate r) {
     return r;
 }
 
+// The response to a hit h on collider c of a step that began at velocity v0
+// and ended at m: the velocity at the contact (v0 to m's, at the hit's
+// fraction t) reflected by the collider's rule and the position put on the
+// surface, a skin outside. impact = 1 when the particle approached faster
+// than the rest speed (events, kills, life loss); a particle resting on the
+// ground is pushed out every step but is not hitting it. Shared with the
+// CPU's vector update (batch_update_body.inc).
+struct Contact {
+    Motion motion;
+    uint impact;
+};
+
+SD_FN Contact contactResponse(SD_IN(ColliderParams) c, Hit h, vec3 v0, Motion m) {
+    Contact k;
+    vec3 contactVelocity = mix(v0, m.velocity, h.t);
+    k.motion.velocity = collisionVelocity(c, h.normal, contactVelocity);
+    k.motion.position = h.point + h.normal * SD_COLLISION_SKIN;
+    k.impact = -dot(contactVelocity, h.normal) > c.restSpeed ? 1u : 0u;
+    return k;
+}
+
 // Motion, damping, collisions and spin over dt for a live particle; one whose
 // numbers became non-finite comes back removed (SD_EVENT_NON_FINITE).
 SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float dt) {
@@ -89,13 +110,9 @@ SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterPar
             if (h.hit == 0u) {
                 continue;
             }
-            vec3 contactVelocity = mix(p.velocity, m.velocity, h.t);
-            m.velocity = collisionVelocity(c, h.normal, contactVelocity);
-            m.position = h.point + h.normal * SD_COLLISION_SKIN;
-            // An impact counts (events, kill, life loss) only when the particle
-            // approaches faster than the rest speed: a particle resting on the
-            // ground is pushed out every step but is not hitting it.
-            if (-dot(contactVelocity, h.normal) > c.restSpeed) {
+            Contact k = contactResponse(c, h, p.velocity, m);
+            m = k.motion;
+            if (k.impact != 0u) {
                 r.hitMask = r.hitMask | (1u << i);
             }
         }

@@ -138,13 +138,19 @@ TEST(VectorUpdate, EveryTargetMatchesTheScalarKernel) {
 }
 
 // Not vacuous: a batch of quiet particles (alive, not dying, above the only
-// plane) is taken by the vector update at every target, a batch with one
-// particle through the plane leaves that one lane to the scalar kernel, and
-// the scalar target takes none.
+// plane) is taken by the vector update at every target, and so is a lane
+// resting on the plane (pushed out at 0.01 m/s, under the plane's rest speed
+// of 0.1 m/s: no impact), with the scalar kernel's exact result; a lane
+// striking the plane at 100 m/s (an impact: events, kills) and a lane whose
+// speed squared overflows (the scalar kernel removes it) are left to the
+// scalar kernel; the scalar target takes none.
 TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
     kernels::ColliderParams plane{};
     plane.kind = kernels::SD_COLLIDER_PLANE;
     plane.normal = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
+    plane.restSpeed = 0.1f;
+    plane.resilience = 0.5f;
+    plane.friction = 0.2f;
     const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr};
     kernels::EmitterParams e{};
     e.mass = 1.0f;
@@ -152,23 +158,43 @@ TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
     e.colliderMask = 1u;
     e.integrator = kernels::SD_INTEGRATE_SEMI_IMPLICIT_EULER;
     ASSERT_TRUE(batchUpdateEligible(ctx, e));
+    constexpr std::size_t kStrike = 3, kResting = 5, kOverflow = 6;
+    const float dt = 0.1f;
     for (UpdateTarget target : supportedUpdateTargets()) {
         SCOPED_TRACE(std::string(updateTargetName(target)));
         ParticleArrays a;
         a.resize(kBatchLanes);
         for (std::size_t i = 0; i < kBatchLanes; ++i) {
             a.position[i] = glm::vec3(0.0f, 1.0f, 0.0f);
-            a.velocity[i] = glm::vec3(0.0f, i == 3 ? -100.0f : 0.0f, 0.0f);
+            a.velocity[i] = glm::vec3(0.0f);
             a.age[i] = 0.5f;
             a.lifetime[i] = 2.0f;
         }
+        a.velocity[kStrike] = glm::vec3(0.0f, -100.0f, 0.0f);
+        a.position[kResting] = glm::vec3(0.3f, 0.0005f, 0.0f);
+        a.velocity[kResting] = glm::vec3(0.2f, -0.01f, 0.0f);
+        a.velocity[kOverflow] = glm::vec3(2.0e19f, 0.0f, 0.0f);  // |v|^2 = 4e38 > FLT_MAX
+        kernels::Particle resting{};
+        resting.position = a.position[kResting];
+        resting.velocity = a.velocity[kResting];
+        resting.age = a.age[kResting];
+        resting.lifetime = a.lifetime[kResting];
+        resting.mass = e.mass;
+        resting.alive = 1u;
+        const kernels::ParticleUpdate scalar = kernels::updateParticle(ctx, e, resting, dt);
+        ASSERT_EQ(kernels::eventCountOf(scalar), 0u);  // no impact, as the test needs
+        ASSERT_NE(scalar.particle.position, glm::vec3(0.32f, -0.0005f, 0.0f));  // pushed out
         const std::uint32_t all = (1u << kBatchLanes) - 1u;
-        const std::uint32_t expected = target == UpdateTarget::Scalar ? 0u : all & ~(1u << 3);
-        EXPECT_EQ(updateBatch(target, ctx, e, a, 0, 0.1f), expected);
-        EXPECT_EQ(a.position[3], glm::vec3(0.0f, 1.0f, 0.0f));  // left for the scalar kernel
-        EXPECT_EQ(a.age[3], 0.5f);
+        const std::uint32_t left = (1u << kStrike) | (1u << kOverflow);
+        const std::uint32_t expected = target == UpdateTarget::Scalar ? 0u : all & ~left;
+        EXPECT_EQ(updateBatch(target, ctx, e, a, 0, dt), expected);
+        EXPECT_EQ(a.position[kStrike], glm::vec3(0.0f, 1.0f, 0.0f));  // left for the scalar kernel
+        EXPECT_EQ(a.age[kStrike], 0.5f);
+        EXPECT_EQ(a.velocity[kOverflow].x, 2.0e19f);
         if (target != UpdateTarget::Scalar) {
-            EXPECT_EQ(a.age[0], 0.5f + 0.1f);
+            EXPECT_EQ(a.age[0], 0.5f + dt);
+            EXPECT_EQ(std::memcmp(&a.position[kResting], &scalar.particle.position, sizeof(glm::vec3)), 0);
+            EXPECT_EQ(std::memcmp(&a.velocity[kResting], &scalar.particle.velocity, sizeof(glm::vec3)), 0);
         }
     }
 }

@@ -27,8 +27,6 @@
 
 namespace spindrift {
 
-/// 1-based creation serial of a body in its world; 0 is no body.
-struct BodyId { std::uint32_t index = 0; };
 /// 1-based creation serial of a joint in its world; 0 is no joint.
 struct JointId { std::uint32_t index = 0; };
 /// 1-based creation serial of a grab in its world; 0 is no grab.

@@ -24,6 +24,9 @@ struct EmitterId { std::uint32_t index = 0; };
 struct ForceId { std::uint32_t index = 0; };
 struct ColliderId { std::uint32_t index = 0; };
 struct FlowFieldId { std::uint32_t index = 0; };
+/// 1-based creation serial of a rigid body in its world (spindrift/bodies.h);
+/// 0 is no body.
+struct BodyId { std::uint32_t index = 0; };
 
 /// A uniformly sampled range [min, max].
 struct FloatRange { float min = 0.0f; float max = 0.0f; };
@@ -157,6 +160,17 @@ struct EmitterDef {
     float duration = -1.0f;
 
     SpawnShapeDef shape;
+    /// Rides on a rigid body (0: fixed in the world): `shape.center` and
+    /// `shape.direction` are then in the body's frame (x and y from the
+    /// body's origin, turned with it; z as given) and the emitter follows the
+    /// body's pose every step. Spawn shapes keep their world axes (a box does
+    /// not turn). Not for stateless emitters. A destroyed body leaves the
+    /// emitter where it last was.
+    BodyId body;
+    /// Share in [0, 1] of the body's velocity at `shape.center` (its centre's
+    /// velocity plus the spin's) that every particle is born with, on top of
+    /// its launch velocity.
+    float inheritVelocity = 0.0f;
     FloatRange speed{1.0f, 1.0f};            ///< m/s
     FloatRange lifetime{1.0f, 1.0f};         ///< s, > 0
     FloatRange size{0.1f, 0.1f};             ///< diameter, m

@@ -176,7 +176,9 @@ SPINDRIFT_API StepStats flushWorld(WorldId world);
 SPINDRIFT_API void setEmitterRate(WorldId world, EmitterId emitter, float rate);
 SPINDRIFT_API void setEmitterSpeed(WorldId world, EmitterId emitter, FloatRange speed);
 /// Moves the emitter's spawn shape (its centre, m): where particles are born
-/// from now on, as setEmitterRate.
+/// from now on, as setEmitterRate. For an emitter riding a body
+/// (EmitterDef::body) the centre is in the body's frame and takes effect at
+/// the next step.
 SPINDRIFT_API void setEmitterPosition(WorldId world, EmitterId emitter, glm::vec3 centre);
 
 /// Approach speed (m/s) above which a fluid particle touching a body makes a

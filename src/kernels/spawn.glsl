@@ -129,7 +129,8 @@ SD_FN Particle spawnParticle(SD_IN(EmitterParams) e, uint serial) {
     }
     Particle p;
     p.position = vec3(e.shapeCenter) + offset;
-    p.velocity = direction * randomRange(key, SD_RAND_SPEED, e.speedMin, e.speedMax);
+    p.velocity = direction * randomRange(key, SD_RAND_SPEED, e.speedMin, e.speedMax) +
+                 vec3(e.carriedVelocityX, e.carriedVelocityY, 0.0f);
     p.color = startColor(e, key);
     p.age = 0.0f;
     p.lifetime = randomRange(key, SD_RAND_LIFETIME, e.lifetimeMin, e.lifetimeMax);

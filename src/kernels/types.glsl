@@ -56,7 +56,10 @@ struct EmitterParams {
     uint emitterIndex, capacity, forceMask, colliderMask;
     CurveParams colorOverLife;
     CurveParams sizeOverLife;
-    float overSpeedMin, overSpeedMax, pad0, pad1;  // m/s: speeds at t = 0 and 1 of the over-speed curves
+    float overSpeedMin, overSpeedMax;  // m/s: speeds at t = 0 and 1 of the over-speed curves
+    // m/s: the carrying body's velocity share every birth adds (x, y: bodies
+    // move in the xy plane); 0 for an emitter fixed in the world.
+    float carriedVelocityX, carriedVelocityY;
     CurveParams colorOverSpeed;
     CurveParams sizeOverSpeed;
 };

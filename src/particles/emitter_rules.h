@@ -52,6 +52,8 @@ inline constexpr FieldRule kCurveTime = FieldRule::number(Bounds::unit());
 /// A curve key's value: a colour curve's factor per channel (alpha included)
 /// or a size curve's factor.
 inline constexpr FieldRule kCurveFactor = FieldRule::number(Bounds::nonNegative());
+/// Share of a carrying body's velocity a particle is born with.
+inline constexpr FieldRule kInheritVelocity = FieldRule::number(Bounds::unit());
 /// m/s, each end of the speeds the over-speed curves span.
 inline constexpr FieldRule kOverSpeed = FieldRule::number(Bounds::nonNegative());
 

@@ -42,6 +42,10 @@ struct EmitterState {
     /// Fraction of a particle owed by the rate, carried between steps.
     double emissionCarry = 0.0;
     std::uint64_t alive = 0;
+    /// An emitter riding a body (EmitterDef::body): its shape's centre and
+    /// direction in the body's frame; `def` holds them placed in the world.
+    glm::vec3 mountCentre{0.0f};
+    glm::vec3 mountDirection{0.0f, 1.0f, 0.0f};
 };
 
 }  // namespace spindrift

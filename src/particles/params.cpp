@@ -107,6 +107,11 @@ void validateEmitterDef(const EmitterDef& d) {
     check.expect(glm::length(s.direction) > 0.0f, "shape.direction", "a non-zero direction",
                  fmt::format("[{}, {}, {}]", s.direction.x, s.direction.y, s.direction.z));
     check.number("shape.spread", s.spreadAngle, rules::kSpread);
+    check.number("inherit_velocity", d.inheritVelocity, rules::kInheritVelocity);
+    if (d.stateless && d.body.index != 0) {
+        check.fail("body", "a stateless emitter is a closed form of time and cannot ride on a body; expected no "
+                           "body, or stateless = false");
+    }
     check.range("speed", d.speed, rules::kSpeed);
     check.range("lifetime", d.lifetime, rules::kLifetime);
     check.range("size", d.size, rules::kSize);

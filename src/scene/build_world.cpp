@@ -55,16 +55,16 @@ void createAll(const std::vector<Def>& defs, const char* kind, Create create) {
 WorldId buildWorld(const SceneDef& scene) {
     WorldGuard guard(createWorld(scene.world));
     const WorldId world = guard.get();
-    // Order matters: forces refer to flow fields, emitters to forces and colliders.
+    // Order matters: forces refer to flow fields, emitters to forces,
+    // colliders and bodies, fluids' jets to bodies.
     createAll(scene.flowFields, "flow field",
               [&](const FlowFieldDef& d) { return createFlowField(world, d); });
     createAll(scene.forces, "force", [&](const ForceDef& d) { return createForce(world, d); });
     createAll(scene.colliders, "collider",
               [&](const ColliderDef& d) { return createCollider(world, d); });
+    createAll(scene.bodies, "body", [&](const BodyDef& d) { return createBody(world, d); });
     createAll(scene.emitters, "emitter",
               [&](const EmitterDef& d) { return createEmitter(world, d); });
-    // Bodies before fluids: a fluid's jet may ride on a body.
-    createAll(scene.bodies, "body", [&](const BodyDef& d) { return createBody(world, d); });
     createAll(scene.fluids, "fluid", [&](const FluidDef& d) { return createFluid(world, d); });
     createAll(scene.joints, "joint", [&](const JointDef& d) { return createJoint(world, d); });
     createAll(scene.fires, "fire", [&](const FireDef& d) { return createFire(world, d); });

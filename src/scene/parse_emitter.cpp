@@ -33,7 +33,7 @@ const std::vector<std::string_view> kEmitterKeys = {
     "size_over_life", "integrator", "forces",
     "collision",      "stateless",  "stateless_gravity",
     "sprite",         "over_speed_range", "color_over_speed",
-    "size_over_speed"};
+    "size_over_speed", "body",      "inherit_velocity"};
 
 FloatRange toRadians(FloatRange degrees) {
     return {degrees.min * kRadiansPerDegree, degrees.max * kRadiansPerDegree};
@@ -333,7 +333,7 @@ SpriteDef readSprite(const Table& t) {
 }  // namespace
 
 EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& forces,
-                        const NameTable& colliders) {
+                        const NameTable& colliders, const NameTable& bodies) {
     t.allowOnly(kEmitterKeys, "an emitter");
     EmitterDef def;
     def.name = names.add(t);
@@ -342,6 +342,8 @@ EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& force
     if (auto shape = t.subTable("shape")) {
         def.shape = readShape(*shape);
     }
+    if (auto body = t.find("body")) def.body = {bodies.resolve(*body) + 1};
+    def.inheritVelocity = t.real("inherit_velocity", def.inheritVelocity, emitter_rules::kInheritVelocity);
     readParticleRanges(t, def);
     readDynamics(t, def, forces, colliders);
     if (auto sprite = t.subTable("sprite")) {

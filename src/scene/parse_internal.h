@@ -60,6 +60,6 @@ FireDef parseFire(const Table& table, NameTable& names, const NameTable& bodies,
 /// left at its default ([camera] is read separately).
 RenderDef parseRender(const Table& table);
 EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,
-                        const NameTable& colliders);
+                        const NameTable& colliders, const NameTable& bodies);
 
 }  // namespace spindrift::scene

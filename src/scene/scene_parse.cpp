@@ -204,12 +204,13 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     for (const Table& t : colliders) {
         scene.colliders.push_back(scene::parseCollider(t, colliderNames));
     }
-    for (const Table& t : scene::tableArray(root, "emitter")) {
-        scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames));
-    }
+    // Bodies before emitters: an emitter may ride on a body.
     scene::NameTable bodyNames("body");
     for (const Table& t : scene::tableArray(root, "body")) {
         scene.bodies.push_back(scene::parseBody(t, bodyNames));
+    }
+    for (const Table& t : scene::tableArray(root, "emitter")) {
+        scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames, bodyNames));
     }
     // Fluids after bodies: a jet may ride on a body.
     scene::NameTable fluidNames("fluid");

@@ -16,6 +16,7 @@
 #include <cmath>
 #include <cstring>
 #include <mutex>
+#include <optional>
 #include <utility>
 
 namespace spindrift {
@@ -208,6 +209,31 @@ ColliderId createCollider(WorldId id, const ColliderDef& def) {
     return {static_cast<std::uint32_t>(w.colliders.size())};
 }
 
+namespace {
+
+// Where an emitter riding a body is now: its mount (shape centre and
+// direction in the body's frame) turned and moved by the body's pose, and
+// the share of the body's velocity at that centre every birth inherits
+// (m/s; v + omega x r about the centre of mass).
+struct Carried {
+    EmitterDef def;
+    glm::vec2 velocity{0.0f};
+};
+
+Carried carriedBy(const fluid::JetMount& body, const EmitterState& e) {
+    const float c = std::cos(body.angle), s = std::sin(body.angle);
+    auto turn = [&](glm::vec2 v) { return glm::vec2(c * v.x - s * v.y, s * v.x + c * v.y); };
+    Carried out{e.def, glm::vec2(0.0f)};
+    const glm::vec2 centre = body.origin + turn(glm::vec2(e.mountCentre));
+    out.def.shape.center = glm::vec3(centre, e.mountCentre.z);
+    out.def.shape.direction = glm::vec3(turn(glm::vec2(e.mountDirection)), e.mountDirection.z);
+    const glm::vec2 r = centre - body.centre;
+    out.velocity = (body.velocity + body.angularVelocity * glm::vec2(-r.y, r.x)) * e.def.inheritVelocity;
+    return out;
+}
+
+}  // namespace
+
 EmitterId createEmitter(WorldId id, const EmitterDef& def) {
     World& w = worldFromId(id);
     auto state = std::make_unique<EmitterState>();
@@ -215,7 +241,23 @@ EmitterId createEmitter(WorldId id, const EmitterDef& def) {
     auto index = static_cast<std::uint32_t>(w.emitters.size());
     std::uint32_t forceMask = maskOf(def.forces, w.forces.size(), "force", def.name);
     std::uint32_t colliderMask = maskOf(def.collision.colliders, w.colliders.size(), "collider", def.name);
-    state->params = makeEmitterParams(def, w.def.seed, index, forceMask, colliderMask);
+    glm::vec2 carried(0.0f);
+    if (def.body.index != 0) {
+        validateEmitterDef(def);  // a stateless emitter on a body is refused at its key first
+        if (!w.bodies) {
+            throw Error(fmt::format("emitter '{}' rides body id {}, but the world has no bodies", def.name,
+                                    def.body.index));
+        }
+        coupling::bodyFromId(*w.bodies, def.body);  // throws for a body the world does not have
+        state->mountCentre = def.shape.center;
+        state->mountDirection = def.shape.direction;
+        const Carried placed = carriedBy(coupling::jetMount(w.bodies.get(), def.body), *state);
+        state->def = placed.def;
+        carried = placed.velocity;
+    }
+    state->params = makeEmitterParams(state->def, w.def.seed, index, forceMask, colliderMask);
+    state->params.carriedVelocityX = carried.x;
+    state->params.carriedVelocityY = carried.y;
     if (!def.stateless) {
         initialiseSlots(*state);
     }
@@ -257,7 +299,9 @@ namespace {
 
 // Re-derives the kernel parameters from `def` (validating it) before
 // anything changes; the masks stay those computed at creation.
-void changeEmitter(World& w, EmitterId id, const EmitterDef& def) {
+// carried: the velocity share births inherit from the body the emitter rides
+// (m/s; carryEmitters); unset keeps the last one.
+void changeEmitter(World& w, EmitterId id, const EmitterDef& def, std::optional<glm::vec2> carried = std::nullopt) {
     EmitterState& e = emitterFromId(w, id);
     if (e.def.stateless) {
         throw Error(fmt::format("emitter '{}' is stateless: its closed form covers all time and cannot change "
@@ -265,8 +309,11 @@ void changeEmitter(World& w, EmitterId id, const EmitterDef& def) {
                                 e.def.name));
     }
     const std::uint32_t index = id.index - 1;
-    const kernels::EmitterParams params =
+    kernels::EmitterParams params =
         makeEmitterParams(def, w.def.seed, index, e.params.forceMask, e.params.colliderMask);
+    // Set by the body an emitter rides on, not by its def (carryEmitters).
+    params.carriedVelocityX = carried ? carried->x : e.params.carriedVelocityX;
+    params.carriedVelocityY = carried ? carried->y : e.params.carriedVelocityY;
     // The device copy is rewritten (after waiting for the steps in flight)
     // only when the kernel parameters change: a rate lives in the host's
     // birth schedule, and fires set rates and positions every step.
@@ -297,12 +344,33 @@ void setEmitterSpeed(WorldId id, EmitterId emitter, FloatRange speed) {
 
 void setEmitterPosition(WorldId id, EmitterId emitter, glm::vec3 centre) {
     World& w = worldFromId(id);
-    EmitterDef def = emitterFromId(w, emitter).def;
+    EmitterState& e = emitterFromId(w, emitter);
+    if (e.def.body.index != 0) {
+        if (!std::isfinite(centre.x) || !std::isfinite(centre.y) || !std::isfinite(centre.z)) {
+            throw Error(fmt::format("setEmitterPosition: emitter '{}': the centre must be finite", e.def.name));
+        }
+        e.mountCentre = centre;  // in the body's frame; placed at the next step
+        return;
+    }
+    EmitterDef def = e.def;
     def.shape.center = centre;
     changeEmitter(w, emitter, def);
 }
 
 namespace {
+
+// Stage "carry": emitters riding bodies follow them (EmitterDef::body), placed
+// from the bodies' poses and velocities at the start of the step. A destroyed
+// body leaves its emitters where they were, with nothing more to inherit.
+void carryEmitters(World& w) {
+    for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+        EmitterState& e = *w.emitters[i];
+        if (e.def.body.index == 0) continue;
+        const fluid::JetMount body = coupling::jetMount(w.bodies.get(), e.def.body);
+        const Carried placed = body.active ? carriedBy(body, e) : Carried{e.def, glm::vec2(0.0f)};
+        changeEmitter(w, EmitterId{static_cast<std::uint32_t>(i + 1)}, placed.def, placed.velocity);
+    }
+}
 
 // Stage "emitters": every state-preserving emitter's step, on the device
 // (one submission) or on the CPU backend, emitter by emitter.
@@ -338,6 +406,7 @@ StepStats stepWorld(WorldId id, float dt) {
     const std::size_t firstEvent = w.events.batch.events.size();
 
     // 1. Emitters: births, forces, integration, collisions, deaths, events.
+    carryEmitters(w);
     stepEmitters(w, dt, stats);
 
     // 2. Body gravity: dynamic bodies get this step's gravity before the

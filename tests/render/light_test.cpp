@@ -9,6 +9,8 @@
 #include <spindrift/effects.h>
 
 #include <algorithm>
+#include <cmath>
+#include <string>
 
 namespace spindrift::test {
 namespace {
@@ -29,6 +31,34 @@ TEST(Light, SharedCurveIsThePublishedFit) {
     EXPECT_EQ(kernels::bloomShare(0.0f), 0.0f);
     EXPECT_EQ(kernels::bloomShare(1.0f), 0.0f);
     EXPECT_NEAR(kernels::bloomShare(4.0f), 0.75f, 1e-7);
+}
+
+// The public API names the key of a bad value as [render] spells it.
+TEST(Light, BadValuesNameTheirKey) {
+    auto field = [](RenderDef def) -> std::string {
+        try {
+            validateRenderDef(def);
+        } catch (const FieldError& e) {
+            return e.field();
+        }
+        return "accepted";
+    };
+    RenderDef def;
+    EXPECT_EQ(field(def), "accepted");
+    EXPECT_EQ(def.exposure, 1.0f) << "exposure is a multiplier, 1 by default";
+    def.exposure = 0.0f;
+    EXPECT_EQ(field(def), "exposure");
+    def = RenderDef{};
+    def.exposure = std::nanf("");
+    EXPECT_EQ(field(def), "exposure");
+    def = RenderDef{};
+    def.toneMap = static_cast<ToneMap>(2);
+    EXPECT_EQ(field(def), "tone_map");
+    def = RenderDef{};
+    def.bloom = -0.1f;
+    EXPECT_EQ(field(def), "bloom");
+    def.bloom = 0.0f;
+    EXPECT_EQ(field(def), "accepted") << "0 turns bloom off";
 }
 
 class LightRender : public GpuTest {};

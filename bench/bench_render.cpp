@@ -18,6 +18,9 @@
 // (about 2,900 particles at 2 cm in a 3.2 m tank) after 2 s, as the liquid
 // surface (argument 0: 0; argument 1: the field's resolution in percent of the
 // frame's side) or as Sprinkle's seven splat steps (argument 0: 1).
+// Light at 960x540: 2,000 additive sprites of an HDR flame colour over a
+// floor; argument 0: 0 no tone map and no bloom (the tone map's pass is a
+// clamp), 1 the ACES curve without bloom, 2 ACES with bloom (the default).
 // Each iteration is renderFrame: host preparation, the device's passes, and
 // the read-back of the 8 MB frame. The world is not stepped in the loop. The
 // counters are the last frame's device time per pass (timestamps). Without a
@@ -56,6 +59,7 @@ void report(benchmark::State& state, RendererId r) {
     state.counters["sprites_ms"] = s.spritesMs;
     state.counters["sort_ms"] = s.sortMs;
     state.counters["oit_ms"] = s.oitAccumulateMs;
+    state.counters["light_ms"] = s.lightMs;  // bloom and the tone map
     state.counters["host_ms"] = s.cpuMs;
     state.counters["sprites"] = static_cast<double>(s.sprites);
     state.counters["splats"] = static_cast<double>(s.splats);
@@ -191,6 +195,42 @@ BENCHMARK(BM_FluidLook)
     ->Args({1, 0})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(10);
+
+void BM_Light(benchmark::State& state) {
+    try {
+        WorldDef wd;
+        wd.threads = 2;
+        WorldId w = createWorld(wd);
+        ColliderDef floor;
+        createCollider(w, floor);
+        EmitterDef e;
+        e.lifecycle = Lifecycle::Recycle;
+        e.capacity = 2000;
+        e.shape.kind = SpawnShapeKind::Disk;
+        e.shape.radius = 0.5f;
+        e.speed = {0.2f, 0.6f};
+        e.lifetime = {1.0f, 1.5f};
+        e.size = {0.3f, 0.5f};
+        e.color = {{4.0f, 1.2f, 0.3f, 0.5f}, {2.0f, 0.6f, 0.15f, 0.5f}};
+        e.sprite.blend = SpriteBlend::Additive;
+        createEmitter(w, e);
+        for (int i = 0; i < 90; ++i) {
+            stepWorld(w, 1.0f / 60.0f);
+        }
+        RenderDef def;
+        def.width = 960;
+        def.height = 540;
+        def.camera.eye = {0.0f, 1.5f, 5.0f};
+        def.camera.target = {0.0f, 0.8f, 0.0f};
+        def.toneMap = state.range(0) == 0 ? ToneMap::None : ToneMap::Aces;
+        def.bloom = state.range(0) == 2 ? RenderDef{}.bloom : 0.0f;
+        measureFrames(state, w, def);
+        destroyWorld(w);
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+    }
+}
+BENCHMARK(BM_Light)->ArgNames({"light"})->Arg(0)->Arg(1)->Arg(2)->Unit(benchmark::kMillisecond)->Iterations(10);
 
 }  // namespace
 

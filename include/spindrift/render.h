@@ -83,6 +83,13 @@ struct FluidRenderDef {
     SPINDRIFT_API static FluidRenderDef upTo(int n);
 };
 
+/// How the frame's linear light becomes the 8-bit sRGB image
+/// (docs/rendering.md, "Light").
+enum class ToneMap : std::uint32_t {
+    None = 0,  ///< a plain clamp to [0, 1]: what is brighter than 1 clips to white
+    Aces = 1,  ///< the ACES filmic curve as fitted by Narkowicz (2016): 1 maps to about 0.8, brights roll off
+};
+
 /// How a world is drawn.
 struct RenderDef {
     std::uint32_t width = 1280;   ///< pixels
@@ -93,6 +100,14 @@ struct RenderDef {
     bool drawColliders = true;    ///< world colliders, fluid obstacles and bodies
     /// Direction toward the sun (normalised on use), for shading and highlights.
     glm::vec3 sunDirection{0.3f, 1.0f, 0.5f};
+    /// The frame is drawn in linear light into a 16-bit float target; this
+    /// multiplies it before the tone map, > 0.
+    float exposure = 1.0f;
+    ToneMap toneMap = ToneMap::Aces;
+    /// Strength of the glow of what is brighter than 1 (blurred at a quarter
+    /// of the frame's size and smaller, added before the tone map), >= 0;
+    /// 0 turns bloom off and skips its passes.
+    float bloom = 0.5f;
     // Output settings read by `spindrift render` (not by renderFrame):
     float fps = 30.0f;            ///< frames per second of the video
     float seconds = 5.0f;         ///< length of the video
@@ -121,6 +136,9 @@ struct RenderStats {
     /// Weighted blended OIT's accumulation pass (0 when no emitter uses
     /// SpriteBlend::WeightedOit); its composite counts in spritesMs.
     double oitAccumulateMs = 0.0;
+    /// Bloom's passes (0 when RenderDef::bloom is 0) and the tone map into
+    /// the 8-bit image.
+    double lightMs = 0.0;
     double totalDeviceMs = 0.0;
     double cpuMs = 0.0;
     std::uint64_t sprites = 0;   ///< sprite instances drawn

@@ -45,6 +45,12 @@ extern const std::uint32_t kSurfaceDepthFrag[];
 extern const std::size_t kSurfaceDepthFragWords;
 extern const std::uint32_t kSurfaceVert[];
 extern const std::size_t kSurfaceVertWords;
+extern const std::uint32_t kBloomThresholdFrag[];
+extern const std::size_t kBloomThresholdFragWords;
+extern const std::uint32_t kBloomBlurFrag[];
+extern const std::size_t kBloomBlurFragWords;
+extern const std::uint32_t kToneMapFrag[];
+extern const std::size_t kToneMapFragWords;
 extern const std::uint32_t kSurfaceFrag[];
 extern const std::size_t kSurfaceFragWords;
 }  // namespace spindrift::gpu::shaders

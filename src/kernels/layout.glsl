@@ -254,6 +254,24 @@ struct SurfacePush {
     vec4 values;  // blur: xy one field texel along the blur's direction (uv); composite: x half side of its quad (m)
 };
 
+// Light (src/render/light_pass.cpp, shaders bloom_*.frag and tone_map.frag):
+// the frame drawn into a float target, its bloom at reduced resolution, and
+// the tone map into the 8-bit sRGB image. Set 1 of their pipelines.
+SD_CONST uint SD_LIGHT_SET = 1u;
+SD_CONST uint SD_LIGHT_BINDING_SOURCE = 0u;  // sampler2D: the float frame (threshold, tone map) or the bloom level read
+SD_CONST uint SD_LIGHT_BINDING_BLOOM = 1u;   // sampler2D: the bloom's finest level (tone map)
+SD_CONST uint SD_LIGHT_BINDINGS = 2u;
+// The finest bloom level is this fraction of the frame's side (each texel
+// the mean of SD_BLOOM_DIVISOR^2 frame texels); each further level halves it.
+SD_CONST uint SD_BLOOM_DIVISOR = 4u;
+// LightPush::values.z of the tone map.
+SD_CONST uint SD_TONE_MAP_NONE = 0u;  // a clamp to [0, 1]
+SD_CONST uint SD_TONE_MAP_ACES = 1u;  // acesFilm (src/kernels/light.glsl)
+// The light passes' push constants (vertex and fragment). 16 bytes.
+struct LightPush {
+    vec4 values;  // bloom threshold: xy level 0's size (texels); blur: xy the fetches' offset (uv); tone map: x exposure, y bloom weight, z SD_TONE_MAP_*
+};
+
 SD_END
 
 #ifdef __cplusplus
@@ -285,6 +303,7 @@ static_assert(offsetof(FrameUniforms, eye) == 64);
 static_assert(offsetof(FrameUniforms, waterFlags) == 192);
 static_assert(offsetof(FrameUniforms, surface) == 208);
 static_assert(sizeof(SurfacePush) == 16);
+static_assert(sizeof(LightPush) == 16);
 static_assert(SD_SURFACE_SET == SD_SPLAT_SET);  // surface_field.vert reads the splats' instance set
 // The masks are 32 bits wide.
 static_assert(SD_MAX_FORCES <= 32u && SD_MAX_COLLIDERS <= 32u);

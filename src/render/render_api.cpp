@@ -79,6 +79,12 @@ void validateRenderDef(const RenderDef& def) {
     check.number("seconds", def.seconds, rules::kSeconds);
     check.finite("sun", def.sunDirection);
     check.expect(glm::length(def.sunDirection) > 0.0f, "sun", "a non-zero direction", vec3Text(def.sunDirection));
+    check.number("exposure", def.exposure, rules::kExposure);
+    check.expect(def.toneMap == ToneMap::Aces || def.toneMap == ToneMap::None, "tone_map",
+                 fmt::format("none ({}) or aces ({})", static_cast<std::uint32_t>(ToneMap::None),
+                             static_cast<std::uint32_t>(ToneMap::Aces)),
+                 std::to_string(static_cast<std::uint32_t>(def.toneMap)));
+    check.number("bloom", def.bloom, rules::kBloom);
     colour(check, "background.color", def.background.colour);
     colour(check, "background.top", def.background.top);
     colour(check, "background.bottom", def.background.bottom);

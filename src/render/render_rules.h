@@ -30,6 +30,10 @@ inline constexpr FieldRule kFluidRadiusScale = FieldRule::number(Bounds::positiv
 /// The liquid surface's field resolution, a fraction of the frame's side
 /// (docs/rendering.md).
 inline constexpr FieldRule kFluidSurfaceScale = FieldRule::number(Bounds::between(0.125, 1.0));
+/// RenderDef::exposure, a multiplier of linear light.
+inline constexpr FieldRule kExposure = FieldRule::number(Bounds::positive());
+/// RenderDef::bloom; 0 turns it off. Above 10 the glow swamps any frame.
+inline constexpr FieldRule kBloom = FieldRule::number(Bounds::between(0.0, 10.0));
 
 // Camera. Open interval: 0 and 180 degrees make a degenerate projection.
 inline constexpr FieldRule kFov = FieldRule::number(Bounds{0.0, 180.0, true, true});  ///< degrees

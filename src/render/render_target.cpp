@@ -1,5 +1,5 @@
-// The renderer's colour and depth targets, its two render passes and the
-// read-back of a finished frame.
+// The renderer's float colour and depth targets, the sRGB image the tone map
+// writes, their render passes and the read-back of a finished frame.
 #include "render/render_target.h"
 
 #include <spindrift/effects.h>
@@ -31,7 +31,7 @@ VkAttachmentDescription attachment(VkFormat format, bool clear, VkImageLayout in
 // attachment and descriptor in the same subpass).
 VkRenderPass createPass(gpu::Device& d, bool first) {
     VkAttachmentDescription attachments[2] = {
-        attachment(kColourFormat, first, first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
+        attachment(kHdrFormat, first, first ? VK_IMAGE_LAYOUT_UNDEFINED : VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL,
                    VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, true),
         attachment(kDepthFormat, first, first ? VK_IMAGE_LAYOUT_UNDEFINED : kDepthReadLayout, kDepthReadLayout,
                    first)};
@@ -49,11 +49,12 @@ VkRenderPass createPass(gpu::Device& d, bool first) {
                                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT |
                                            VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT;
     // Before: the previous frame's (or pass A's) copies out of the colour
-    // target and its depth writes. After: copies out of it, pass B's tests.
+    // target, its depth writes, and the previous frame's light passes reading
+    // it. After: copies out of it, pass B's tests.
     VkSubpassDependency dependencies[2] = {};
     dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
     dependencies[0].dstSubpass = 0;
-    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | attachmentStages;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT | attachmentStages;
     dependencies[0].srcAccessMask = VK_ACCESS_TRANSFER_READ_BIT | attachmentAccess;
     dependencies[0].dstStageMask = attachmentStages | VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
     dependencies[0].dstAccessMask = attachmentAccess | VK_ACCESS_SHADER_READ_BIT;
@@ -75,11 +76,52 @@ VkRenderPass createPass(gpu::Device& d, bool first) {
     return pass;
 }
 
-VkFramebuffer createFramebuffer(gpu::Device& d, VkRenderPass pass, const RenderTarget& t) {
-    VkImageView views[2] = {t.colour.view, t.depth.view};
+// The tone map's pass: every pixel of the sRGB image written (nothing
+// loaded), left ready to be copied (read-back or the viewer's blit). Before:
+// the previous frame's copy out of it; the float frame and the bloom are
+// made readable by their own barrier and passes. After: the copy.
+VkRenderPass createToneMapPass(gpu::Device& d) {
+    VkAttachmentDescription colour = attachment(kColourFormat, false, VK_IMAGE_LAYOUT_UNDEFINED,
+                                                VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, true);
+    colour.loadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_COLOR_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.colorAttachmentCount = 1;
+    subpass.pColorAttachments = &ref;
+    VkSubpassDependency dependencies[2] = {};
+    dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[0].dstSubpass = 0;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[0].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[0].dstStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[0].dstAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[1].srcSubpass = 0;
+    dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[1].srcStageMask = VK_PIPELINE_STAGE_COLOR_ATTACHMENT_OUTPUT_BIT;
+    dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
+    auto info = gpu::vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
+    info.attachmentCount = 1;
+    info.pAttachments = &colour;
+    info.subpassCount = 1;
+    info.pSubpasses = &subpass;
+    info.dependencyCount = 2;
+    info.pDependencies = dependencies;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    gpu::check(vkCreateRenderPass(d.device, &info, nullptr, &pass), "vkCreateRenderPass (tone map)");
+    return pass;
+}
+
+VkFramebuffer createFramebuffer(gpu::Device& d, VkRenderPass pass, const RenderTarget& t, bool toneMap) {
+    VkImageView views[2] = {t.hdr.view, t.depth.view};
+    if (toneMap) {
+        views[0] = t.colour.view;
+    }
     auto info = gpu::vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
     info.renderPass = pass;
-    info.attachmentCount = 2;
+    info.attachmentCount = toneMap ? 1u : 2u;
     info.pAttachments = views;
     info.width = t.width;
     info.height = t.height;
@@ -98,13 +140,17 @@ bool supports(const gpu::Device& d, VkFormat format, VkFormatFeatureFlags needed
 }  // namespace
 
 RenderPasses createRenderPasses(gpu::Device& d) {
-    if (!supports(d, kColourFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT) ||
+    if (!supports(d, kHdrFormat,
+                  VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BLEND_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_FILTER_LINEAR_BIT) ||
+        !supports(d, kColourFormat, VK_FORMAT_FEATURE_COLOR_ATTACHMENT_BIT) ||
         !supports(d, kDepthFormat, VK_FORMAT_FEATURE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_FORMAT_FEATURE_SAMPLED_IMAGE_BIT)) {
-        throw Error("render: the Vulkan device cannot blend into R8G8B8A8_SRGB or has no sampled D32_SFLOAT depth");
+        throw Error("render: the Vulkan device cannot blend into and filter R16G16B16A16_SFLOAT, draw into "
+                    "R8G8B8A8_SRGB or has no sampled D32_SFLOAT depth");
     }
     RenderPasses p;
     p.first = createPass(d, true);
     p.second = createPass(d, false);
+    p.toneMap = createToneMapPass(d);
     return p;
 }
 
@@ -113,6 +159,11 @@ RenderTarget createRenderTarget(gpu::Device& d, const RenderPasses& passes, std:
     RenderTarget t;
     t.width = width;
     t.height = height;
+    gpu::ImageShape hdr{VK_IMAGE_VIEW_TYPE_2D, kHdrFormat, width, height, 1,
+                        VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT |
+                            VK_IMAGE_USAGE_SAMPLED_BIT,
+                        VK_IMAGE_ASPECT_COLOR_BIT};
+    t.hdr = gpu::createSampledImage(d, hdr);
     gpu::ImageShape colour{VK_IMAGE_VIEW_TYPE_2D, kColourFormat, width, height, 1,
                            VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_TRANSFER_SRC_BIT,
                            VK_IMAGE_ASPECT_COLOR_BIT};
@@ -121,11 +172,12 @@ RenderTarget createRenderTarget(gpu::Device& d, const RenderPasses& passes, std:
                           VK_IMAGE_USAGE_DEPTH_STENCIL_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT,
                           VK_IMAGE_ASPECT_DEPTH_BIT};
     t.depth = gpu::createSampledImage(d, depth);
-    gpu::ImageShape behind{VK_IMAGE_VIEW_TYPE_2D, kColourFormat, width, height, 1,
+    gpu::ImageShape behind{VK_IMAGE_VIEW_TYPE_2D, kHdrFormat, width, height, 1,
                            VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT, VK_IMAGE_ASPECT_COLOR_BIT};
     t.behind = gpu::createSampledImage(d, behind);
-    t.framebufferA = createFramebuffer(d, passes.first, t);
-    t.framebufferB = createFramebuffer(d, passes.second, t);
+    t.framebufferA = createFramebuffer(d, passes.first, t, false);
+    t.framebufferB = createFramebuffer(d, passes.second, t, false);
+    t.framebufferToneMap = createFramebuffer(d, passes.toneMap, t, true);
     t.readback = gpu::createBuffer(d, VkDeviceSize{width} * height * 4, VK_BUFFER_USAGE_TRANSFER_DST_BIT,
                                    VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
     // `behind` is sampled by pass B: give it a defined layout once (after
@@ -141,6 +193,8 @@ RenderTarget createRenderTarget(gpu::Device& d, const RenderPasses& passes, std:
 void destroyRenderTarget(gpu::Device& d, RenderTarget& t) {
     vkDestroyFramebuffer(d.device, t.framebufferA, nullptr);
     vkDestroyFramebuffer(d.device, t.framebufferB, nullptr);
+    vkDestroyFramebuffer(d.device, t.framebufferToneMap, nullptr);
+    gpu::destroyImage(d, t.hdr);
     gpu::destroyImage(d, t.colour);
     gpu::destroyImage(d, t.depth);
     gpu::destroyImage(d, t.behind);
@@ -151,6 +205,7 @@ void destroyRenderTarget(gpu::Device& d, RenderTarget& t) {
 void destroyRenderPasses(gpu::Device& d, RenderPasses& p) {
     vkDestroyRenderPass(d.device, p.first, nullptr);
     vkDestroyRenderPass(d.device, p.second, nullptr);
+    vkDestroyRenderPass(d.device, p.toneMap, nullptr);
     p = RenderPasses{};
 }
 
@@ -169,7 +224,7 @@ void recordCopyBehind(VkCommandBuffer cmd, const RenderTarget& t) {
     region.srcSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.dstSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, 1};
     region.extent = {t.width, t.height, 1};
-    vkCmdCopyImage(cmd, t.colour.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, t.behind.image,
+    vkCmdCopyImage(cmd, t.hdr.image, VK_IMAGE_LAYOUT_TRANSFER_SRC_OPTIMAL, t.behind.image,
                    VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
     imageBarrier(cmd, t.behind.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL,
                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT,

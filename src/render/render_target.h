@@ -7,8 +7,12 @@
 
 namespace spindrift::render {
 
-/// sRGB colour: blending happens in linear light, the read-back bytes are
-/// sRGB-encoded as a PNG expects. 32-bit float depth.
+/// The frame is drawn in linear light into 16-bit floats (light above 1
+/// keeps its energy for bloom and the tone map; R16G16B16A16_SFLOAT blends
+/// and filters on every Vulkan device, the spec's required format features),
+/// then the tone map writes the sRGB image that is read back and presented:
+/// its bytes are sRGB-encoded as a PNG expects. 32-bit float depth.
+inline constexpr VkFormat kHdrFormat = VK_FORMAT_R16G16B16A16_SFLOAT;
 inline constexpr VkFormat kColourFormat = VK_FORMAT_R8G8B8A8_SRGB;
 inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 /// Depth after pass A: tested (never written) by pass B and the OIT
@@ -16,16 +20,20 @@ inline constexpr VkFormat kDepthFormat = VK_FORMAT_D32_SFLOAT;
 inline constexpr VkImageLayout kDepthReadLayout = VK_IMAGE_LAYOUT_DEPTH_STENCIL_READ_ONLY_OPTIMAL;
 
 struct RenderPasses {
-    VkRenderPass first = VK_NULL_HANDLE;   // clears: background, colliders
-    VkRenderPass second = VK_NULL_HANDLE;  // loads: fluid splats, sprites
+    VkRenderPass first = VK_NULL_HANDLE;    // clears: background, colliders (float target)
+    VkRenderPass second = VK_NULL_HANDLE;   // loads: fluid splats, sprites (float target)
+    VkRenderPass toneMap = VK_NULL_HANDLE;  // writes the sRGB image from the float target
 };
 
-/// Colour and depth targets, the copy of the colour between the passes (what
-/// refraction sees behind the water), and the host-visible read-back buffer.
+/// The float colour and depth targets, the copy of the float colour between
+/// the passes (what refraction sees behind the water), the tone-mapped sRGB
+/// image (`colour`, left in TRANSFER_SRC_OPTIMAL: read back or presented),
+/// and the host-visible read-back buffer.
 struct RenderTarget {
     std::uint32_t width = 0, height = 0;
-    gpu::Image colour, depth, behind;
+    gpu::Image hdr, colour, depth, behind;
     VkFramebuffer framebufferA = VK_NULL_HANDLE, framebufferB = VK_NULL_HANDLE;
+    VkFramebuffer framebufferToneMap = VK_NULL_HANDLE;
     gpu::Buffer readback;
 };
 
@@ -39,9 +47,9 @@ void destroyRenderTarget(gpu::Device& d, RenderTarget& t);
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageLayout from, VkImageLayout to,
                   VkPipelineStageFlags srcStage, VkAccessFlags srcAccess, VkPipelineStageFlags dstStage,
                   VkAccessFlags dstAccess);
-/// Copies the colour target (TRANSFER_SRC_OPTIMAL) into `behind`.
+/// Copies the float colour target (TRANSFER_SRC_OPTIMAL) into `behind`.
 void recordCopyBehind(VkCommandBuffer cmd, const RenderTarget& t);
-/// Copies the colour target into the read-back buffer, visible to the host.
+/// Copies the sRGB image into the read-back buffer, visible to the host.
 void recordReadback(VkCommandBuffer cmd, const RenderTarget& t);
 /// The read-back buffer's pixels (after the frame's fence).
 Frame readFrame(const RenderTarget& t);

@@ -9,6 +9,7 @@
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"
 #include "render/collider_mesh.h"
+#include "render/light_pass.h"
 #include "render/oit_pass.h"
 #include "render/render_images.h"
 #include "render/render_pipelines.h"
@@ -32,8 +33,8 @@ namespace {
 // Timestamps written in a frame: start, after the liquid surface's field,
 // after the background, after the colliders (end of pass A), after the copy,
 // after the OIT accumulation, after the fluids (surface composite and
-// splats), after the sprites (end of pass B).
-constexpr std::uint32_t kTimestamps = 8;
+// splats), after the sprites (end of pass B), after bloom and the tone map.
+constexpr std::uint32_t kTimestamps = 9;
 // The liquid surface's depth tint reaches its deepest this far (m) below the
 // water above a point.
 constexpr float kSurfaceTintDepth = 0.5f;
@@ -231,6 +232,7 @@ void createResources(Renderer& r) {
     }
     createDescriptors(r);
     createPipelines(r);
+    createLight(r);
     createSurface(r);
     createCommands(r);
     const float aspect = float(r.def.width) / float(r.def.height);
@@ -345,7 +347,8 @@ void readFrameTimes(Renderer& r) {
     r.stats.oitAccumulateMs = ms(4, 5);
     r.stats.fluidMs = ms(5, 6);
     r.stats.spritesMs = ms(6, 7);
-    r.stats.totalDeviceMs = ms(0, 7);
+    r.stats.lightMs = ms(7, 8);
+    r.stats.totalDeviceMs = ms(0, 8);
 }
 
 namespace {
@@ -398,6 +401,9 @@ void destroyRenderer(Renderer& r) {
         destroyOit(r);
         destroySpriteEmitters(r);
         destroySplats(r);
+        if (r.light.layout != VK_NULL_HANDLE) {
+            destroyLight(r);
+        }
         if (r.surface.pass != VK_NULL_HANDLE) {
             destroySurface(r);
         }
@@ -509,6 +515,8 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
         vkCmdEndRenderPass(cmd);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 7);
     }
+    recordLight(r, cmd);  // bloom, then the tone map into the sRGB image
+    timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 8);
 }
 
 Frame renderFrame(Renderer& r) {

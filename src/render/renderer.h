@@ -7,7 +7,10 @@
 //   when an emitter uses weighted blended OIT, its accumulation pass (depth
 //   tested against pass A's, read-only);
 //   pass B (loads): the liquid surface's composite, fluid splats, then effect
-//   sprites (additive, then alpha back to front, then the OIT composite).
+//   sprites (additive, then alpha back to front, then the OIT composite);
+//   passes A and B draw into a 16-bit float target;
+//   light: bloom of what is brighter than 1 at reduced resolution, then the
+//   tone map into the 8-bit sRGB image that is read back or presented.
 // Internal, so the viewer (apps/spindrift) can record a frame into its own
 // command buffer and present the colour target.
 #pragma once
@@ -99,6 +102,24 @@ struct OitTargets {
     Pipeline accumulate, composite;
 };
 
+/// Bloom's levels: a quarter of the frame's side, then halved 3 times
+/// (1/4 to 1/32): a glow about 50 pixels wide at 960x540.
+inline constexpr std::uint32_t kBloomLevels = 4;
+
+/// Bloom and the tone map (light_pass.cpp). The levels, their passes and sets
+/// exist only when RenderDef::bloom > 0.
+struct Light {
+    VkRenderPass down = VK_NULL_HANDLE, up = VK_NULL_HANDLE;  // overwrite a level / add onto it
+    gpu::Image levels[kBloomLevels];
+    glm::uvec2 sizes[kBloomLevels] = {};
+    VkFramebuffer framebuffers[kBloomLevels] = {};
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet toneMapSet = VK_NULL_HANDLE, thresholdSet = VK_NULL_HANDLE;
+    VkDescriptorSet levelSets[kBloomLevels] = {};
+    Pipeline threshold, blurDown, blurUp, toneMap;
+};
+
 struct Renderer {
     WorldId world;
     RenderDef def;
@@ -123,6 +144,7 @@ struct Renderer {
     Pipeline surfaceField, surfaceBlur, surfaceDepth, surfaceComposite;
     SurfaceField surface;
     OitTargets oit;  // pass == VK_NULL_HANDLE: no emitter uses OIT
+    Light light;
 
     // Colliders: the static mesh, built once; bodies are rebuilt each frame.
     gpu::Buffer staticMesh, dynamicMesh;
@@ -148,8 +170,8 @@ void destroyRenderer(Renderer& r);
 /// runs, fluid splats, bodies; and the back-to-front sorts of alpha emitters,
 /// each its own submission (a GpuSort sorts once per submission).
 void prepareFrame(Renderer& r);
-/// Records both passes into `cmd`; leaves the colour target in
-/// TRANSFER_SRC_OPTIMAL.
+/// Records the frame's passes into `cmd`; leaves the sRGB image
+/// (r.target.colour) in TRANSFER_SRC_OPTIMAL.
 void recordFrame(Renderer& r, VkCommandBuffer cmd);
 /// prepareFrame, recordFrame, a copy to the read-back buffer, submit and wait.
 Frame renderFrame(Renderer& r);

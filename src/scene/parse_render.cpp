@@ -1,4 +1,4 @@
-// [render]: frame size, video timing, sun, and the [render.background] and
+// [render]: frame size, video timing, sun, exposure, tone map, bloom, and the [render.background] and
 // [render.fluid] sub-tables. Values are read with type checks only; their
 // ranges are validateRenderDef's rules (src/render/render_rules.h), checked
 // once through validateAt, so an error points at the line that is wrong.
@@ -85,7 +85,9 @@ FluidRenderDef parseFluidRender(const Table& render, const Table& t) {
 }  // namespace
 
 RenderDef parseRender(const Table& t) {
-    t.allowOnly({"width", "height", "fps", "seconds", "draw_colliders", "sun", "background", "fluid"}, "[render]");
+    t.allowOnly({"width", "height", "fps", "seconds", "draw_colliders", "sun", "exposure", "tone_map", "bloom",
+                 "background", "fluid"},
+                "[render]");
     RenderDef def;
     def.width = t.whole<std::uint32_t>("width", def.width, render_rules::kFrameSide);
     def.height = t.whole<std::uint32_t>("height", def.height, render_rules::kFrameSide);
@@ -93,6 +95,11 @@ RenderDef parseRender(const Table& t) {
     def.seconds = t.real("seconds", def.seconds, render_rules::kSeconds);
     def.drawColliders = t.boolean("draw_colliders", def.drawColliders);
     def.sunDirection = t.direction("sun", def.sunDirection);
+    def.exposure = t.real("exposure", def.exposure, render_rules::kExposure);
+    if (auto v = t.find("tone_map")) {
+        def.toneMap = v->choice<ToneMap>({{"aces", ToneMap::Aces}, {"none", ToneMap::None}});
+    }
+    def.bloom = t.real("bloom", def.bloom, render_rules::kBloom);
     if (auto background = t.subTable("background")) {
         def.background = parseBackground(*background);
     }

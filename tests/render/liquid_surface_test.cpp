@@ -115,6 +115,8 @@ struct RestingTank {
         r.camera.orthoHeight = kViewHeight;
         r.background.kind = BackgroundKind::Colour;
         r.background.colour = kBackground;
+        r.toneMap = ToneMap::None;  // the background's code is a closed form of its linear colour
+        r.bloom = 0.0f;
         ScopedRenderer renderer(world.id, r);
         frame = renderFrame(renderer.id);
         dumpFrame(frame, "resting_tank");

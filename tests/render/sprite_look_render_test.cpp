@@ -28,6 +28,10 @@ RenderDef orthoView(std::uint32_t width, std::uint32_t height, float orthoHeight
     def.camera.orthoHeight = orthoHeight;
     def.background.kind = BackgroundKind::Colour;
     def.background.colour = background;
+    // Closed forms of linear light: the tone map a plain clamp, no bloom
+    // (tests/render/light_test.cpp tests both).
+    def.toneMap = ToneMap::None;
+    def.bloom = 0.0f;
     return def;
 }
 

@@ -48,6 +48,9 @@ fps = 24
 seconds = 2.5
 draw_colliders = false
 sun = [0, 2, 0]
+exposure = 1.5
+tone_map = "none"
+bloom = 0.25
 [render.background]
 kind = "image"
 image = "data/sky.png"
@@ -71,6 +74,9 @@ bubbles = false
     EXPECT_FLOAT_EQ(r.seconds, 2.5f);
     EXPECT_FALSE(r.drawColliders);
     EXPECT_FLOAT_EQ(r.sunDirection.y, 1.0f);  // normalised
+    EXPECT_FLOAT_EQ(r.exposure, 1.5f);
+    EXPECT_EQ(r.toneMap, spindrift::ToneMap::None);
+    EXPECT_FLOAT_EQ(r.bloom, 0.25f);
     EXPECT_EQ(r.camera.eye, glm::vec3(0, 0, 5)) << "[camera] still lands in render.camera";
     EXPECT_EQ(r.background.kind, BackgroundKind::Image);
     EXPECT_EQ(std::filesystem::path(r.background.image), (kScenes / "data" / "sky.png").lexically_normal());
@@ -184,6 +190,16 @@ TEST(SceneRender, BadRenderKeys) {
     expectError("[render]\nsun = [0, 0, 0]\n", {2, 7, "render.sun", "non-zero"});
     expectError("[render]\ndraw_colliders = 1\n", {2, 18, "render.draw_colliders", "true or false"});
     expectError("[render]\nwidht = 640\n", {2, 1, "render.widht", "did you mean"});
+}
+
+TEST(SceneRender, BadLightKeys) {
+    expectError("[render]\nexposure = 0\n", {2, 12, "render.exposure", "> 0"});
+    expectError("[render]\nexposure = \"bright\"\n", {2, 12, "render.exposure", "number"});
+    expectError("[render]\ntone_map = \"filmic\"\n", {2, 12, "render.tone_map", "\"aces\""});
+    expectError("[render]\ntone_map = 1\n", {2, 12, "render.tone_map", "string"});
+    expectError("[render]\nbloom = -0.5\n", {2, 9, "render.bloom", "[0, 10]"});
+    expectError("[render]\nbloom = 11\n", {2, 9, "render.bloom", "[0, 10]"});
+    expectError("[render]\nblom = 1\n", {2, 1, "render.blom", "did you mean"});
 }
 
 TEST(SceneRender, BadBackgrounds) {

@@ -22,6 +22,7 @@
 #include <spindrift/effects.h>
 
 #include <cstdint>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -51,6 +52,10 @@ struct BodyShapeDef {
     /// exactly 2 points. Chain: 2 or more points (3 or more with `loop`).
     std::vector<glm::vec2> vertices;
     bool loop = false;            ///< Chain: joins the last point to the first
+    /// Linear RGB this shape is drawn in, each channel >= 0 and finite;
+    /// unset: the body's colour (BodyDef::colour). Drawing only, as Box2D
+    /// v3's b2ShapeDef::customColor.
+    std::optional<glm::vec3> colour;
 };
 
 SPINDRIFT_API BodyShapeDef boxShape(glm::vec2 halfExtents, glm::vec2 offset = glm::vec2(0.0f), float angle = 0.0f);
@@ -85,6 +90,11 @@ struct BodyDef {
     float friction = 0.6f;           ///< Coulomb coefficient against bodies, >= 0
     float restitution = 0.0f;        ///< bounce against bodies, in [0, 1]
     bool fixedRotation = false;
+    /// Linear RGB the renderer draws the body's shapes in (those without a
+    /// colour of their own), each channel >= 0 and finite; unset: the
+    /// renderer's default (wood for a dynamic body, grey for the others).
+    /// Drawing only: it changes nothing in the simulation.
+    std::optional<glm::vec3> colour;
     /// At least one; edges and chains only on static and kinematic bodies
     /// (they have no area, so no mass).
     std::vector<BodyShapeDef> shapes;
@@ -137,6 +147,9 @@ struct BodyShapeView {
     float radius = 0.0f;
     std::vector<glm::vec2> vertices;
     bool loop = false;
+    /// The shape's colour (BodyShapeDef::colour), else its body's
+    /// (BodyDef::colour); unset when neither is (the renderer's default).
+    std::optional<glm::vec3> colour;
 };
 
 struct BodySnapshot {
@@ -147,6 +160,7 @@ struct BodySnapshot {
     float angle = 0.0f;              ///< rad
     glm::vec2 linearVelocity{0.0f};  ///< m/s, of the centre of mass
     float angularVelocity = 0.0f;    ///< rad/s
+    std::optional<glm::vec3> colour;  ///< BodyDef::colour, linear RGB
     std::vector<BodyShapeView> shapes;
 };
 

@@ -11,6 +11,7 @@
 #include <glm/glm.hpp>
 
 #include <cstdint>
+#include <optional>
 #include <stdexcept>
 #include <string>
 #include <vector>
@@ -278,6 +279,11 @@ struct ColliderDef {
     /// approaching slower than this is resting, not an impact: it is not
     /// counted as a hit and does not trigger kill or life loss.
     float restSpeed = 0.01f;
+    /// Linear RGB the renderer draws this collider in, each channel >= 0 and
+    /// finite (above 1 is allowed: HDR); unset: the renderer's default (grey,
+    /// green for terrain). A debug-draw colour in Box2D v3's sense
+    /// (b2ShapeDef::customColor): it changes nothing in the simulation.
+    std::optional<glm::vec3> colour;
 };
 
 }  // namespace spindrift

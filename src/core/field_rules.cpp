@@ -62,6 +62,10 @@ void FieldCheck::finite(std::string_view field, glm::vec2 v) const {
     for (int i = 0; i < 2; ++i) number(fmt::format("{}[{}]", field, i), v[i], FieldRule::number(Bounds::any()));
 }
 
+void FieldCheck::colour(std::string_view field, glm::vec3 c) const {
+    for (int i = 0; i < 3; ++i) number(fmt::format("{}[{}]", field, i), c[i], kColourChannel);
+}
+
 std::string objectLabel(std::string_view kind, std::string_view name) {
     return name.empty() ? std::string(kind) : fmt::format("{} '{}'", kind, name);
 }

@@ -58,6 +58,11 @@ private:
     constexpr FieldRule(Bounds b, bool isInteger) : bounds(b), integer(isInteger) {}
 };
 
+/// A channel of a linear RGB colour: >= 0, above 1 allowed (HDR). The one
+/// rule of every colour a Def holds (render's background and fluid, a
+/// collider's, a body's and a body shape's).
+inline constexpr FieldRule kColourChannel = FieldRule::number(Bounds::nonNegative());
+
 /// The span a slider offers for a field: the rule's ends where they are
 /// closed and finite, otherwise `lo` and `hi` (a UI's choice for an open or
 /// unbounded end), which must lie inside the rule. So a slider never offers a
@@ -91,6 +96,8 @@ public:
     /// Every component finite ("field[1]").
     void finite(std::string_view field, glm::vec3 v) const;
     void finite(std::string_view field, glm::vec2 v) const;
+    /// Each channel of a linear RGB colour finite and >= 0 ("field[1]").
+    void colour(std::string_view field, glm::vec3 c) const;
     /// For rules that are not an interval: fails with "expected <expected>, got <got>".
     void expect(bool ok, std::string_view field, std::string_view expected, std::string_view got) const;
     [[noreturn]] void fail(std::string_view field, std::string message) const;

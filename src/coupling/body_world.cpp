@@ -95,6 +95,7 @@ void validateShape(const BodyDef& def, std::size_t index, const BodyShapeDef& s)
     for (std::size_t i = 0; i < s.vertices.size(); ++i) coordinates(check, fieldPath(field, i), s.vertices[i]);
     coordinates(check, fieldPath("shape", index, "offset"), s.offset);
     check.number(fieldPath("shape", index, "angle"), s.angle, rules::kAngle);
+    if (s.colour) check.colour(fieldPath("shape", index, "color"), *s.colour);
     switch (s.kind) {
     case BodyShapeKind::Box:
         check.number(field + "[0]", s.halfExtents.x, rules::kSize);
@@ -396,6 +397,7 @@ void validateBodyDef(const BodyDef& def) {
     if (def.type == BodyType::Dynamic) check.number("density", def.density, rules::kDensity);
     check.number("friction", def.friction, rules::kFriction);
     check.number("restitution", def.restitution, rules::kRestitution);
+    if (def.colour) check.colour("color", *def.colour);
     check.expect(!def.shapes.empty(), "shape", "at least one shape", "none");
     for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::validateShape(def, i, def.shapes[i]);
 }
@@ -621,8 +623,11 @@ std::vector<BodySnapshot> readBodies(const BodyWorld* bodies) {
         s.angle = slot.body->GetAngle();
         s.linearVelocity = coupling::fromB2(slot.body->GetLinearVelocity());
         s.angularVelocity = slot.body->GetAngularVelocity();
+        s.colour = slot.def.colour;
         for (const BodyShapeDef& shape : slot.def.shapes) {
-            s.shapes.push_back(coupling::view(shape, slot.body->GetTransform()));
+            BodyShapeView v = coupling::view(shape, slot.body->GetTransform());
+            v.colour = shape.colour ? shape.colour : slot.def.colour;  // a shape's own colour wins
+            s.shapes.push_back(std::move(v));
         }
         out.push_back(std::move(s));
     }

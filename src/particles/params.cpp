@@ -274,6 +274,7 @@ void validateColliderDef(const ColliderDef& d) {
     check.finite("normal", d.normal);
     check.finite("half_extents", d.halfExtents);
     check.finite("rotation", d.rotationDegrees);
+    if (d.colour) check.colour("color", *d.colour);
     switch (d.kind) {
         case ColliderKind::Plane:
             check.expect(glm::length(d.normal) > 0.0f, "normal", "a non-zero normal",

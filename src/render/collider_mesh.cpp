@@ -9,12 +9,15 @@
 #include <glm/gtc/constants.hpp>
 
 #include <algorithm>
+#include <optional>
 #include <utility>
 #include <cmath>
 
 namespace spindrift::render {
 namespace {
 
+// Defaults, for what has no colour of its own (ColliderDef::colour,
+// BodyDef::colour, BodyShapeDef::colour), linear RGB.
 const glm::vec3 kColliderColour{0.42f, 0.40f, 0.37f};
 const glm::vec3 kTerrainColour{0.30f, 0.38f, 0.22f};
 const glm::vec3 kObstacleColour{0.50f, 0.45f, 0.40f};
@@ -88,7 +91,8 @@ void appendSphere(std::vector<MeshVertex>& out, glm::vec3 centre, float r, glm::
     }
 }
 
-void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& c, const HeightMap& map) {
+void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& c, const HeightMap& map,
+                   glm::vec3 colour) {
     if (map.nx < 2 || map.nz < 2) {
         return;
     }
@@ -104,7 +108,7 @@ void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& 
     for (std::uint32_t j = 0; j + 1 < map.nz; j += stride) {
         for (std::uint32_t i = 0; i + 1 < map.nx; i += stride) {
             twoSidedQuad(out, vertex(i, j), vertex(i, j + stride), vertex(i + stride, j + stride),
-                         vertex(i + stride, j), kTerrainColour);
+                         vertex(i + stride, j), colour);
         }
     }
 }
@@ -153,21 +157,23 @@ std::vector<MeshVertex> staticColliderMesh(WorldId id, float extent) {
     for (std::size_t i = 0; i < world.colliders.size(); ++i) {
         const kernels::ColliderParams& c = world.colliders[i];
         const glm::vec3 p(c.position);
+        const glm::vec3 colour = world.colliderDefs[i].colour.value_or(
+            c.kind == kernels::SD_COLLIDER_TERRAIN ? kTerrainColour : kColliderColour);
         switch (c.kind) {
             case kernels::SD_COLLIDER_PLANE: {
                 glm::mat3 axes = basisAround(glm::vec3(c.normal));
                 appendBox(out, p - axes[0] * (0.5f * extent), axes, glm::vec3(0.5f * extent, extent, extent),
-                          kColliderColour);
+                          colour);
                 break;
             }
-            case kernels::SD_COLLIDER_SPHERE: appendSphere(out, p, c.position.w, kColliderColour); break;
+            case kernels::SD_COLLIDER_SPHERE: appendSphere(out, p, c.position.w, colour); break;
             case kernels::SD_COLLIDER_BOX:
                 appendBox(out, p, glm::mat3(glm::vec3(c.axisX), glm::vec3(c.axisY), glm::vec3(c.axisZ)),
-                          glm::vec3(c.halfExtents), kColliderColour);
+                          glm::vec3(c.halfExtents), colour);
                 break;
             case kernels::SD_COLLIDER_TERRAIN:
                 if (c.dataIndex < world.fields.heights.size()) {
-                    appendTerrain(out, c, world.fields.heights[c.dataIndex]);
+                    appendTerrain(out, c, world.fields.heights[c.dataIndex], colour);
                 }
                 break;
             default: break;  // cube maps: not drawn
@@ -226,7 +232,7 @@ std::vector<MeshVertex> bodyMesh(WorldId world) {
     std::vector<MeshVertex> out;
     for (const BodySnapshot& body : readBodies(world)) {
         for (const BodyShapeView& shape : body.shapes) {
-            appendBodyShape(out, shape, body.dynamic ? kDynamicBodyColour : kObstacleColour);
+            appendBodyShape(out, shape, shape.colour.value_or(body.dynamic ? kDynamicBodyColour : kObstacleColour));
         }
     }
     return out;

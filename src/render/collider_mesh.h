@@ -23,13 +23,15 @@ static_assert(sizeof(MeshVertex) == 36);
 float planeExtent(const CameraDef& camera, float aspect);
 
 /// Colliders that do not move: planes (as slabs), spheres, boxes, terrain,
-/// and the fluids' polygon obstacles (prisms along z). Cube-map colliders
-/// have no mesh (their shape is only known as depths) and are not drawn.
+/// and the fluids' polygon obstacles (prisms along z), each collider in its
+/// ColliderDef::colour or the default. Cube-map colliders have no mesh
+/// (their shape is only known as depths) and are not drawn.
 std::vector<MeshVertex> staticColliderMesh(WorldId world, float extent);
 
 /// The world's Box2D bodies where they are now (readBodies): polygons and
-/// circles as prisms along z, edges and chains as thin walls; dynamic bodies
-/// in a wood colour, static and kinematic ones in the colliders' grey.
+/// circles as prisms along z, edges and chains as thin walls; each shape in
+/// its colour (BodyShapeView::colour: the shape's, else the body's), else
+/// dynamic bodies in a wood colour, static and kinematic ones in grey.
 std::vector<MeshVertex> bodyMesh(WorldId world);
 
 /// Axis-aligned box helper shared with the bodies' mesh: a box of half

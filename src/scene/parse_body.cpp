@@ -28,7 +28,7 @@ std::vector<glm::vec2> points(const Value& list) {
 }
 
 BodyShapeDef parseShape(const Table& t) {
-    t.allowOnly({"box", "circle", "polygon", "edge", "chain", "offset", "angle", "loop"}, "a body shape");
+    t.allowOnly({"box", "circle", "polygon", "edge", "chain", "offset", "angle", "loop", "color"}, "a body shape");
     const std::vector<std::string_view> kinds = {"box", "circle", "polygon", "edge", "chain"};
     std::string_view kind;
     for (std::string_view k : kinds) {
@@ -66,6 +66,8 @@ BodyShapeDef parseShape(const Table& t) {
     if (auto o = t.find("offset")) s.offset = vec2(*o);
     s.angle = t.real("angle", s.angle, body_rules::kAngle);
     s.loop = t.boolean("loop", s.loop);
+    // Type only: that each channel is >= 0 is validateBodyDef's rule.
+    if (auto v = t.find("color")) s.colour = v->vec3();
     return s;
 }
 
@@ -73,7 +75,7 @@ BodyShapeDef parseShape(const Table& t) {
 
 BodyDef parseBody(const Table& t, NameTable& names) {
     t.allowOnly({"name", "type", "position", "angle", "velocity", "angular_velocity", "density", "friction",
-                 "restitution", "fixed_rotation", "shape"},
+                 "restitution", "fixed_rotation", "color", "shape"},
                 "a [[body]]");
     BodyDef def;
     def.name = names.add(t);
@@ -89,6 +91,7 @@ BodyDef parseBody(const Table& t, NameTable& names) {
     def.friction = t.real("friction", def.friction, body_rules::kFriction);
     def.restitution = t.real("restitution", def.restitution, body_rules::kRestitution);
     def.fixedRotation = t.boolean("fixed_rotation", def.fixedRotation);
+    if (auto v = t.find("color")) def.colour = v->vec3();
     for (const Table& s : tableArray(t, "shape")) def.shapes.push_back(parseShape(s));
     validateAt(t, [&] { validateBodyDef(def); });
     return def;

@@ -23,7 +23,7 @@ namespace {
 enum class HeightSource { None, Hills, Image, Inline };
 
 const std::vector<std::string_view> kCommonKeys = {"name", "kind", "friction", "resilience",
-                                                   "rest_speed"};
+                                                   "rest_speed", "color"};
 
 std::vector<std::string_view> withCommon(std::initializer_list<std::string_view> keys) {
     std::vector<std::string_view> all = kCommonKeys;
@@ -281,6 +281,8 @@ void readSurface(const Table& t, ColliderDef& def) {
     def.friction = t.real("friction", def.friction, collider_rules::kFriction);
     def.resilience = t.real("resilience", def.resilience, collider_rules::kResilience);
     def.restSpeed = t.real("rest_speed", def.restSpeed, collider_rules::kRestSpeed);
+    // Type only: that each channel is >= 0 is validateColliderDef's rule.
+    if (auto v = t.find("color")) def.colour = v->vec3();
 }
 
 }  // namespace

@@ -362,12 +362,12 @@ TEST(FluidSplats, SplashRemovedAtBodies) {
 // are outside: the chord is tested, not only where it ends.
 TEST(FluidSplats, SplashChordAgainstABodyCorner) {
     const BodyShapeView square{BodyShapeView::Kind::Polygon, {}, 0.0f,
-                               {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}}, false};
+                               {{0.0f, 0.0f}, {1.0f, 0.0f}, {1.0f, 1.0f}, {0.0f, 1.0f}}, false, std::nullopt};
     // The line x + y = 2.1 passes 0.07 m outside the corner (1, 1); x + y = 1.9 cuts it.
     EXPECT_FALSE(fluid::pathMeetsBodyShape(square, {0.6f, 1.5f}, {1.5f, 0.6f}));
     EXPECT_TRUE(fluid::pathMeetsBodyShape(square, {0.6f, 1.3f}, {1.3f, 0.6f}));
     EXPECT_TRUE(fluid::pathMeetsBodyShape(square, {0.5f, 0.5f}, {0.6f, 0.6f}));  // inside
-    const BodyShapeView circle{BodyShapeView::Kind::Circle, {0.0f, 0.0f}, 1.0f, {}, false};
+    const BodyShapeView circle{BodyShapeView::Kind::Circle, {0.0f, 0.0f}, 1.0f, {}, false, std::nullopt};
     EXPECT_FALSE(fluid::pathMeetsBodyShape(circle, {-2.0f, 1.1f}, {2.0f, 1.1f}));
     EXPECT_TRUE(fluid::pathMeetsBodyShape(circle, {-2.0f, 0.9f}, {2.0f, 0.9f}));  // both ends outside
 }

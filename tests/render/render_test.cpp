@@ -343,6 +343,53 @@ TEST_P(RenderTest, BodyIsDrawnWhereItIsNow) {
     destroyWorld(world);
 }
 
+// Colours of a body and a collider (BodyDef::colour, ColliderDef::colour)
+// reach the pixels through mesh.frag's shading rule, computed here by hand:
+// colour x (ambient + 0.65 x max(n . sun, 0)), ambient = 0.35 + 0.15 n.y.
+// Both faces seen look at the camera (n = +z): the static box's front cap,
+// and the front of the slab that stands for the floor plane (below y = -0.25).
+// The sun (0.48, 0.6, 0.64) is a unit vector, so n . sun = 0.64 and the
+// factor is 0.35 + 0.65 x 0.64 = 0.766. Tolerance kCodeTolerance (2 codes):
+// the read-back's 8-bit sRGB rounding (+-0.5 code) and float rounding in the
+// shader; the default grey (0.42, 0.40, 0.37) or wood would be off by 40+.
+TEST_P(RenderTest, BodyAndColliderColoursAreShadedBySunAndAmbient) {
+    WorldDef wd;
+    wd.backend = GetParam();
+    wd.bodyGravity = glm::vec2(0.0f);
+    WorldId world = createWorld(wd);
+    ColliderDef floor;
+    floor.kind = ColliderKind::Plane;
+    floor.position = {0.0f, -0.25f, 0.0f};
+    floor.normal = {0.0f, 1.0f, 0.0f};
+    floor.colour = glm::vec3(0.1f, 0.3f, 0.6f);
+    createCollider(world, floor);
+    BodyDef box;
+    box.type = BodyType::Static;
+    box.position = {0.0f, 0.4f};
+    box.colour = glm::vec3(0.8f, 0.2f, 0.1f);
+    box.shapes = {boxShape({0.3f, 0.2f})};
+    createBody(world, box);
+    {
+        RenderDef def = orthoView(64, 64, 2.0f);
+        def.sunDirection = {0.48f, 0.6f, 0.64f};
+        ScopedRenderer r(world, def);
+        Frame f = renderFrame(r.id);
+        dumpFrame(f, "colours");
+        const double factor = 0.35 + 0.65 * 0.64;
+        // 32 px per m, world origin at pixel (32, 32), y up: the box's centre
+        // (0, 0.4) m is at pixel row 32 - 12.8 = 19.2; the floor at y = -0.7 m
+        // (0.45 m below its surface) at row 32 + 22.4 = 54.4.
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(pixel(f, 32, 19)[c], srgbByte((*box.colour)[c] * factor), kCodeTolerance)
+                << "body, channel " << c;
+            EXPECT_NEAR(pixel(f, 32, 54)[c], srgbByte((*floor.colour)[c] * factor), kCodeTolerance)
+                << "floor, channel " << c;
+            EXPECT_EQ(pixel(f, 32, 32)[c], 0) << "background between them, channel " << c;
+        }
+    }
+    destroyWorld(world);
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, RenderTest, ::testing::Values(Backend::Cpu, Backend::Vulkan),
                          [](const auto& info) { return info.param == Backend::Cpu ? "cpu" : "vulkan"; });
 

@@ -132,7 +132,7 @@ struct StepPush {
     float dt;  // s
     uint count;
     uint emitterIndex;
-    uint pad;
+    float time;  // s, the world time at the start of the step (animated forces)
 };
 
 // The back-to-front sort (src/gpu/shaders/back_to_front_sort.comp, src/gpu/
@@ -271,6 +271,7 @@ static_assert(offsetof(StepCounters, hits) == 16);
 static_assert(sizeof(EventsHeader) == 16);
 static_assert(sizeof(StepPush) == 16);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
+static_assert(offsetof(StepPush, time) == 12);
 static_assert(sizeof(SortPush) == 48);
 static_assert(offsetof(SortPush, count) == 32);
 static_assert(sizeof(SpriteDraw) == 48);

@@ -14,6 +14,7 @@ struct KernelContext {
     const ColliderParams* colliders;
     uint colliderTotal;
     const FieldSet* fields;
+    float time;  // s, the world time at the start of the step
 };
 
 inline uint forceCount(const KernelContext& ctx) { return ctx.forceTotal; }
@@ -30,6 +31,7 @@ inline float sampleTerrainHeight(const KernelContext& ctx, uint map, vec2 uv) {
 inline vec4 sampleCubeMap(const KernelContext& ctx, uint map, vec3 direction) {
     return sampleCube(ctx.fields->cubes[map], direction);
 }
+inline float worldTime(const KernelContext& ctx) { return ctx.time; }
 
 }  // namespace spindrift::kernels
 

@@ -145,7 +145,7 @@ TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
     kernels::ColliderParams plane{};
     plane.kind = kernels::SD_COLLIDER_PLANE;
     plane.normal = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
-    const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr};
+    const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr, 0.0f};
     kernels::EmitterParams e{};
     e.mass = 1.0f;
     e.flags = kernels::SD_EMITTER_COLLISIONS;

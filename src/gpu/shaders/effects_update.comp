@@ -125,6 +125,7 @@ vec4 sampleCubeImage(uint map, vec3 direction) {
 vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw) { return sampleFlowImage(field, uvw).xyz; }
 float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) { return sampleHeightImage(map, uv).x; }
 vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) { return sampleCubeImage(map, direction); }
+float worldTime(KernelContext ctx) { return step.time; }
 
 #include "update.glsl"
 #include "birth_age.glsl"

@@ -9,7 +9,9 @@
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
 #include <random>
 #include <vector>
 
@@ -56,16 +58,16 @@ glm::dmat3 jacobian(const kernels::ForceParams& f, glm::vec3 p, float t, float h
     return j;
 }
 
-// div v = 0 to the differences' error. With frequency 1 (1 m cells) and
-// h = 1e-3 m, the central difference's truncation error is h^2/6 |v'''|,
-// about 1e-6 relative to the derivatives (|v'''| ~ 10^2 |v'|: the quintic fade
-// over a unit cell), and float rounding of v (~1e-7 |v|) divided by 2h adds
-// ~1e-4 |v|; |grad v| ~ 2 |v| here. So |div v| / |grad v| should be ~1e-4;
-// the bound 2e-3 is 20x that, and a field that is not a curl (e.g. one
-// potential's gradient) has a ratio of order 1.
+// div v = 0 to the differences' error, measured as |div v| / |grad v| (the
+// Jacobian's Frobenius norm) at each point. With frequency 1 (1 m cells) the
+// central difference's truncation error grows as h^2 and the float rounding of
+// v (and of p +- h) divided by 2h as 1/h; h = 3e-3 m balances them: seen
+// 4.6e-4 at worst over these 1200 points (1.8e-3 at h = 1e-3, 2.9e-3 at
+// h = 1e-2). Bound 5e-3, 10x that; a field that is not a curl has a ratio of
+// order 1 (next test).
 TEST(CurlNoise, DivergenceFreeAtEveryInstant) {
     const kernels::ForceParams f = noise(1.5f, 1.0f, 0.8f, 2, 9);
-    const float h = 1e-3f;
+    const float h = 3e-3f;
     double worst = 0.0;
     double gradientSum = 0.0;
     int n = 0;
@@ -87,16 +89,16 @@ TEST(CurlNoise, DivergenceFreeAtEveryInstant) {
     }
     std::printf("curl noise: |div v| / |grad v| at most %.2e over %d points; mean |grad v| %.2f 1/s\n", worst, n,
                 gradientSum / n);
-    EXPECT_LT(worst, 2e-3);
-    EXPECT_GT(gradientSum / n, 0.5);  // not vacuous: the field has gradients of order strength x frequency
+    EXPECT_LT(worst, 5e-3);
+    EXPECT_GT(gradientSum / n, 1.0);  // not vacuous: |grad v| ~ 8 strength frequency (12 1/s seen)
 }
 
-// The same measure on a field that is not divergence-free: one potential's
-// gradient (the velocity rotated so it becomes grad psi-like) shows the test
-// above can fail: v' = (v_y, v_z, v_x) is generally not solenoidal.
+// The same measure on a field that is not divergence-free shows the test above
+// can fail: v' = (v_y, v_z, v_x), the same velocities with the components
+// permuted, is generally not solenoidal.
 TEST(CurlNoise, DivergenceMeasureSeesANonSolenoidalField) {
     const kernels::ForceParams f = noise(1.5f, 1.0f, 0.8f, 2, 9);
-    const float h = 1e-3f;
+    const float h = 3e-3f;
     double sum = 0.0;
     int n = 0;
     for (glm::vec3 p : randomPoints(200, 20.0f, 5u)) {
@@ -182,8 +184,9 @@ TEST(CurlNoise, ChangesOverTime) {
 // Across a slice boundary (phase 1 at t = 2 s with speed 0.5) the blend ends
 // on slice 1 and the next interval starts on it: the field is continuous, and
 // with the fade's zero slope at the ends, v(t + e) - v(t - e) is O(e^3):
-// tiny for e = 1e-3 s, while the same interval in mid-slice moves v by
-// O(e) = about 1e-3 m/s.
+// tiny for e = 1e-3 s (9e-7 m/s seen, float rounding), while the same
+// interval in mid-slice (t = 1 s) moves v by O(e): 7e-3 m/s seen. A seed that
+// did not carry over from one interval to the next would jump by ~1 m/s.
 TEST(CurlNoise, ContinuousAcrossSlices) {
     const kernels::ForceParams f = noise(1.0f, 0.7f, 0.5f, 1, 5);
     const float e = 1e-3f;

@@ -3,7 +3,6 @@
 #ifndef SPINDRIFT_KERNELS_INTEGRATE
 #define SPINDRIFT_KERNELS_INTEGRATE
 #include "forces.glsl"
-#include "noise.glsl"
 SD_BEGIN
 
 // Everything that accelerates a particle at position p except damping and
@@ -44,7 +43,7 @@ SD_FN Forcing forcingAt(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p
             // same keys and feel (a light particle follows the flow, a heavy
             // one lags), and the drag is solved exactly by every integrator.
             // The field is taken at the step's start time for every stage.
-            vec3 flow = curlNoiseVelocity(f, p, worldTime(ctx));
+            vec3 flow = sampleCurlNoise(ctx, f, p);
             drag = addDrag(drag, stokesCoefficient(f.flowOffset.w, radius), flow);
         }
     }

@@ -41,7 +41,8 @@ SD_CONST uint SD_SPEC_FLOW_FIELDS = 1u;  // flow fields of the world, 0..SD_MAX_
 SD_CONST uint SD_SPEC_HEIGHT_MAPS = 2u;
 SD_CONST uint SD_SPEC_CUBE_MAPS = 3u;
 SD_CONST uint SD_SPEC_INTEGRATOR = 4u;   // SD_INTEGRATE_*, or SD_ANY_INTEGRATOR
-SD_CONST uint SD_SPEC_COUNT = 5u;
+SD_CONST uint SD_SPEC_CURL_NOISE = 5u;   // 1: the emitter selects a curl-noise force (else its code is dropped)
+SD_CONST uint SD_SPEC_COUNT = 6u;
 // INTEGRATOR value that reads the emitter's own (EmitterParams::integrator).
 SD_CONST uint SD_ANY_INTEGRATOR = 0xFFFFFFFFu;
 

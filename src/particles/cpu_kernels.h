@@ -4,6 +4,7 @@
 #pragma once
 
 #include "particles/fields.h"
+#include "kernels/noise.glsl"
 #include "kernels/types.glsl"
 
 namespace spindrift::kernels {
@@ -31,7 +32,9 @@ inline float sampleTerrainHeight(const KernelContext& ctx, uint map, vec2 uv) {
 inline vec4 sampleCubeMap(const KernelContext& ctx, uint map, vec3 direction) {
     return sampleCube(ctx.fields->cubes[map], direction);
 }
-inline float worldTime(const KernelContext& ctx) { return ctx.time; }
+inline vec3 sampleCurlNoise(const KernelContext& ctx, const ForceParams& f, vec3 p) {
+    return curlNoiseVelocity(f, p, ctx.time);
+}
 
 }  // namespace spindrift::kernels
 

@@ -104,7 +104,8 @@ SD_FN vec3 fractalNoiseGradient(vec3 q, uint seed, uint octaves) {
 // are independent noises rather than shifted copies.
 SD_FN vec3 potentialGradient(uint component, vec3 q, uint slice, uint seed, uint octaves) {
     uint componentSeed = component == 0u ? 0x1234567u : (component == 1u ? 0x89ABCDEu : 0xF1E2D3Cu);
-    vec3 offset = component == 0u ? vec3(0.0f) : (component == 1u ? vec3(31.4f, 17.9f, 5.3f) : vec3(-12.7f, 43.1f, 23.9f));
+    vec3 offset = component == 0u ? vec3(0.0f)
+                                  : (component == 1u ? vec3(31.4f, 17.9f, 5.3f) : vec3(-12.7f, 43.1f, 23.9f));
     uint sliceSeed = pcgHash(seed ^ pcgHash(slice * 0x9E3779B9u + 0x7F4A7C15u));
     return fractalNoiseGradient(q + offset, sliceSeed ^ componentSeed, octaves);
 }

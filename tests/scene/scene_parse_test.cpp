@@ -514,7 +514,8 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         "kind = \"cone\"", "surface = true",
         // forces
         "kind = \"gravity\"", "kind = \"wind\"", "kind = \"attractor\"", "kind = \"repulsor\"",
-        "kind = \"vortex\"", "kind = \"damping\"", "kind = \"undamping\"", "kind = \"flow_field\"", "kind = \"curl_noise\"",
+        "kind = \"vortex\"", "kind = \"damping\"", "kind = \"undamping\"", "kind = \"flow_field\"",
+        "kind = \"curl_noise\"",
         // colliders
         "kind = \"plane\"", "kind = \"terrain\"", "kind = \"cube_map\"",
         // integrators and lifecycles

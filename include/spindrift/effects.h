@@ -211,6 +211,9 @@ enum class ForceKind : std::uint32_t {
     Damping = 4,    ///< speed decays exactly: s(t) = s0 exp(-strength t)
     Undamping = 5,  ///< speed relaxes exactly toward `targetSpeed` at rate `strength` (bees)
     FlowField = 6,  ///< Stokes drag toward the field: F = 6 pi viscosity r (v_flow - v)
+    /// Stokes drag toward an animated curl-noise velocity of rms `strength`
+    /// (m/s), divergence-free at every instant (docs/scene-format.md)
+    CurlNoise = 7,
 };
 
 struct ForceDef {
@@ -229,7 +232,11 @@ struct ForceDef {
     float range = 0.0f;
     float targetSpeed = 1.0f;  ///< undamping, m/s
     FlowFieldId flowField;     ///< flow field forces
-    float viscosity = 1.8e-5f; ///< eta, Pa s (air by default)
+    float viscosity = 1.8e-5f; ///< eta, Pa s (air by default); flow field and curl noise forces
+    float frequency = 1.0f;    ///< curl noise: noise cells per metre (1/m), > 0
+    float speed = 0.0f;        ///< curl noise: noise slices per second (1/s), >= 0; 0 is a static field
+    std::uint32_t octaves = 1; ///< curl noise: 1 to 4 layers, each at twice the frequency
+    std::uint32_t seed = 0;    ///< curl noise
 };
 
 /// A grid of flow velocities over an axis-aligned box. 2D fields have nz = 1

@@ -151,6 +151,7 @@ struct Specialization {
     Pass pass;
     std::uint32_t flowFields, heightMaps, cubeMaps;  // counts in the world
     std::uint32_t integrator;                        // SD_INTEGRATE_*
+    std::uint32_t curlNoise;                         // 1: the emitter selects a curl-noise force
     std::array<std::uint32_t, kernels::SD_SPEC_COUNT> key() const {
         std::array<std::uint32_t, kernels::SD_SPEC_COUNT> k{};
         k[kernels::SD_SPEC_PASS] = static_cast<std::uint32_t>(pass);
@@ -158,6 +159,7 @@ struct Specialization {
         k[kernels::SD_SPEC_HEIGHT_MAPS] = heightMaps;
         k[kernels::SD_SPEC_CUBE_MAPS] = cubeMaps;
         k[kernels::SD_SPEC_INTEGRATOR] = integrator;
+        k[kernels::SD_SPEC_CURL_NOISE] = curlNoise;
         return k;
     }
 };
@@ -165,7 +167,7 @@ struct Specialization {
 // The pipeline of `pass` for emitter `e` in this world, created on first use.
 // The finish pass touches no particle: it shares one variant.
 VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
-    Specialization spec{pass, 0, 0, 0, 0};
+    Specialization spec{pass, 0, 0, 0, 0, 0};
     if (pass != Pass::SpawnFinish) {
         spec.flowFields = static_cast<std::uint32_t>(w.fields.flows.size());
         spec.heightMaps = static_cast<std::uint32_t>(w.fields.heights.size());
@@ -174,7 +176,11 @@ VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
         // of RK4's stages samples them, and compiling every integrator's sample
         // sites costs lavapipe far more than a second pipeline. Without flow
         // fields all four fit in one pipeline that compiles in about a second.
-        spec.integrator = spec.flowFields > 0 ? e.params.integrator : kAnyIntegrator;
+        // Curl noise is live only in the pipelines of emitters that select
+        // it, one integrator each as with flow fields, so its inlined copies
+        // (one per forcingAt) cost the other pipelines nothing at creation.
+        spec.curlNoise = (e.params.forceMask & w.curlNoiseForces) != 0u ? 1u : 0u;
+        spec.integrator = spec.flowFields > 0 || spec.curlNoise != 0u ? e.params.integrator : kAnyIntegrator;
     }
     auto [it, inserted] = w.pipelines.try_emplace(spec.key(), VK_NULL_HANDLE);
     if (inserted) {

@@ -39,13 +39,13 @@ std::uint32_t writeSchedule(GpuEmitter& e, std::uint32_t frame, EmitterState& s,
     return static_cast<std::uint32_t>(total);
 }
 
-void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, std::uint32_t frame, std::size_t index, float dt,
+void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, std::uint32_t frame, std::size_t index, float time, float dt,
                  std::uint32_t count) {
     GpuEmitter& e = *w.emitters[index];
     std::array<VkDescriptorSet, 3> sets{e.descriptorSets[frame],
                                         e.spawn ? e.listSets[e.parity][frame] : w.placeholderSet, w.fields.set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 3, sets.data(), 0, nullptr);
-    StepPush push{dt, count, static_cast<std::uint32_t>(index), 0};
+    StepPush push{dt, count, static_cast<std::uint32_t>(index), time};
     vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
@@ -224,7 +224,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
         GpuEmitter* e = w.emitters[i].get();
         if (e && e->capacity > 0) {
             vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][0]);
-            bindEmitter(w, cmd, frame, i, dt, e->capacity);
+            bindEmitter(w, cmd, frame, i, static_cast<float>(time), dt, e->capacity);
             if (e->spawn) {
                 vkCmdDispatchIndirect(cmd, e->dead.buffer, 0);
             } else {
@@ -238,7 +238,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
         for (std::size_t i = 0; i < w.emitters.size(); ++i) {
             if (spawning(i) && births[i] > 0) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][1]);
-                bindEmitter(w, cmd, frame, i, dt, births[i]);
+                bindEmitter(w, cmd, frame, i, static_cast<float>(time), dt, births[i]);
                 // Births beyond the capacity cannot find a slot: thread 0
                 // counts them, so the dispatch stays within the device limit.
                 vkCmdDispatch(cmd, groupsFor(std::min(births[i], w.emitters[i]->capacity)), 1, 1);
@@ -250,7 +250,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
         for (std::size_t i = 0; i < w.emitters.size(); ++i) {
             if (spawning(i)) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][2]);
-                bindEmitter(w, cmd, frame, i, dt, births[i]);
+                bindEmitter(w, cmd, frame, i, static_cast<float>(time), dt, births[i]);
                 vkCmdDispatch(cmd, 1, 1, 1);
             }
         }

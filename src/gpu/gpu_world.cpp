@@ -230,6 +230,12 @@ void destroyGpuWorld(GpuWorld& w) {
 void uploadForces(GpuWorld& w, std::span<const kernels::ForceParams> forces) {
     waitForSteps(w);
     uploadTable(*w.device, w.forces, forces);
+    w.curlNoiseForces = 0;
+    for (std::size_t i = 0; i < forces.size() && i < kernels::SD_MAX_FORCES; ++i) {
+        if (forces[i].kind == kernels::SD_FORCE_CURL_NOISE) {
+            w.curlNoiseForces |= 1u << i;
+        }
+    }
 }
 
 void uploadColliders(GpuWorld& w, std::span<const kernels::ColliderParams> colliders) {

@@ -102,7 +102,10 @@ struct GpuWorld {
     /// Pipelines of effects_update.comp by specialization (pass, field counts,
     /// integrator), created the first time a step needs one: llvmpipe compiles
     /// at creation, and only the variants a world runs are worth compiling.
-    std::map<std::array<std::uint32_t, 5>, VkPipeline> pipelines;
+    std::map<std::array<std::uint32_t, kernels::SD_SPEC_COUNT>, VkPipeline> pipelines;
+    /// Bit i: force i is a curl-noise force (the CURL_NOISE specialization
+    /// constant of an emitter that selects one).
+    std::uint32_t curlNoiseForces = 0;
     /// Set 1 of recycle emitters: the recycle pass never reads it, but the
     /// shader module declares it, so something valid must be bound.
     Buffer placeholder;

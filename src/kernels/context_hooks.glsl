@@ -12,6 +12,8 @@
 //   vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw);   // m/s
 //   float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv); // m
 //   vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction); // normal, depth (m)
+//   vec3 sampleCurlNoise(KernelContext ctx, ForceParams f, vec3 p);  // m/s, curlNoiseVelocity
+//                                                                     // (noise.glsl) at the step's start time
 //
 // (integratorOf lets a compute pipeline fix the integrator as a specialization
 // constant, so the driver compiles only the one it runs) before including integrate.glsl, collide.glsl or update.glsl. Normalised

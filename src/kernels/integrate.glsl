@@ -38,6 +38,13 @@ SD_FN Forcing forcingAt(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, vec3 p
             vec3 uvw = p * vec3(f.flowScale) + vec3(f.flowOffset);
             vec3 flow = sampleFlowField(ctx, f.flowField, uvw);
             drag = addDrag(drag, stokesCoefficient(f.flowOffset.w, radius), flow);
+        } else if (f.kind == SD_FORCE_CURL_NOISE) {
+            // A medium velocity with Stokes drag, as flow_field forces: the
+            // same keys and feel (a light particle follows the flow, a heavy
+            // one lags), and the drag is solved exactly by every integrator.
+            // The field is taken at the step's start time for every stage.
+            vec3 flow = sampleCurlNoise(ctx, f, p);
+            drag = addDrag(drag, stokesCoefficient(f.flowOffset.w, radius), flow);
         }
     }
     LinearDrag l = linearDrag(drag, mass);

@@ -41,7 +41,8 @@ SD_CONST uint SD_SPEC_FLOW_FIELDS = 1u;  // flow fields of the world, 0..SD_MAX_
 SD_CONST uint SD_SPEC_HEIGHT_MAPS = 2u;
 SD_CONST uint SD_SPEC_CUBE_MAPS = 3u;
 SD_CONST uint SD_SPEC_INTEGRATOR = 4u;   // SD_INTEGRATE_*, or SD_ANY_INTEGRATOR
-SD_CONST uint SD_SPEC_COUNT = 5u;
+SD_CONST uint SD_SPEC_CURL_NOISE = 5u;   // 1: the emitter selects a curl-noise force (else its code is dropped)
+SD_CONST uint SD_SPEC_COUNT = 6u;
 // INTEGRATOR value that reads the emitter's own (EmitterParams::integrator).
 SD_CONST uint SD_ANY_INTEGRATOR = 0xFFFFFFFFu;
 
@@ -132,7 +133,7 @@ struct StepPush {
     float dt;  // s
     uint count;
     uint emitterIndex;
-    uint pad;
+    float time;  // s, the world time at the start of the step (animated forces)
 };
 
 // The back-to-front sort (src/gpu/shaders/back_to_front_sort.comp, src/gpu/
@@ -289,6 +290,7 @@ static_assert(offsetof(StepCounters, hits) == 16);
 static_assert(sizeof(EventsHeader) == 16);
 static_assert(sizeof(StepPush) == 16);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
+static_assert(offsetof(StepPush, time) == 12);
 static_assert(sizeof(SortPush) == 48);
 static_assert(offsetof(SortPush, count) == 32);
 static_assert(sizeof(SpriteDraw) == 48);

@@ -71,6 +71,7 @@ SD_CONST uint SD_FORCE_VORTEX = 3u;
 SD_CONST uint SD_FORCE_DAMPING = 4u;
 SD_CONST uint SD_FORCE_UNDAMPING = 5u;
 SD_CONST uint SD_FORCE_FLOW_FIELD = 6u;
+SD_CONST uint SD_FORCE_CURL_NOISE = 7u;
 
 // One force. 112 bytes.
 struct ForceParams {
@@ -78,9 +79,9 @@ struct ForceParams {
     vec4 position;      // xyz (m), w: range (m), 0 = unlimited
     vec4 axis;          // xyz unit, w: target speed (m/s) for undamping
     vec4 flowOffset;    // sampler coordinate = p * flowScale + flowOffset; w: viscosity eta (Pa s)
-    vec4 flowScale;     // (1/m), see makeForceParams
+    vec4 flowScale;     // (1/m), see makeForceParams; curl noise: frequency (1/m), speed (1/s), octaves
     uint kind;
-    uint flowField;     // index of the flow field's data
+    uint flowField;     // index of the flow field's data; curl noise: its seed
     float strength;
     float radius;
     float falloff;

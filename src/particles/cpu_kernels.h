@@ -4,6 +4,7 @@
 #pragma once
 
 #include "particles/fields.h"
+#include "kernels/noise.glsl"
 #include "kernels/types.glsl"
 
 namespace spindrift::kernels {
@@ -14,6 +15,7 @@ struct KernelContext {
     const ColliderParams* colliders;
     uint colliderTotal;
     const FieldSet* fields;
+    float time;  // s, the world time at the start of the step
 };
 
 inline uint forceCount(const KernelContext& ctx) { return ctx.forceTotal; }
@@ -29,6 +31,9 @@ inline float sampleTerrainHeight(const KernelContext& ctx, uint map, vec2 uv) {
 }
 inline vec4 sampleCubeMap(const KernelContext& ctx, uint map, vec3 direction) {
     return sampleCube(ctx.fields->cubes[map], direction);
+}
+inline vec3 sampleCurlNoise(const KernelContext& ctx, const ForceParams& f, vec3 p) {
+    return curlNoiseVelocity(f, p, ctx.time);
 }
 
 }  // namespace spindrift::kernels

@@ -18,5 +18,17 @@ inline constexpr FieldRule kRange = FieldRule::number(Bounds::nonNegative());   
 inline constexpr FieldRule kTargetSpeed = FieldRule::number(Bounds::nonNegative());  ///< m/s
 /// Pa s; 0 is no drag at all (harmless, so allowed).
 inline constexpr FieldRule kViscosity = FieldRule::number(Bounds::nonNegative());
+/// Curl noise: the rms speed (m/s) of the noise velocity.
+inline constexpr FieldRule kNoiseStrength = FieldRule::number(Bounds::nonNegative());
+/// Curl noise: noise cells per metre (1/m).
+inline constexpr FieldRule kFrequency = FieldRule::number(Bounds::positive());
+/// Curl noise: noise slices per second (1/s); 0 is a static field.
+inline constexpr FieldRule kSpeed = FieldRule::number(Bounds::nonNegative());
+/// Curl noise: each octave costs a full noise evaluation per particle and
+/// force stage, and past 4 the finest layer is under 1/16 of the first's size:
+/// detail below a sprite.
+inline constexpr FieldRule kOctaves = FieldRule::whole(Bounds::between(1.0, 4.0));
+/// Curl noise: any 32-bit seed.
+inline constexpr FieldRule kSeed = FieldRule::whole(Bounds::between(0.0, 4294967295.0));
 
 }  // namespace spindrift::force_rules

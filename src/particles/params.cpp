@@ -217,12 +217,16 @@ void validateForceDef(const ForceDef& d) {
                      fmt::format("[{}, {}, {}]", d.axis.x, d.axis.y, d.axis.z));
     }
     const bool rate = d.kind == ForceKind::Damping || d.kind == ForceKind::Undamping || d.kind == ForceKind::Wind;
-    check.number("strength", d.strength, rate ? rules::kRate : rules::kStrength);
+    check.number("strength", d.strength,
+                 rate ? rules::kRate : (d.kind == ForceKind::CurlNoise ? rules::kNoiseStrength : rules::kStrength));
     check.number("radius", d.radius, rules::kRadius);
     check.number("falloff", d.falloff, rules::kFalloff);
     check.number("range", d.range, rules::kRange);
     check.number("target_speed", d.targetSpeed, rules::kTargetSpeed);
     check.number("viscosity", d.viscosity, rules::kViscosity);
+    check.number("frequency", d.frequency, rules::kFrequency);
+    check.number("speed", d.speed, rules::kSpeed);
+    check.number("octaves", d.octaves, rules::kOctaves);
 }
 
 kernels::ForceParams makeForceParams(const ForceDef& d, const FlowFieldDef* flow, std::uint32_t flowIndex) {
@@ -242,8 +246,13 @@ kernels::ForceParams makeForceParams(const ForceDef& d, const FlowFieldDef* flow
         f.flowOffset = v4(offset, d.viscosity);
         f.flowScale = v4(scale, 0.0f);
     }
+    if (d.kind == ForceKind::CurlNoise) {
+        // The layout curlNoiseVelocity (src/kernels/noise.glsl) reads.
+        f.flowOffset = v4(glm::vec3(0.0f), d.viscosity);
+        f.flowScale = glm::vec4(d.frequency, d.speed, static_cast<float>(d.octaves), 0.0f);
+    }
     f.kind = static_cast<std::uint32_t>(d.kind);
-    f.flowField = flowIndex;
+    f.flowField = d.kind == ForceKind::CurlNoise ? d.seed : flowIndex;
     f.strength = d.strength;
     f.radius = d.radius;
     f.falloff = d.falloff;

@@ -1,5 +1,5 @@
 // [[force]]: gravity, wind, attractors, repulsors, vortices, damping,
-// undamping and flow-field drag.
+// undamping, flow-field drag and animated curl noise.
 //
 // Values are read with type checks only; their ranges are validateForceDef's
 // rules (src/particles/force_rules.h), checked once through validateAt. What
@@ -17,14 +17,14 @@ namespace {
 
 // "repulsor" is an attractor with its strength negated: files say what they
 // mean and keep strengths positive.
-enum class ForceName { Gravity, Wind, Attractor, Repulsor, Vortex, Damping, Undamping, Flow };
+enum class ForceName { Gravity, Wind, Attractor, Repulsor, Vortex, Damping, Undamping, Flow, CurlNoise };
 
 ForceName readKind(const Table& t) {
     return t
         .require("kind",
                  "a force kind: \"gravity\", \"wind\", \"attractor\", "
-                 "\"repulsor\", \"vortex\", \"damping\", \"undamping\" or "
-                 "\"flow_field\"")
+                 "\"repulsor\", \"vortex\", \"damping\", \"undamping\", "
+                 "\"flow_field\" or \"curl_noise\"")
         .choice<ForceName>({{"gravity", ForceName::Gravity},
                             {"wind", ForceName::Wind},
                             {"attractor", ForceName::Attractor},
@@ -32,7 +32,8 @@ ForceName readKind(const Table& t) {
                             {"vortex", ForceName::Vortex},
                             {"damping", ForceName::Damping},
                             {"undamping", ForceName::Undamping},
-                            {"flow_field", ForceName::Flow}});
+                            {"flow_field", ForceName::Flow},
+                            {"curl_noise", ForceName::CurlNoise}});
 }
 
 std::vector<std::string_view> allowedKeys(ForceName kind) {
@@ -60,6 +61,9 @@ std::vector<std::string_view> allowedKeys(ForceName kind) {
         case ForceName::Flow:
             keys.insert(keys.end(), {"field", "viscosity"});
             break;
+        case ForceName::CurlNoise:
+            keys.insert(keys.end(), {"strength", "frequency", "speed", "octaves", "seed", "viscosity"});
+            break;
     }
     return keys;
 }
@@ -81,6 +85,8 @@ ForceKind apiKind(ForceName kind) {
             return ForceKind::Undamping;
         case ForceName::Flow:
             return ForceKind::FlowField;
+        case ForceName::CurlNoise:
+            return ForceKind::CurlNoise;
     }
     return ForceKind::Gravity;
 }
@@ -140,6 +146,14 @@ void readKindFields(const Table& t, ForceName kind, ForceDef& def, const NameTab
             def.viscosity = t.real("viscosity", def.viscosity, force_rules::kViscosity);
             break;
         }
+        case ForceName::CurlNoise:
+            def.strength = t.real("strength", def.strength, force_rules::kNoiseStrength);
+            def.frequency = t.real("frequency", def.frequency, force_rules::kFrequency);
+            def.speed = t.real("speed", def.speed, force_rules::kSpeed);
+            def.octaves = t.whole("octaves", def.octaves, force_rules::kOctaves);
+            def.seed = t.whole("seed", def.seed, force_rules::kSeed);
+            def.viscosity = t.real("viscosity", def.viscosity, force_rules::kViscosity);
+            break;
     }
 }
 

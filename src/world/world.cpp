@@ -381,7 +381,7 @@ void stepEmitters(World& w, float dt, StepStats& stats) {
     }
     const kernels::KernelContext ctx{w.forces.data(), static_cast<std::uint32_t>(w.forces.size()),
                                      w.colliders.data(), static_cast<std::uint32_t>(w.colliders.size()),
-                                     &w.fields};
+                                     &w.fields, static_cast<float>(w.time)};
     StepEvents events{w.events.capacity, {}, 0};
     for (std::uint32_t i = 0; i < w.emitters.size(); ++i) {
         if (!w.emitters[i]->def.stateless) {

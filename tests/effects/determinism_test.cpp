@@ -46,6 +46,14 @@ std::vector<ParticleSnapshot> runEverything(std::uint32_t threads) {
     f.flowField = field;
     f.viscosity = 0.01f;
     createForce(w.id, f);
+    f = ForceDef{};
+    f.kind = ForceKind::CurlNoise;
+    f.strength = 1.5f;
+    f.frequency = 0.8f;
+    f.speed = 0.7f;
+    f.octaves = 2;
+    f.viscosity = 0.01f;
+    createForce(w.id, f);
     createCollider(w.id, test::groundPlane(0.6f, 0.1f));
     ColliderDef sphere;
     sphere.kind = ColliderKind::Sphere;

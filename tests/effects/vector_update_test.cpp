@@ -151,7 +151,7 @@ TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
     plane.restSpeed = 0.1f;
     plane.resilience = 0.5f;
     plane.friction = 0.2f;
-    const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr};
+    const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr, 0.0f};
     kernels::EmitterParams e{};
     e.mass = 1.0f;
     e.flags = kernels::SD_EMITTER_COLLISIONS;

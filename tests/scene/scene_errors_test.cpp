@@ -87,6 +87,17 @@ TEST(SceneErrors, KeyOfAnotherForceKindIsUnknown) {
                 {4, 1, "force[0].position", "acceleration"});
 }
 
+TEST(SceneErrors, CurlNoiseKeysOutOfRange) {
+    const std::string noise = "[[force]]\nname = \"n\"\nkind = \"curl_noise\"\n";
+    expectError(noise + "octaves = 5\n", {4, 11, "force[0].octaves", "expected an integer in [1, 4], got 5"});
+    expectError(noise + "frequency = 0\n", {4, 13, "force[0].frequency", "expected a number > 0"});
+    expectError(noise + "speed = -1\n", {4, 9, "force[0].speed", "expected a number >= 0"});
+    expectError(noise + "strength = -2\n", {4, 12, "force[0].strength", "expected a number >= 0"});
+    expectError(noise + "seed = -1\n", {4, 8, "force[0].seed", "expected an integer in [0, 4294967295]"});
+    // A flow field's key means nothing to curl noise.
+    expectError(noise + "field = \"f\"\n", {4, 1, "force[0].field", "frequency"});
+}
+
 TEST(SceneErrors, UnknownKeyFarFromAnyKnownListsTheKnownKeys) {
     expectError("[run]\nzzzzzz = 1\n", {2, 1, "run.zzzzzz", "expected one of: dt, steps"});
 }

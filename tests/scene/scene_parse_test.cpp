@@ -254,6 +254,39 @@ range = 2
     EXPECT_FLOAT_EQ(s.forces.at(3).range, 2.0f);
 }
 
+TEST(SceneParse, CurlNoiseForce) {
+    const SceneDef s = parse(R"(
+[[force]]
+name = "stir"
+kind = "curl_noise"
+strength = 0.8
+frequency = 2.5
+speed = 0.25
+octaves = 3
+seed = 4000000000
+viscosity = 0.001
+[[force]]
+name = "plain"
+kind = "curl_noise"
+)");
+    const ForceDef& f = s.forces.at(0);
+    EXPECT_EQ(f.kind, ForceKind::CurlNoise);
+    EXPECT_FLOAT_EQ(f.strength, 0.8f);
+    EXPECT_FLOAT_EQ(f.frequency, 2.5f);
+    EXPECT_FLOAT_EQ(f.speed, 0.25f);
+    EXPECT_EQ(f.octaves, 3u);
+    EXPECT_EQ(f.seed, 4000000000u);
+    EXPECT_FLOAT_EQ(f.viscosity, 0.001f);
+    // The defaults: a static single-octave noise of rms 1 m/s, 1 cell per metre, in air.
+    const ForceDef& d = s.forces.at(1);
+    EXPECT_FLOAT_EQ(d.strength, 1.0f);
+    EXPECT_FLOAT_EQ(d.frequency, 1.0f);
+    EXPECT_FLOAT_EQ(d.speed, 0.0f);
+    EXPECT_EQ(d.octaves, 1u);
+    EXPECT_EQ(d.seed, 0u);
+    EXPECT_FLOAT_EQ(d.viscosity, 1.8e-5f);
+}
+
 TEST(SceneParse, SimpleColliders) {
     const SceneDef s = parse(R"(
 [[collider]]
@@ -482,6 +515,7 @@ TEST(SceneDocs, EveryFeatureHasAnExample) {
         // forces
         "kind = \"gravity\"", "kind = \"wind\"", "kind = \"attractor\"", "kind = \"repulsor\"",
         "kind = \"vortex\"", "kind = \"damping\"", "kind = \"undamping\"", "kind = \"flow_field\"",
+        "kind = \"curl_noise\"",
         // colliders
         "kind = \"plane\"", "kind = \"terrain\"", "kind = \"cube_map\"",
         // integrators and lifecycles

@@ -10,6 +10,7 @@
 //   2 spawn emit: birth k of the step's schedule pops a dead slot, or is clamped;
 //   3 spawn finish: one thread writes the next step's indirect dispatch.
 #include "layout.glsl"
+#include "noise.glsl"
 
 layout(constant_id = SD_SPEC_PASS) const uint PASS = 0u;
 
@@ -90,6 +91,7 @@ layout(constant_id = SD_SPEC_FLOW_FIELDS) const uint FLOW_FIELDS = 0u;
 layout(constant_id = SD_SPEC_HEIGHT_MAPS) const uint HEIGHT_MAPS = 0u;
 layout(constant_id = SD_SPEC_CUBE_MAPS) const uint CUBE_MAPS = 0u;
 layout(constant_id = SD_SPEC_INTEGRATOR) const uint INTEGRATOR = SD_ANY_INTEGRATOR;
+layout(constant_id = SD_SPEC_CURL_NOISE) const uint CURL_NOISE = 0u;
 
 struct KernelContext { uint unused; };
 uint forceCount(KernelContext ctx) { return forceTable.count; }
@@ -125,6 +127,14 @@ vec4 sampleCubeImage(uint map, vec3 direction) {
 vec3 sampleFlowField(KernelContext ctx, uint field, vec3 uvw) { return sampleFlowImage(field, uvw).xyz; }
 float sampleTerrainHeight(KernelContext ctx, uint map, vec2 uv) { return sampleHeightImage(map, uv).x; }
 vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) { return sampleCubeImage(map, direction); }
+// The noise's code is live only in pipelines of emitters that use it: llvmpipe
+// compiles every inlined copy (one per forcingAt) at pipeline creation.
+vec3 sampleCurlNoise(KernelContext ctx, ForceParams f, vec3 p) {
+    if (CURL_NOISE != 0u) {
+        return curlNoiseVelocity(f, p, step.time);
+    }
+    return vec3(0.0f);
+}
 
 #include "update.glsl"
 #include "birth_age.glsl"

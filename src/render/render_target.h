@@ -38,6 +38,11 @@ struct RenderTarget {
 };
 
 /// Throws Error where the device cannot render to the formats above.
+/// One colour attachment of `format` that fragment shaders draw and then
+/// sample (the liquid surface's field passes, the bloom levels): loadOp
+/// LOAD expects the image ready to be sampled and keeps it, CLEAR and
+/// DONT_CARE overwrite it. `what` names the pass in errors.
+VkRenderPass createSampledColourPass(gpu::Device& d, VkFormat format, VkAttachmentLoadOp loadOp, const char* what);
 RenderPasses createRenderPasses(gpu::Device& d);
 void destroyRenderPasses(gpu::Device& d, RenderPasses& p);
 RenderTarget createRenderTarget(gpu::Device& d, const RenderPasses& passes, std::uint32_t width, std::uint32_t height);

@@ -52,7 +52,9 @@ enum class FluidStyle : std::uint32_t {
     /// 2D fluids as one continuous liquid: the particles' kernels summed into
     /// a reduced-resolution field, blurred, cut at a threshold into an
     /// anti-aliased edge and shaded (refraction, depth tint, rim, foam).
-    /// 3D fluids are still drawn as splats in this style.
+    /// 3D fluids as a screen-space liquid: sphere depths smoothed by a
+    /// bilateral filter, thickness for absorption, Fresnel reflection,
+    /// refraction and the sun's highlight (docs/rendering.md).
     Surface = 0,
     /// Every fluid as Sprinkle's splats, with the step switches below.
     Splats = 1,
@@ -127,8 +129,9 @@ struct Frame {
 /// preparation, uploads).
 struct RenderStats {
     double backgroundMs = 0.0, collidersMs = 0.0, spritesMs = 0.0, sortMs = 0.0, fluidMs = 0.0;
-    /// The liquid surface's field: kernels summed, then blurred (0 when no
-    /// fluid is drawn as a surface). Its composite counts in fluidMs.
+    /// The liquid surface's field: kernels summed, then blurred (2D), and
+    /// the screen-space liquid's depth, thickness and smoothing (3D); 0 when
+    /// no fluid is drawn as a surface. The composites count in fluidMs.
     double surfaceFieldMs = 0.0;
     /// The copy of the frame that refraction samples, with the extra pass
     /// it needs (0 when nothing refracts).

@@ -53,4 +53,14 @@ extern const std::uint32_t kToneMapFrag[];
 extern const std::size_t kToneMapFragWords;
 extern const std::uint32_t kSurfaceFrag[];
 extern const std::size_t kSurfaceFragWords;
+extern const std::uint32_t kScreenFluidSphereVert[];
+extern const std::size_t kScreenFluidSphereVertWords;
+extern const std::uint32_t kScreenFluidDepthFrag[];
+extern const std::size_t kScreenFluidDepthFragWords;
+extern const std::uint32_t kScreenFluidThicknessFrag[];
+extern const std::size_t kScreenFluidThicknessFragWords;
+extern const std::uint32_t kScreenFluidSmoothFrag[];
+extern const std::size_t kScreenFluidSmoothFragWords;
+extern const std::uint32_t kScreenFluidFrag[];
+extern const std::size_t kScreenFluidFragWords;
 }  // namespace spindrift::gpu::shaders

@@ -255,6 +255,21 @@ struct SurfacePush {
     vec4 values;  // blur: xy one field texel along the blur's direction (uv); composite: x half side of its quad (m)
 };
 
+// 3D fluids drawn as a screen-space liquid (src/render/screen_fluid_pass.cpp,
+// shaders screen_fluid_*; van der Laan, Green and Sainz 2009): spheres' view
+// depths and their summed thickness at reduced resolution, the depth smoothed,
+// then a composite. Set 1 of the smoothing and composite pipelines; the
+// spheres read the splats' instance set as surface_field.vert does.
+SD_CONST uint SD_SCREEN_FLUID_SET = 1u;
+SD_CONST uint SD_SCREEN_FLUID_BINDING_DEPTH = 0u;      // sampler2D: view depth, (z - near) / (far - near); 1: none
+SD_CONST uint SD_SCREEN_FLUID_BINDING_THICKNESS = 1u;  // sampler2D: r water thickness (m), g thickness x foam
+// Push constants of the screen-space liquid's passes (vertex and fragment). 32 bytes.
+struct ScreenFluidPush {
+    vec4 pass;  // smoothing: xy one texel step (texels), z depth falloff (m); sphere and composite: w sphere radius (m)
+    vec4 view;  // perspective: x tan of half the horizontal field of view, y of the vertical one, z 0;
+                // orthographic: x, y half the view's width and height (m), z 1
+};
+
 // Light (src/render/light_pass.cpp, shaders bloom_*.frag and tone_map.frag):
 // the frame drawn into a float target, its bloom at reduced resolution, and
 // the tone map into the 8-bit sRGB image. Set 1 of their pipelines.
@@ -306,6 +321,8 @@ static_assert(offsetof(FrameUniforms, waterFlags) == 192);
 static_assert(offsetof(FrameUniforms, surface) == 208);
 static_assert(sizeof(SurfacePush) == 16);
 static_assert(sizeof(LightPush) == 16);
+static_assert(sizeof(ScreenFluidPush) == 32);
+static_assert(SD_SCREEN_FLUID_SET == SD_SPLAT_SET);  // screen_fluid_sphere.vert reads the splats' instance set
 static_assert(SD_SURFACE_SET == SD_SPLAT_SET);  // surface_field.vert reads the splats' instance set
 // The masks are 32 bits wide.
 static_assert(SD_MAX_FORCES <= 32u && SD_MAX_COLLIDERS <= 32u);

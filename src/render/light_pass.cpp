@@ -27,19 +27,6 @@ VkRenderPass createLevelPass(gpu::Device& d, bool add) {
                                    "bloom");
 }
 
-VkFramebuffer levelFramebuffer(gpu::Device& d, VkRenderPass pass, const gpu::Image& image, glm::uvec2 size) {
-    auto info = gpu::vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
-    info.renderPass = pass;
-    info.attachmentCount = 1;
-    info.pAttachments = &image.view;
-    info.width = size.x;
-    info.height = size.y;
-    info.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    gpu::check(vkCreateFramebuffer(d.device, &info, nullptr, &fb), "vkCreateFramebuffer (bloom)");
-    return fb;
-}
-
 void writeSet(Renderer& r, VkDescriptorSet set, VkImageView source, VkImageView bloom) {
     VkDescriptorImageInfo images[2] = {{r.linearSampler, source, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL},
                                        {r.linearSampler, bloom, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL}};
@@ -53,13 +40,6 @@ void writeSet(Renderer& r, VkDescriptorSet set, VkImageView source, VkImageView 
         writes[i].pImageInfo = &images[i];
     }
     vkUpdateDescriptorSets(r.device->device, 2, writes, 0, nullptr);
-}
-
-Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
-    Pipeline p;
-    p.layout = createPipelineLayout(d, desc);
-    p.pipeline = createGraphicsPipeline(d, desc, p.layout);
-    return p;
 }
 
 // One full-screen triangle of `pipeline` reading `set` into `framebuffer`.
@@ -138,7 +118,7 @@ void createLight(Renderer& r) {
         l.levels[i] = gpu::createSampledImage(d, shape);
         // One framebuffer serves both passes: they are compatible (same
         // format and samples; load operations and layouts do not count).
-        l.framebuffers[i] = levelFramebuffer(d, l.down, l.levels[i], l.sizes[i]);
+        l.framebuffers[i] = createSingleFramebuffer(d, l.down, l.levels[i], l.sizes[i].x, l.sizes[i].y, "bloom");
         l.levelSets[i] = allocated[2 + i];
         writeSet(r, l.levelSets[i], l.levels[i].view, placeholder);
         levelSize = (l.sizes[i] + 1u) / 2u;
@@ -166,8 +146,7 @@ void destroyLight(Renderer& r) {
     gpu::Device& d = *r.device;
     Light& l = r.light;
     for (Pipeline* p : {&l.threshold, &l.blurDown, &l.blurUp, &l.toneMap}) {
-        vkDestroyPipeline(d.device, p->pipeline, nullptr);
-        vkDestroyPipelineLayout(d.device, p->layout, nullptr);
+        destroyPipeline(d, *p);
     }
     for (std::uint32_t i = 0; i < kBloomLevels; ++i) {
         vkDestroyFramebuffer(d.device, l.framebuffers[i], nullptr);

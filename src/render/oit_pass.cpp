@@ -138,13 +138,6 @@ void createCompositeSet(Renderer& r) {
     vkUpdateDescriptorSets(d.device, kernels::SD_OIT_BINDINGS, writes, 0, nullptr);
 }
 
-Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
-    Pipeline p;
-    p.layout = createPipelineLayout(d, desc);
-    p.pipeline = createGraphicsPipeline(d, desc, p.layout);
-    return p;
-}
-
 void createPipelines(Renderer& r) {
     namespace s = gpu::shaders;
     gpu::Device& d = *r.device;
@@ -189,8 +182,7 @@ void destroyOit(Renderer& r) {
     }
     gpu::Device& d = *r.device;
     for (Pipeline* p : {&o.accumulate, &o.composite}) {
-        vkDestroyPipeline(d.device, p->pipeline, nullptr);
-        vkDestroyPipelineLayout(d.device, p->layout, nullptr);
+        destroyPipeline(d, *p);
     }
     vkDestroyDescriptorPool(d.device, o.pool, nullptr);
     vkDestroyDescriptorSetLayout(d.device, o.layout, nullptr);

@@ -138,7 +138,7 @@ VkPipeline createGraphicsPipeline(gpu::Device& d, const PipelineDesc& desc, VkPi
     VkPipelineColorBlendAttachmentState attachments[2] = {blendState(desc.blend), blendState(desc.blend)};
     auto blend = gpu::vkStruct<VkPipelineColorBlendStateCreateInfo>(
         VK_STRUCTURE_TYPE_PIPELINE_COLOR_BLEND_STATE_CREATE_INFO);
-    blend.attachmentCount = desc.blend == Blend::WeightedOit ? 2u : 1u;
+    blend.attachmentCount = desc.depthOnly ? 0u : desc.blend == Blend::WeightedOit ? 2u : 1u;
     blend.pAttachments = attachments;
     VkDynamicState dynamicStates[2] = {VK_DYNAMIC_STATE_VIEWPORT, VK_DYNAMIC_STATE_SCISSOR};
     auto dynamic = gpu::vkStruct<VkPipelineDynamicStateCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_DYNAMIC_STATE_CREATE_INFO);
@@ -166,6 +166,24 @@ VkPipeline createGraphicsPipeline(gpu::Device& d, const PipelineDesc& desc, VkPi
         throw Error(fmt::format("{}: vkCreateGraphicsPipelines failed: {}", desc.name, gpu::resultName(r)));
     }
     return pipeline;
+}
+
+Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
+    Pipeline p;
+    p.layout = createPipelineLayout(d, desc);
+    try {
+        p.pipeline = createGraphicsPipeline(d, desc, p.layout);
+    } catch (...) {
+        vkDestroyPipelineLayout(d.device, p.layout, nullptr);
+        throw;
+    }
+    return p;
+}
+
+void destroyPipeline(gpu::Device& d, Pipeline& p) {
+    vkDestroyPipeline(d.device, p.pipeline, nullptr);
+    vkDestroyPipelineLayout(d.device, p.layout, nullptr);
+    p = Pipeline{};
 }
 
 }  // namespace spindrift::render

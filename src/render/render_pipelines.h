@@ -23,12 +23,25 @@ struct PipelineDesc {
     /// Vertex input: one interleaved binding of float3 attributes; 0: none.
     std::uint32_t vertexFloat3Attributes = 0;
     Blend blend = Blend::None;
+    /// No colour attachment: the fragment shader writes depth only.
+    bool depthOnly = false;
     bool depthTest = false;
     bool depthWrite = false;
     /// Cull faces wound clockwise as seen (closed meshes wound outward).
     bool cullBackFaces = false;
     VkRenderPass renderPass = VK_NULL_HANDLE;
 };
+
+/// A graphics pipeline with its layout.
+struct Pipeline {
+    VkPipelineLayout layout = VK_NULL_HANDLE;
+    VkPipeline pipeline = VK_NULL_HANDLE;
+};
+
+/// The layout and the pipeline of `desc`; throws Error as the two below.
+Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc);
+/// Destroys both (either may be null) and resets `p`.
+void destroyPipeline(gpu::Device& d, Pipeline& p);
 
 /// Throws Error naming desc.name and the failing call.
 VkPipeline createGraphicsPipeline(gpu::Device& d, const PipelineDesc& desc, VkPipelineLayout layout);

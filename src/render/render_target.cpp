@@ -10,6 +10,24 @@
 namespace spindrift::render {
 namespace {
 
+// A render pass of one attachment, one subpass and two dependencies (in and
+// out); throws Error naming `what`.
+VkRenderPass createOneAttachmentPass(gpu::Device& d, const VkAttachmentDescription& a,
+                                     const VkSubpassDescription& subpass, const VkSubpassDependency (&dependencies)[2],
+                                     const char* what) {
+    auto info = gpu::vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
+    info.attachmentCount = 1;
+    info.pAttachments = &a;
+    info.subpassCount = 1;
+    info.pSubpasses = &subpass;
+    info.dependencyCount = 2;
+    info.pDependencies = dependencies;
+    VkRenderPass pass = VK_NULL_HANDLE;
+    const std::string call = std::string("vkCreateRenderPass (") + what + ")";
+    gpu::check(vkCreateRenderPass(d.device, &info, nullptr, &pass), call.c_str());
+    return pass;
+}
+
 VkAttachmentDescription attachment(VkFormat format, bool clear, VkImageLayout initial, VkImageLayout final,
                                    bool store) {
     VkAttachmentDescription a{};
@@ -103,16 +121,7 @@ VkRenderPass createToneMapPass(gpu::Device& d) {
     dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
     dependencies[1].dstStageMask = VK_PIPELINE_STAGE_TRANSFER_BIT;
     dependencies[1].dstAccessMask = VK_ACCESS_TRANSFER_READ_BIT;
-    auto info = gpu::vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
-    info.attachmentCount = 1;
-    info.pAttachments = &colour;
-    info.subpassCount = 1;
-    info.pSubpasses = &subpass;
-    info.dependencyCount = 2;
-    info.pDependencies = dependencies;
-    VkRenderPass pass = VK_NULL_HANDLE;
-    gpu::check(vkCreateRenderPass(d.device, &info, nullptr, &pass), "vkCreateRenderPass (tone map)");
-    return pass;
+    return createOneAttachmentPass(d, colour, subpass, dependencies, "tone map");
 }
 
 VkFramebuffer createFramebuffer(gpu::Device& d, VkRenderPass pass, const RenderTarget& t, bool toneMap) {
@@ -284,17 +293,57 @@ VkRenderPass createSampledColourPass(gpu::Device& d, VkFormat format, VkAttachme
     dependencies[1].srcAccessMask = VK_ACCESS_COLOR_ATTACHMENT_WRITE_BIT;
     dependencies[1].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
     dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
-    auto info = gpu::vkStruct<VkRenderPassCreateInfo>(VK_STRUCTURE_TYPE_RENDER_PASS_CREATE_INFO);
+    return createOneAttachmentPass(d, a, subpass, dependencies, what);
+}
+
+VkRenderPass createSampledDepthPass(gpu::Device& d, const char* what) {
+    VkAttachmentDescription a{};
+    a.format = kDepthFormat;
+    a.samples = VK_SAMPLE_COUNT_1_BIT;
+    a.loadOp = VK_ATTACHMENT_LOAD_OP_CLEAR;
+    a.storeOp = VK_ATTACHMENT_STORE_OP_STORE;
+    a.stencilLoadOp = VK_ATTACHMENT_LOAD_OP_DONT_CARE;
+    a.stencilStoreOp = VK_ATTACHMENT_STORE_OP_DONT_CARE;
+    a.initialLayout = VK_IMAGE_LAYOUT_UNDEFINED;
+    a.finalLayout = kDepthReadLayout;
+    VkAttachmentReference ref{0, VK_IMAGE_LAYOUT_DEPTH_STENCIL_ATTACHMENT_OPTIMAL};
+    VkSubpassDescription subpass{};
+    subpass.pipelineBindPoint = VK_PIPELINE_BIND_POINT_GRAPHICS;
+    subpass.pDepthStencilAttachment = &ref;
+    VkSubpassDependency dependencies[2] = {};
+    // The last frame's reads of the image finish before it is cleared ...
+    dependencies[0].srcSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[0].dstSubpass = 0;
+    dependencies[0].srcStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    dependencies[0].srcAccessMask = 0;
+    dependencies[0].dstStageMask =
+        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    dependencies[0].dstAccessMask =
+        VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_READ_BIT | VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    // ... and this frame's depths are written before they are sampled.
+    dependencies[1].srcSubpass = 0;
+    dependencies[1].dstSubpass = VK_SUBPASS_EXTERNAL;
+    dependencies[1].srcStageMask =
+        VK_PIPELINE_STAGE_EARLY_FRAGMENT_TESTS_BIT | VK_PIPELINE_STAGE_LATE_FRAGMENT_TESTS_BIT;
+    dependencies[1].srcAccessMask = VK_ACCESS_DEPTH_STENCIL_ATTACHMENT_WRITE_BIT;
+    dependencies[1].dstStageMask = VK_PIPELINE_STAGE_FRAGMENT_SHADER_BIT;
+    dependencies[1].dstAccessMask = VK_ACCESS_SHADER_READ_BIT;
+    return createOneAttachmentPass(d, a, subpass, dependencies, what);
+}
+
+VkFramebuffer createSingleFramebuffer(gpu::Device& d, VkRenderPass pass, const gpu::Image& image,
+                                      std::uint32_t width, std::uint32_t height, const char* what) {
+    auto info = gpu::vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
+    info.renderPass = pass;
     info.attachmentCount = 1;
-    info.pAttachments = &a;
-    info.subpassCount = 1;
-    info.pSubpasses = &subpass;
-    info.dependencyCount = 2;
-    info.pDependencies = dependencies;
-    VkRenderPass pass = VK_NULL_HANDLE;
-    const std::string call = std::string("vkCreateRenderPass (") + what + ")";
-    gpu::check(vkCreateRenderPass(d.device, &info, nullptr, &pass), call.c_str());
-    return pass;
+    info.pAttachments = &image.view;
+    info.width = width;
+    info.height = height;
+    info.layers = 1;
+    VkFramebuffer fb = VK_NULL_HANDLE;
+    const std::string call = std::string("vkCreateFramebuffer (") + what + ")";
+    gpu::check(vkCreateFramebuffer(d.device, &info, nullptr, &fb), call.c_str());
+    return fb;
 }
 
 }  // namespace spindrift::render

@@ -43,6 +43,13 @@ struct RenderTarget {
 /// LOAD expects the image ready to be sampled and keeps it, CLEAR and
 /// DONT_CARE overwrite it. `what` names the pass in errors.
 VkRenderPass createSampledColourPass(gpu::Device& d, VkFormat format, VkAttachmentLoadOp loadOp, const char* what);
+/// One depth attachment (kDepthFormat), cleared to 1 and left in
+/// kDepthReadLayout for fragment shaders to sample (the screen-space liquid's
+/// sphere depths).
+VkRenderPass createSampledDepthPass(gpu::Device& d, const char* what);
+/// A framebuffer of the single attachment `image` for `pass`.
+VkFramebuffer createSingleFramebuffer(gpu::Device& d, VkRenderPass pass, const gpu::Image& image,
+                                      std::uint32_t width, std::uint32_t height, const char* what);
 RenderPasses createRenderPasses(gpu::Device& d);
 void destroyRenderPasses(gpu::Device& d, RenderPasses& p);
 RenderTarget createRenderTarget(gpu::Device& d, const RenderPasses& passes, std::uint32_t width, std::uint32_t height);

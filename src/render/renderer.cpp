@@ -16,6 +16,7 @@
 #include "render/splat_pass.h"
 #include "render/sprite_pass.h"
 #include "render/surface_field.h"
+#include "render/screen_fluid_pass.h"
 #include "render/surface_pass.h"
 
 #include <spindrift/bodies.h>
@@ -107,13 +108,6 @@ void createDescriptors(Renderer& r) {
     vkUpdateDescriptorSets(d.device, kernels::SD_RENDER_FRAME_BINDINGS, writes, 0, nullptr);
 }
 
-Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
-    Pipeline p;
-    p.layout = createPipelineLayout(d, desc);
-    p.pipeline = createGraphicsPipeline(d, desc, p.layout);
-    return p;
-}
-
 void createPipelines(Renderer& r) {
     namespace s = gpu::shaders;
     gpu::Device& d = *r.device;
@@ -161,12 +155,6 @@ void createPipelines(Renderer& r) {
     r.spritesAlphaSoft = makePipeline(d, sprites);
     sprites.blend = Blend::Additive;
     r.spritesAdditiveSoft = makePipeline(d, sprites);
-}
-
-void destroyPipeline(gpu::Device& d, Pipeline& p) {
-    vkDestroyPipeline(d.device, p.pipeline, nullptr);
-    vkDestroyPipelineLayout(d.device, p.layout, nullptr);
-    p = Pipeline{};
 }
 
 // A host-visible vertex buffer holding `vertices` (at least one vertex of room).
@@ -407,6 +395,7 @@ void destroyRenderer(Renderer& r) {
         if (r.surface.pass != VK_NULL_HANDLE) {
             destroySurface(r);
         }
+        destroyScreenFluid(r);
         r.sort.reset();
         for (gpu::Buffer* b : {&r.staticMesh, &r.dynamicMesh, &r.frameUniforms}) {
             if (b->buffer != VK_NULL_HANDLE) {
@@ -454,6 +443,7 @@ void prepareFrame(Renderer& r) {
     prepareBodies(r);
     prepareSplats(r, dt);
     prepareSurface(r);
+    prepareScreenFluid(r);
     prepareSprites(r);
     FrameUniforms u = frameUniforms(r.def, w.time);
     if (r.surface.drawn) {
@@ -474,10 +464,12 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
     }
     timestamp(r, cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, 0);
     recordSurfaceField(r, cmd);  // its own passes, before the frame's
+    recordScreenFluidField(r, cmd);
     timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 1);
     // One render pass, or two: around a copy of the colour target when
     // something refracts (the copy is what the water shows behind it), the
-    // OIT accumulation, or so that soft particles can read the depth (on
+    // OIT accumulation, or so that soft particles and the screen-space
+    // liquid can read the depth (on
     // lavapipe each extra pass costs a full-frame store and load).
     const bool refracts = r.def.fluid.refraction && r.splatCount > 0;
     {  // Background and colliders.
@@ -492,7 +484,7 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 3);
     }
     const bool oit = r.oit.pass != VK_NULL_HANDLE;
-    if (refracts || oit || r.softSprites) {
+    if (refracts || oit || r.softSprites || r.screen.drawn) {
         vkCmdEndRenderPass(cmd);
         if (refracts) {  // What refraction sees behind the water.
             recordCopyBehind(cmd, r.target);
@@ -509,6 +501,7 @@ void recordFrame(Renderer& r, VkCommandBuffer cmd) {
        // back into it), then sprites, then the OIT layer over them.
         recordSplats(r, cmd);
         recordSurfaceComposite(r, cmd);
+        recordScreenFluidComposite(r, cmd);
         timestamp(r, cmd, VK_PIPELINE_STAGE_BOTTOM_OF_PIPE_BIT, 6);
         recordSprites(r, cmd);
         recordOitComposite(r, cmd);

@@ -19,6 +19,7 @@
 #include "gpu/vulkan_buffer.h"
 #include "kernels/layout.glsl"
 #include "render/fluid_splats.h"
+#include "render/render_pipelines.h"
 #include "render/render_target.h"
 
 #include <spindrift/effects.h>
@@ -34,12 +35,6 @@ namespace spindrift::render {
 /// `Frame` of src/render/shaders/frame.glsl (std140), defined once in
 /// src/kernels/layout.glsl.
 using FrameUniforms = kernels::FrameUniforms;
-
-/// A graphics pipeline with its layout.
-struct Pipeline {
-    VkPipelineLayout layout = VK_NULL_HANDLE;
-    VkPipeline pipeline = VK_NULL_HANDLE;
-};
 
 /// What one effect emitter draws with: its particle buffers (the GPU world's
 /// own, or host-visible copies written each frame for a CPU world), its draw
@@ -71,6 +66,10 @@ struct SplatFluid {
     /// kernels (surface_field.h: particles and their mirror images behind
     /// planes), the rest splashes drawn as splats.
     bool surface = false;
+    /// A 3D fluid drawn as a screen-space liquid: the first `particles`
+    /// instances are its spheres (screen_fluid_pass.cpp), the rest splashes.
+    bool screen = false;
+    float spacing = 0.0f;  // m, the fluid's (screen: the spheres' radius and thickness scale)
     std::uint32_t particles = 0;
     std::uint32_t first = 0;  // of its instances in Renderer::splatBuffer
 };
@@ -87,6 +86,27 @@ struct SurfaceField {
     VkDescriptorPool pool = VK_NULL_HANDLE;
     VkDescriptorSet readA = VK_NULL_HANDLE, readB = VK_NULL_HANDLE;
     bool drawn = false;  // this frame: some fluid is a surface
+};
+
+/// The screen-space liquid of 3D fluids (screen_fluid_pass.cpp): at a
+/// fraction of the frame's size (FluidRenderDef::surfaceScale), the nearest
+/// spheres' view depth, the summed thickness, and the depth smoothed twice
+/// each way (ping-pong between a and b). Pipelines and passes are made on
+/// first use: most worlds draw no 3D fluid.
+struct ScreenFluid {
+    std::uint32_t width = 0, height = 0;
+    float scale = 0.0f;  // FluidRenderDef::surfaceScale the images were made for
+    gpu::Image depth;      // D32_SFLOAT
+    gpu::Image thickness;  // R16G16B16A16_SFLOAT
+    gpu::Image a, b;       // R32_SFLOAT: the smoothed depth
+    VkFramebuffer depthFramebuffer = VK_NULL_HANDLE, thicknessFramebuffer = VK_NULL_HANDLE;
+    VkFramebuffer framebufferA = VK_NULL_HANDLE, framebufferB = VK_NULL_HANDLE;
+    VkRenderPass depthPass = VK_NULL_HANDLE, thicknessPass = VK_NULL_HANDLE, smoothPass = VK_NULL_HANDLE;
+    VkDescriptorSetLayout layout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    VkDescriptorSet readDepth = VK_NULL_HANDLE, readA = VK_NULL_HANDLE, readB = VK_NULL_HANDLE;
+    Pipeline spheres, thicknessSpheres, smooth, composite;
+    bool drawn = false;  // this frame: some fluid is drawn so
 };
 
 /// Weighted blended OIT (oit_pass.cpp): the sums and the revealage at the
@@ -143,6 +163,7 @@ struct Renderer {
     bool softSprites = false;  // some emitter has SpriteDef::softDistance > 0: pass B is begun
     Pipeline surfaceField, surfaceBlur, surfaceDepth, surfaceComposite;
     SurfaceField surface;
+    ScreenFluid screen;  // depthPass == VK_NULL_HANDLE: not made yet
     OitTargets oit;  // pass == VK_NULL_HANDLE: no emitter uses OIT
     Light light;
 

@@ -44,14 +44,20 @@ void prepareSplats(Renderer& r, float dt) {
     for (std::uint32_t f = 0; f < fluids; ++f) {
         SplatFluid& sf = r.fluids[f];
         const FluidId id{f + 1};
-        sf.surface = r.def.fluid.style == FluidStyle::Surface && fluidDimension(r.world, id) == 2;
-        if (sf.surface) {
+        const bool liquid = r.def.fluid.style == FluidStyle::Surface;
+        const std::uint32_t dimension = fluidDimension(r.world, id);
+        sf.surface = liquid && dimension == 2;
+        sf.screen = liquid && dimension == 3;
+        sf.spacing = fluidSpacing(r.world, id);
+        if (sf.surface || sf.screen) {
             // The splat rules give the splashes; the water's instances are
             // then replaced by the surface's kernels.
             FluidRenderDef splashesOnly = FluidRenderDef::upTo(1);
             splashesOnly.splashes = r.def.fluid.splashes;
             updateFluidSplats(sf.state, r.world, id, splashesOnly, dt, sf.instances);
-            sf.particles = static_cast<std::uint32_t>(surfaceInstances(r.world, id, r.def.fluid.stretch, sf.instances));
+            sf.particles = static_cast<std::uint32_t>(
+                sf.surface ? surfaceInstances(r.world, id, r.def.fluid.stretch, sf.instances)
+                           : screenFluidInstances(r.world, id, sf.instances));
         } else {
             updateFluidSplats(sf.state, r.world, id, r.def.fluid, dt, sf.instances);
             sf.particles = 0;
@@ -78,8 +84,8 @@ void recordSplats(Renderer& r, VkCommandBuffer cmd) {
     vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.splats.pipeline);
     VkDescriptorSet sets[2] = {r.frameSet, r.splatSet};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, r.splats.layout, 0, 2, sets, 0, nullptr);
-    // A surface fluid's water is the surface's (surface_pass.cpp); its
-    // splashes are splats.
+    // A liquid's water is drawn by its own passes (surface_pass.cpp in 2D,
+    // screen_fluid_pass.cpp in 3D); its splashes are splats.
     for (const SplatFluid& f : r.fluids) {
         const auto count = static_cast<std::uint32_t>(f.instances.size()) - f.particles;
         if (count > 0) {

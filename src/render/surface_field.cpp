@@ -90,6 +90,27 @@ std::size_t surfaceInstances(WorldId worldId, FluidId fluidId, bool stretch, std
     return n + mirrors.size();
 }
 
+std::size_t screenFluidInstances(WorldId worldId, FluidId fluidId, std::vector<SplatInstance>& out) {
+    const fluid::FluidState& f = fluidStateFromId(worldFromId(worldId), fluidId);
+    const float radius = kScreenSphereSpacings * f.def.spacing;
+    std::size_t n = 0;
+    auto fill = [&](const auto& v) {
+        n = std::min(v.position.size(), out.size());
+        for (std::size_t i = 0; i < n; ++i) {
+            SplatInstance& s = out[i];
+            s.centre.w = radius;
+            s.shade = glm::vec4(1.0f, surfaceFoam(glm::length(v.velocity[i]), v.density[i]),
+                                static_cast<float>(SplatKind::Water), v.density[i]);
+        }
+    };
+    if (f.def.dimension == 2) fill(fluid::viewFluid<2>(f)); else fill(fluid::viewFluid<3>(f));
+    return n;
+}
+
+float fluidSpacing(WorldId worldId, FluidId fluidId) {
+    return fluidStateFromId(worldFromId(worldId), fluidId).def.spacing;
+}
+
 std::uint32_t fluidDimension(WorldId worldId, FluidId fluidId) {
     return fluidStateFromId(worldFromId(worldId), fluidId).def.dimension;
 }

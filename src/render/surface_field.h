@@ -46,6 +46,22 @@ float surfaceStretch(float speed, float radius);
 /// Error for unknown ids.
 std::size_t surfaceInstances(WorldId world, FluidId fluid, bool stretch, std::vector<SplatInstance>& out);
 
+/// The screen-space liquid of 3D fluids (screen_fluid_pass.cpp): sphere
+/// radius in spacings. Wider than half a spacing so that the front layer of a
+/// lattice leaves no gap between spheres however it is seen (the cube's
+/// half diagonal is 0.87 spacing, the face's 0.71).
+inline constexpr float kScreenSphereSpacings = 0.75f;
+
+/// Overwrites the first instances of `out` (fluid `fluid`'s water, one per
+/// particle in the solver's order, as updateFluidSplats wrote them) with the
+/// screen-space liquid's spheres: shade.y the particle's foam
+/// (surfaceFoam). Returns how many (the particles). Throws Error for unknown
+/// ids.
+std::size_t screenFluidInstances(WorldId world, FluidId fluid, std::vector<SplatInstance>& out);
+
+/// Fluid `fluid`'s spacing (m).
+float fluidSpacing(WorldId world, FluidId fluid);
+
 /// Fluid `fluid`'s dimension (2 or 3).
 std::uint32_t fluidDimension(WorldId world, FluidId fluid);
 

@@ -29,20 +29,6 @@ VkRenderPass createFieldPass(gpu::Device& d) {
     return createSampledColourPass(d, kFieldFormat, VK_ATTACHMENT_LOAD_OP_CLEAR, "liquid surface");
 }
 
-VkFramebuffer createFramebuffer(gpu::Device& d, VkRenderPass pass, const gpu::Image& image, std::uint32_t width,
-                                std::uint32_t height) {
-    auto info = gpu::vkStruct<VkFramebufferCreateInfo>(VK_STRUCTURE_TYPE_FRAMEBUFFER_CREATE_INFO);
-    info.renderPass = pass;
-    info.attachmentCount = 1;
-    info.pAttachments = &image.view;
-    info.width = width;
-    info.height = height;
-    info.layers = 1;
-    VkFramebuffer fb = VK_NULL_HANDLE;
-    gpu::check(vkCreateFramebuffer(d.device, &info, nullptr, &fb), "vkCreateFramebuffer (liquid surface)");
-    return fb;
-}
-
 void writeSampler(Renderer& r, VkDescriptorSet set, const gpu::Image& image) {
     VkDescriptorImageInfo info{r.linearSampler, image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     auto w = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
@@ -78,17 +64,10 @@ void createImages(Renderer& r) {
                           VK_IMAGE_USAGE_COLOR_ATTACHMENT_BIT | VK_IMAGE_USAGE_SAMPLED_BIT, VK_IMAGE_ASPECT_COLOR_BIT};
     s.a = gpu::createSampledImage(d, shape);
     s.b = gpu::createSampledImage(d, shape);
-    s.framebufferA = createFramebuffer(d, s.pass, s.a, s.width, s.height);
-    s.framebufferB = createFramebuffer(d, s.pass, s.b, s.width, s.height);
+    s.framebufferA = createSingleFramebuffer(d, s.pass, s.a, s.width, s.height, "liquid surface");
+    s.framebufferB = createSingleFramebuffer(d, s.pass, s.b, s.width, s.height, "liquid surface");
     writeSampler(r, s.readA, s.a);
     writeSampler(r, s.readB, s.b);
-}
-
-Pipeline makePipeline(gpu::Device& d, const PipelineDesc& desc) {
-    Pipeline p;
-    p.layout = createPipelineLayout(d, desc);
-    p.pipeline = createGraphicsPipeline(d, desc, p.layout);
-    return p;
 }
 
 void beginFieldPass(Renderer& r, VkCommandBuffer cmd, VkFramebuffer framebuffer) {
@@ -193,9 +172,7 @@ void destroySurface(Renderer& r) {
     SurfaceField& s = r.surface;
     destroyImages(d, s);
     for (Pipeline* p : {&r.surfaceField, &r.surfaceBlur, &r.surfaceDepth, &r.surfaceComposite}) {
-        vkDestroyPipeline(d.device, p->pipeline, nullptr);
-        vkDestroyPipelineLayout(d.device, p->layout, nullptr);
-        *p = Pipeline{};
+        destroyPipeline(d, *p);
     }
     vkDestroyDescriptorPool(d.device, s.pool, nullptr);
     vkDestroyDescriptorSetLayout(d.device, s.layout, nullptr);

@@ -107,6 +107,8 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
                                            ReferenceCase{"scenes/fluid_splash.toml", 1.0, "cpu", "--fluid-steps 7",
                                                          "_splats"},
                                            ReferenceCase{"scenes/fluid_dam_break_2d.toml", 1.0, "cpu"},
+                                           // The 3D screen-space liquid.
+                                           ReferenceCase{"scenes/fluid_dam_break_3d.toml", 1.0, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "cpu"},
                                            // A flipbook, soft particles and OIT smoke.
                                            ReferenceCase{"scenes/campfire.toml", 2.0, "cpu"},

@@ -2,7 +2,8 @@
 # Makes the pictures of docs/rendering.md and docs/tutorial.md with the
 # project's own command: one frame of scenes/fluid_splash.toml at t = 1 s for
 # each Sprinkle splat step (spindrift render --fluid-steps N), the 2D dam
-# break at t = 2 s as the liquid surface and as splats, the showcase level
+# break at t = 2 s and the 3D one at t = 1 s as the liquid surface and as
+# splats, the showcase level
 # at three moments, and the campfire's smoke three ways. Run after a build (cmake --build --preset release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -23,6 +24,13 @@ cp "$tmp/surface/frame_00000.png" "$out/dam-break-surface.png"
 "$cli" render scenes/fluid_dam_break_2d.toml --out "$tmp/splats" --start 2.0 --frames 1 --format png \
   --fluid-steps 7 --width 480 --height 270 --quiet
 cp "$tmp/splats/frame_00000.png" "$out/dam-break-splats.png"
+# The 3D dam break at t = 1 s as the screen-space liquid and as splats.
+"$cli" render scenes/fluid_dam_break_3d.toml --out "$tmp/screen" --start 1.0 --frames 1 --format png \
+  --width 480 --height 270 --quiet
+cp "$tmp/screen/frame_00000.png" "$out/dam-break-3d-surface.png"
+"$cli" render scenes/fluid_dam_break_3d.toml --out "$tmp/splats3d" --start 1.0 --frames 1 --format png \
+  --fluid-steps 7 --width 480 --height 270 --quiet
+cp "$tmp/splats3d/frame_00000.png" "$out/dam-break-3d-splats.png"
 # The showcase level (docs/tutorial.md) at three moments.
 for t in 1.5 4.0 8.9; do
   "$cli" render scenes/showcase.toml --out "$tmp/showcase-$t" --start "$t" --frames 1 --format png \
@@ -42,5 +50,5 @@ for variant in campfire "$tmp/campfire-sorted" "$tmp/campfire-hard"; do
   "$cli" render "$scene" --out "$tmp/$name" --start 3.0 --frames 1 --format png --width 480 --height 270 --quiet
   cp "$tmp/$name/frame_00000.png" "$out/$name.png"
 done
-echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{surface,splats}.png, $out/showcase-{1.5,4.0,8.9}.png" \
+echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{,3d-}{surface,splats}.png, $out/showcase-{1.5,4.0,8.9}.png" \
   "and $out/campfire{,-sorted,-hard}.png"

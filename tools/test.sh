@@ -3,7 +3,7 @@
 # as errors, then the same tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Exits non-zero on any failure.
 #
-# The sanitizer pass leaves out 40 tests (the asan test preset's filter in
+# The sanitizer pass leaves out 43 tests (the asan test preset's filter in
 # CMakePresets.json), which would put CI (2 cores) over its 30 minutes (a
 # clean run with only the first nine left out took 31 minutes, 11 of them the
 # sanitizer tests); all of them run in the optimised pass:
@@ -20,8 +20,11 @@
 #   world's reference image and scene comparisons of `default`, `bees` and
 #   `sparks`), eight more CPU-against-Vulkan scene comparisons, three of the
 #   four integrators of the gale scene on both backends (explicit Euler
-#   runs), the campfire's
-#   Vulkan reference image, the non-finite removal and the emitter on a
+#   runs), the campfire's and the effects close-up's
+#   Vulkan reference images (their CPU twins run), the 3D dam break's
+#   reference image (tests/render/screen_fluid_test.cpp draws the same
+#   passes), the run-to-run determinism test (the one-against-two-threads
+#   test runs the same code), the non-finite removal and the emitter on a
 #   spinning body on the device (their CPU twins run), one of the two Vulkan sort-order tests, and the viewer's
 #   pour-and-remove script (the other viewer tests run).
 # Under the sanitizers every code path they drive still runs: the short fluid

@@ -92,6 +92,28 @@ enum class ToneMap : std::uint32_t {
     Aces = 1,  ///< the ACES filmic curve as fitted by Narkowicz (2016): 1 maps to about 0.8, brights roll off
 };
 
+/// Most point lights a frame carries (RenderDef::lights).
+inline constexpr std::uint32_t kRenderMaxLights = 8;
+
+/// A point light, such as a fire's glow on what is around it. It lights
+/// colliders, bodies and the liquid, falling smoothly to nothing at `radius`
+/// (docs/rendering.md, "Light").
+struct LightDef {
+    std::string name;
+    /// World position (m); with `emitter`, an offset from its spawn centre.
+    glm::vec3 position{0.0f};
+    /// Linear RGB; 1 lights a surface facing it about as the default sun does.
+    glm::vec3 colour{1.0f, 0.55f, 0.2f};
+    float radius = 3.0f;  ///< m, > 0
+    /// 0: fixed. Else the light follows the emitter's spawn centre (which
+    /// rides its body) and scales with its rate over the rate it had when the
+    /// renderer was created, so a fire's glow fades as the fire is doused.
+    EmitterId emitter;
+    /// In [0, 1]: how deep the light's flicker is (a fixed function of the
+    /// world time, so frames are reproducible).
+    float flicker = 0.0f;
+};
+
 /// How a world is drawn.
 struct RenderDef {
     std::uint32_t width = 1280;   ///< pixels
@@ -102,6 +124,14 @@ struct RenderDef {
     bool drawColliders = true;    ///< world colliders, fluid obstacles and bodies
     /// Direction toward the sun (normalised on use), for shading and highlights.
     glm::vec3 sunDirection{0.3f, 1.0f, 0.5f};
+    /// The sun's light, linear RGB, relative to the default daylight (1, 1, 1);
+    /// a night scene's moon is dim and blue.
+    glm::vec3 sunColour{1.0f};
+    /// The sky's light on everything (ambient), linear RGB, relative to the
+    /// default (1, 1, 1).
+    glm::vec3 ambient{1.0f};
+    /// Point lights, at most kRenderMaxLights.
+    std::vector<LightDef> lights;
     /// The frame is drawn in linear light into a 16-bit float target; this
     /// multiplies it before the tone map, > 0.
     float exposure = 1.0f;
@@ -168,6 +198,9 @@ SPINDRIFT_API RenderStats renderStats(RendererId renderer);
 /// Throws FieldError naming the field ("fps", "fluid.opacity", "camera.fov")
 /// for a definition createRenderer rejects.
 SPINDRIFT_API void validateRenderDef(const RenderDef& def);
+/// One light's part of validateRenderDef; fields are named as a scene
+/// file's [[light]] spells them ("radius"), the object as "light 'name'".
+SPINDRIFT_API void validateLightDef(const LightDef& light);
 /// The camera's part of validateRenderDef; fields are named without
 /// "camera." ("fov"), as a scene file's [camera] spells them.
 SPINDRIFT_API void validateCameraDef(const CameraDef& camera);

@@ -167,13 +167,15 @@ struct SortPush {
 
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
-// 240 bytes.
+// 592 bytes.
 SD_CONST uint SD_RENDER_SET_FRAME = 0u;
 SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;         // uniform FrameUniforms
 SD_CONST uint SD_RENDER_BINDING_BACKGROUND = 1u;    // sampler2D, the background image
 SD_CONST uint SD_RENDER_BINDING_SCENE_BEHIND = 2u;  // sampler2D, the colour target before the water
 SD_CONST uint SD_RENDER_BINDING_DEPTH = 3u;         // sampler2D, the opaque depth (pass B's read-only depth)
 SD_CONST uint SD_RENDER_FRAME_BINDINGS = 4u;
+// Point lights a frame carries (RenderDef::lights; kRenderMaxLights).
+SD_CONST uint SD_MAX_LIGHTS = 8u;
 struct FrameUniforms {
     mat4 viewProj;
     vec4 eye;             // xyz camera position (m); w: 1 orthographic, 0 perspective
@@ -187,6 +189,11 @@ struct FrameUniforms {
     vec4 waterFlags;      // x refraction, y edges (0 or 1); z refraction strength (uv units)
     vec4 surface;         // liquid surface: xy one field texel (uv); z depth-tint reach (uv of the frame's height); w field threshold
     vec4 depthRange;      // the projection's near x and far y planes (m along the view; may be < 0 orthographic); z 1 orthographic
+    mat4 invViewProj;     // clip to world: a pixel's world point (the 2D liquid's light)
+    vec4 ambient;         // rgb linear, the sky's light relative to the default; w: point lights in use
+    vec4 sunColour;       // rgb linear, the sun's light relative to the default
+    vec4 lightPosition[SD_MAX_LIGHTS];  // xyz world (m); w reach (m)
+    vec4 lightColour[SD_MAX_LIGHTS];    // rgb linear, at the light (flicker and the emitter's rate included)
 };
 
 // Effect sprites (src/render/shaders/sprites.*, src/render/sprite_pass.cpp):
@@ -314,7 +321,11 @@ static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
 static_assert(sizeof(SplatInstance) == 48);
 static_assert(offsetof(SplatInstance, shade) == 32);
 // std140: a mat4 is four vec4 columns, every vec4 16-byte aligned.
-static_assert(sizeof(FrameUniforms) == 240);
+static_assert(sizeof(FrameUniforms) == 592);
+static_assert(offsetof(FrameUniforms, invViewProj) == 240);
+static_assert(offsetof(FrameUniforms, ambient) == 304);
+static_assert(offsetof(FrameUniforms, lightPosition) == 336);
+static_assert(offsetof(FrameUniforms, lightColour) == 464);
 static_assert(offsetof(FrameUniforms, depthRange) == 224);
 static_assert(offsetof(FrameUniforms, eye) == 64);
 static_assert(offsetof(FrameUniforms, waterFlags) == 192);

@@ -68,6 +68,14 @@ void validateCameraDef(const CameraDef& c) {
     check.number("ortho_height", c.orthoHeight, render_rules::kOrthoHeight);
 }
 
+void validateLightDef(const LightDef& light) {
+    const FieldCheck check(objectLabel("light", light.name));
+    check.finite("position", light.position);
+    check.colour("color", light.colour);
+    check.number("radius", light.radius, render_rules::kLightRadius);
+    check.number("flicker", light.flicker, render_rules::kLightFlicker);
+}
+
 void validateRenderDef(const RenderDef& def) {
     // Each field against its rule (render_rules.h), named as a scene file's
     // [render] spells its key.
@@ -79,6 +87,13 @@ void validateRenderDef(const RenderDef& def) {
     check.number("seconds", def.seconds, rules::kSeconds);
     check.finite("sun", def.sunDirection);
     check.expect(glm::length(def.sunDirection) > 0.0f, "sun", "a non-zero direction", vec3Text(def.sunDirection));
+    colour(check, "sun_color", def.sunColour);
+    colour(check, "ambient", def.ambient);
+    check.expect(def.lights.size() <= kRenderMaxLights, "lights", fmt::format("at most {}", kRenderMaxLights),
+                 std::to_string(def.lights.size()));
+    for (const LightDef& light : def.lights) {
+        validateLightDef(light);
+    }
     check.number("exposure", def.exposure, rules::kExposure);
     check.expect(def.toneMap == ToneMap::Aces || def.toneMap == ToneMap::None, "tone_map",
                  fmt::format("none ({}) or aces ({})", static_cast<std::uint32_t>(ToneMap::None),

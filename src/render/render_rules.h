@@ -35,6 +35,10 @@ inline constexpr FieldRule kExposure = FieldRule::number(Bounds::positive());
 /// RenderDef::bloom; 0 turns it off. Above 10 the glow swamps any frame.
 inline constexpr FieldRule kBloom = FieldRule::number(Bounds::between(0.0, 10.0));
 
+/// LightDef::radius (m) and flicker.
+inline constexpr FieldRule kLightRadius = FieldRule::number(Bounds::positive());
+inline constexpr FieldRule kLightFlicker = FieldRule::number(Bounds::between(0.0, 1.0));
+
 // Camera. Open interval: 0 and 180 degrees make a degenerate projection.
 inline constexpr FieldRule kFov = FieldRule::number(Bounds{0.0, 180.0, true, true});  ///< degrees
 inline constexpr FieldRule kOrthoHeight = FieldRule::number(Bounds::positive());      ///< m

@@ -276,6 +276,7 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
                                                : 2.0f * distance * std::tan(0.5f * glm::radians(c.fovDegrees));
     u.surface = glm::vec4(0.0f, 0.0f, kSurfaceTintDepth / visibleHeight, kSurfaceThreshold);
     u.depthRange = depthRange;
+    u.invViewProj = glm::inverse(u.viewProj);
     return u;
 }
 
@@ -364,6 +365,7 @@ std::unique_ptr<Renderer> createRenderer(WorldId world, const RenderDef& def) {
     r->world = world;
     r->def = def;
     World& w = worldFromId(world);
+    r->pointLights = capturePointLights(w, def.lights);
     if (w.gpu) {
         r->device = w.gpu->device.get();  // draw straight from the world's buffers
     } else {
@@ -446,6 +448,7 @@ void prepareFrame(Renderer& r) {
     prepareScreenFluid(r);
     prepareSprites(r);
     FrameUniforms u = frameUniforms(r.def, w.time);
+    writeLights(r.pointLights, r.def, w, w.time, u);
     if (r.surface.drawn) {
         u.surface.x = 1.0f / float(r.surface.width);
         u.surface.y = 1.0f / float(r.surface.height);

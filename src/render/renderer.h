@@ -19,6 +19,7 @@
 #include "gpu/vulkan_buffer.h"
 #include "kernels/layout.glsl"
 #include "render/fluid_splats.h"
+#include "render/point_lights.h"
 #include "render/render_pipelines.h"
 #include "render/render_target.h"
 
@@ -166,6 +167,7 @@ struct Renderer {
     ScreenFluid screen;  // depthPass == VK_NULL_HANDLE: not made yet
     OitTargets oit;  // pass == VK_NULL_HANDLE: no emitter uses OIT
     Light light;
+    PointLights pointLights;
 
     // Colliders: the static mesh, built once; bodies are rebuilt each frame.
     gpu::Buffer staticMesh, dynamicMesh;

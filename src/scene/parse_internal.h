@@ -56,6 +56,8 @@ FluidDef parseFluid(const Table& table, NameTable& names, const NameTable& bodie
 BodyDef parseBody(const Table& table, NameTable& names);
 JointDef parseJoint(const Table& table, NameTable& names, const NameTable& bodies);
 FireDef parseFire(const Table& table, NameTable& names, const NameTable& bodies, const NameTable& emitters);
+/// `emitters`: the names a light may follow.
+LightDef parseLight(const Table& table, NameTable& names, const NameTable& emitters);
 /// [render] with its [render.background] and [render.fluid]; the camera is
 /// left at its default ([camera] is read separately).
 RenderDef parseRender(const Table& table);

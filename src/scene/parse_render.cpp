@@ -85,8 +85,8 @@ FluidRenderDef parseFluidRender(const Table& render, const Table& t) {
 }  // namespace
 
 RenderDef parseRender(const Table& t) {
-    t.allowOnly({"width", "height", "fps", "seconds", "draw_colliders", "sun", "exposure", "tone_map", "bloom",
-                 "background", "fluid"},
+    t.allowOnly({"width", "height", "fps", "seconds", "draw_colliders", "sun", "sun_color", "ambient", "exposure",
+                 "tone_map", "bloom", "background", "fluid"},
                 "[render]");
     RenderDef def;
     def.width = t.whole<std::uint32_t>("width", def.width, render_rules::kFrameSide);
@@ -95,6 +95,8 @@ RenderDef parseRender(const Table& t) {
     def.seconds = t.real("seconds", def.seconds, render_rules::kSeconds);
     def.drawColliders = t.boolean("draw_colliders", def.drawColliders);
     def.sunDirection = t.direction("sun", def.sunDirection);
+    def.sunColour = t.vec3("sun_color", def.sunColour);
+    def.ambient = t.vec3("ambient", def.ambient);
     def.exposure = t.real("exposure", def.exposure, render_rules::kExposure);
     if (auto v = t.find("tone_map")) {
         def.toneMap = v->choice<ToneMap>({{"aces", ToneMap::Aces}, {"none", ToneMap::None}});

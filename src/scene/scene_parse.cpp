@@ -176,7 +176,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     }
     const Table root(ctx, document, "");
     root.allowOnly({"world", "camera", "render", "run", "flow_field", "force", "collider", "emitter", "fluid", "body",
-                    "joint", "fire"},
+                    "joint", "fire", "light"},
                    "the scene");
 
     SceneDef scene;
@@ -225,6 +225,12 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
     scene::NameTable fireNames("fire");
     for (const Table& t : scene::tableArray(root, "fire")) {
         scene.fires.push_back(scene::parseFire(t, fireNames, bodyNames, emitterNames));
+    }
+    scene::NameTable lightNames("light");
+    const std::vector<Table> lights = scene::tableArray(root, "light");
+    scene::checkCount(lights, kRenderMaxLights, "light");
+    for (const Table& t : lights) {
+        scene.render.lights.push_back(scene::parseLight(t, lightNames, emitterNames));
     }
     if (!scene.fluids.empty()) {
         // Fluids collide with planes, spheres and boxes only (src/fluid/collide.cpp).

@@ -9,9 +9,11 @@ layout(location = 2) in vec3 albedo;
 
 layout(location = 0) out vec3 worldNormal;
 layout(location = 1) out vec3 baseColour;
+layout(location = 2) out vec3 worldPosition;
 
 void main() {
     worldNormal = normal;
     baseColour = albedo;
+    worldPosition = position;
     gl_Position = frame.viewProj * vec4(position, 1.0);
 }

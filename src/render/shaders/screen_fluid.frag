@@ -10,6 +10,7 @@
 // made the pass 4x slower on lavapipe: no early depth test). Output
 // premultiplied by alpha (the coverage of the field's water at this pixel).
 #include "screen_fluid.glsl"
+#include "lighting.glsl"
 
 layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_SCENE_BEHIND) uniform sampler2D sceneBehind;
 layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_DEPTH) uniform sampler2D opaqueDepth;
@@ -123,7 +124,10 @@ void main() {
 
     vec3 water = max(frame.waterColour.rgb, vec3(1e-3));
     vec3 through = exp(log(water) * (kAbsorption * t.x));  // water^(kAbsorption x thickness)
-    vec3 scatter = water * (vec3(1.0) - through) * kScatter;
+    // The water's own light and foam are lit by the scene (lighting.glsl);
+    // the sun's highlight takes the sun's colour.
+    vec3 lit = liquidLight(p, n);
+    vec3 scatter = water * (vec3(1.0) - through) * (kScatter * lit);
     float fresnel = kF0 + (1.0 - kF0) * pow(1.0 - max(dot(n, view), 0.0), 5.0);
     vec3 r = reflect(-view, n);
     float skyUp = clamp(0.5 + 0.5 * dot(r, frame.up.xyz), 0.0, 1.0);
@@ -131,7 +135,7 @@ void main() {
                                    ? mix(frame.backgroundBottom.rgb, frame.backgroundTop.rgb, skyUp)
                                    : frame.backgroundTop.rgb);
     vec3 halfway = normalize(frame.sun.xyz + view);
-    vec3 highlight = vec3(kSpecular * pow(max(dot(n, halfway), 0.0), kShininess));
+    vec3 highlight = frame.sunColour.rgb * (kSpecular * pow(max(dot(n, halfway), 0.0), kShininess));
     float foam = clamp(t.y / max(t.x, 1e-6), 0.0, 1.0) * kFoamWhite;
 
     vec3 light;
@@ -149,7 +153,7 @@ void main() {
         light = scatter + sky * fresnel;
         a = max(opacity, fresnel);
     }
-    light = mix(light, vec3(0.92, 0.96, 1.0) * a, foam) + highlight;
+    light = mix(light, vec3(0.92, 0.96, 1.0) * lit * a, foam) + highlight;
     a = mix(a, 1.0, foam);
     outColour = vec4(light * coverage, a * coverage);
 }

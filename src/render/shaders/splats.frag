@@ -4,13 +4,14 @@
 // particles, splashes); the scene behind seen through the water with a
 // lens-like offset (refraction, step 4); a rim highlight on surface particles
 // (edges, step 5); bubbles as rings (step 7). Output premultiplied by alpha.
-#include "frame.glsl"
+#include "lighting.glsl"
 
 layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_SCENE_BEHIND) uniform sampler2D sceneBehind;
 
 layout(location = 0) in vec2 local;
 layout(location = 1) in vec4 shade;
 layout(location = 2) in vec2 screenAxis;
+layout(location = 3) in vec3 worldCentre;
 layout(location = 0) out vec4 outColour;
 
 void main() {
@@ -22,15 +23,16 @@ void main() {
     float brightness = shade.x;
     float edge = shade.y;
     uint kind = uint(shade.z + 0.5);
-    vec3 water = frame.waterColour.rgb * brightness;
+    vec3 lit = liquidLight(worldCentre, frame.up.xyz);  // the scene's light (lighting.glsl)
+    vec3 water = frame.waterColour.rgb * brightness * lit;
     float opacity = frame.waterColour.a;
     if (kind == SD_SPLAT_SPLASH) {  // splash: small, bright, opaque
-        outColour = vec4(min(water + vec3(0.35), vec3(1.0)) * coverage, coverage);
+        outColour = vec4(min(water + vec3(0.35) * lit, vec3(1.0)) * coverage, coverage);
         return;
     }
     if (kind == SD_SPLAT_BUBBLE) {  // bubble: a light ring with a clear middle
         float ring = smoothstep(0.45, 0.8, r2) * (1.0 - smoothstep(0.8, 1.0, r2));
-        vec3 c = mix(water, vec3(0.85, 0.95, 1.0), 0.7);
+        vec3 c = mix(water, vec3(0.85, 0.95, 1.0) * lit, 0.7);
         outColour = vec4(c * ring, ring);
         return;
     }
@@ -46,7 +48,7 @@ void main() {
         opacity = 1.0;
     }
     if (frame.waterFlags.y > 0.5) {
-        c += vec3(0.9, 0.95, 1.0) * (0.5 * edge * smoothstep(0.3, 1.0, r2));
+        c += vec3(0.9, 0.95, 1.0) * lit * (0.5 * edge * smoothstep(0.3, 1.0, r2));
     }
     float a = opacity * coverage;
     outColour = vec4(c * a, a);

@@ -12,6 +12,7 @@ layout(std430, set = SD_SPLAT_SET, binding = SD_SPLAT_BINDING_INSTANCES) readonl
 layout(location = 0) out vec2 local;
 layout(location = 1) out vec4 shade;
 layout(location = 2) out vec2 screenAxis;  // the major axis on screen, for the refraction offset
+layout(location = 3) out vec3 worldCentre;  // where the scene's light is taken
 
 void main() {
     SplatInstance s = splats[gl_InstanceIndex];
@@ -29,4 +30,5 @@ void main() {
     vec3 world = s.centre.xyz + axisA * (corner.x * r * stretch) + axisB * (corner.y * r);
     screenAxis = a;
     gl_Position = frame.viewProj * vec4(world, 1.0);
+    worldCentre = s.centre.xyz;
 }

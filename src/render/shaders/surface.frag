@@ -4,7 +4,7 @@
 // behind refracted by the field's gradient, a tint that deepens with the
 // water above, foam where the particles are fast or sparse, and a bright rim
 // along the edge lit from the sun. Output premultiplied by alpha.
-#include "frame.glsl"
+#include "lighting.glsl"
 
 layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_SCENE_BEHIND) uniform sampler2D sceneBehind;
 layout(set = SD_SURFACE_SET, binding = SD_SURFACE_BINDING_FIELD) uniform sampler2D field;
@@ -34,6 +34,8 @@ void main() {
         discard;
     }
     float depth = here.b;
+    // The liquid's own colours are lit by the scene (lighting.glsl).
+    vec3 lit = liquidLight(pixelOnPlaneZ0(uv), frame.up.xyz);
     vec3 water = frame.waterColour.rgb;
     vec3 tint = mix(water * 1.1 + vec3(0.02, 0.03, 0.04), water * 0.55, depth);
     float opacity = mix(frame.waterColour.a, min(1.0, frame.waterColour.a + 0.3), depth);
@@ -51,6 +53,7 @@ void main() {
     float rim = exp(-max(inside, 0.0) / max(kRimWidth * size.y, 0.5));
     light += vec3(0.85, 0.93, 1.0) * (kRimStrength * rim * (0.35 + 0.65 * facing));
     a = max(a, min(1.0, kRimStrength * rim));
+    light *= lit;
     if (frame.waterFlags.x > 0.5) {
         // Refraction: what is behind, seen through a lens shaped by the field.
         // The field's change per field texel, times 4 x the strength: about

@@ -6,12 +6,12 @@ Procedural (no downloaded art): frame k of 16 is a teardrop of coverage whose
 tip sways and whose body breaks into two tongues as the flame dies, coloured
 from white-yellow at the root to orange-red at the tip. The colour is
 premultiplied-friendly: rgb is the flame's own colour, alpha its coverage.
-Standard library only (zlib + struct): run `tools/make-flipbook.py`.
+Standard library only (tools/png_writer.py): run `tools/make-flipbook.py`.
 """
 import math
-import struct
 import sys
-import zlib
+
+from png_writer import png
 
 FRAME = 32
 SIDE = 4
@@ -46,15 +46,6 @@ def texel(k, x, y):
     g = 0.35 + 0.6 * heat
     b = 0.08 + 0.7 * heat * heat
     return [round(255 * c) for c in (r, g, b, alpha)]
-
-
-def png(width, height, rows):
-    def chunk(kind, data):
-        c = struct.pack(">I", len(data)) + kind + data
-        return c + struct.pack(">I", zlib.crc32(kind + data) & 0xFFFFFFFF)
-    raw = b"".join(b"\x00" + bytes(row) for row in rows)
-    return (b"\x89PNG\r\n\x1a\n" + chunk(b"IHDR", struct.pack(">IIBBBBB", width, height, 8, 6, 0, 0, 0)) +
-            chunk(b"IDAT", zlib.compress(raw, 9)) + chunk(b"IEND", b""))
 
 
 def main():

@@ -3,7 +3,7 @@
 # as errors, then the same tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Exits non-zero on any failure.
 #
-# The sanitizer pass leaves out 43 tests (the asan test preset's filter in
+# The sanitizer pass leaves out 45 tests (the asan test preset's filter in
 # CMakePresets.json), which would put CI (2 cores) over its 30 minutes (a
 # clean run with only the first nine left out took 31 minutes, 11 of them the
 # sanitizer tests); all of them run in the optimised pass:
@@ -21,7 +21,9 @@
 #   `sparks`), eight more CPU-against-Vulkan scene comparisons, three of the
 #   four integrators of the gale scene on both backends (explicit Euler
 #   runs), the campfire's and the effects close-up's
-#   Vulkan reference images (their CPU twins run), the 3D dam break's
+#   Vulkan reference images (their CPU twins run), the showcase's two
+#   reference images at 3 and 8 s (the same code drew the other scenes'
+#   frames, and SceneBuild runs the showcase), the 3D dam break's
 #   reference image (tests/render/screen_fluid_test.cpp draws the same
 #   passes), the run-to-run determinism test (the one-against-two-threads
 #   test runs the same code), the non-finite removal and the emitter on a

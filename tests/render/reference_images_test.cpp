@@ -107,6 +107,13 @@ INSTANTIATE_TEST_SUITE_P(Scenes, ReferenceImages,
                                            ReferenceCase{"scenes/fluid_splash.toml", 1.0, "cpu", "--fluid-steps 7",
                                                          "_splats"},
                                            ReferenceCase{"scenes/fluid_dam_break_2d.toml", 1.0, "cpu"},
+                                           // The 2D liquid surface close up: 3.5 pixels a spacing.
+                                           ReferenceCase{"tests/render/scenes/fluid_dam_break_closeup.toml", 1.0,
+                                                         "cpu"},
+                                           // The showcase at night, lit by its fires: the cannon on the
+                                           // crate (3 s), the gate open and the barrel fire (8 s).
+                                           ReferenceCase{"scenes/showcase.toml", 3.0, "cpu", "", "_3s"},
+                                           ReferenceCase{"scenes/showcase.toml", 8.0, "cpu", "", "_8s"},
                                            // The 3D screen-space liquid.
                                            ReferenceCase{"scenes/fluid_dam_break_3d.toml", 1.0, "cpu"},
                                            ReferenceCase{"tests/render/scenes/effects_closeup.toml", 1.5, "cpu"},

@@ -95,6 +95,8 @@ struct BodyDef {
     /// renderer's default (wood for a dynamic body, grey for the others).
     /// Drawing only: it changes nothing in the simulation.
     std::optional<glm::vec3> colour;
+    /// An image on every shape of the body, in the body's frame (drawing only).
+    SurfaceTexture texture;
     /// At least one; edges and chains only on static and kinematic bodies
     /// (they have no area, so no mass).
     std::vector<BodyShapeDef> shapes;
@@ -161,6 +163,7 @@ struct BodySnapshot {
     glm::vec2 linearVelocity{0.0f};  ///< m/s, of the centre of mass
     float angularVelocity = 0.0f;    ///< rad/s
     std::optional<glm::vec3> colour;  ///< BodyDef::colour, linear RGB
+    SurfaceTexture texture;           ///< BodyDef::texture
     std::vector<BodyShapeView> shapes;
 };
 

@@ -258,6 +258,15 @@ enum class ColliderKind : std::uint32_t { Plane = 0, Sphere = 1, Box = 2, Terrai
 /// Particles stay on the outside of every collider (the side the plane normal
 /// points to; outside spheres and boxes; above terrain; outside the cube-map
 /// shape).
+/// A surface's texture for the renderer (ColliderDef::texture,
+/// BodyDef::texture): a PNG whose colour multiplies the surface's colour
+/// (white when it has none), repeated every `scale` metres and projected
+/// along each face's main axis, in the body's own frame for a body.
+struct SurfaceTexture {
+    std::string path;    ///< PNG file; empty: no texture
+    float scale = 1.0f;  ///< m the image covers before it repeats, > 0
+};
+
 struct ColliderDef {
     std::string name;
     ColliderKind kind = ColliderKind::Plane;
@@ -291,6 +300,8 @@ struct ColliderDef {
     /// green for terrain). A debug-draw colour in Box2D v3's sense
     /// (b2ShapeDef::customColor): it changes nothing in the simulation.
     std::optional<glm::vec3> colour;
+    /// An image on its faces (drawing only).
+    SurfaceTexture texture;
 };
 
 }  // namespace spindrift

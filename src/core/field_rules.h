@@ -62,6 +62,8 @@ private:
 /// rule of every colour a Def holds (render's background and fluid, a
 /// collider's, a body's and a body shape's).
 inline constexpr FieldRule kColourChannel = FieldRule::number(Bounds::nonNegative());
+/// SurfaceTexture::scale: metres an image covers before it repeats.
+inline constexpr FieldRule kTextureScale = FieldRule::number(Bounds::positive());
 
 /// The span a slider offers for a field: the rule's ends where they are
 /// closed and finite, otherwise `lo` and `hi` (a UI's choice for an open or

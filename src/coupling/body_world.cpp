@@ -398,6 +398,7 @@ void validateBodyDef(const BodyDef& def) {
     check.number("friction", def.friction, rules::kFriction);
     check.number("restitution", def.restitution, rules::kRestitution);
     if (def.colour) check.colour("color", *def.colour);
+    check.number("texture_scale", def.texture.scale, kTextureScale);
     check.expect(!def.shapes.empty(), "shape", "at least one shape", "none");
     for (std::size_t i = 0; i < def.shapes.size(); ++i) coupling::validateShape(def, i, def.shapes[i]);
 }
@@ -624,6 +625,7 @@ std::vector<BodySnapshot> readBodies(const BodyWorld* bodies) {
         s.linearVelocity = coupling::fromB2(slot.body->GetLinearVelocity());
         s.angularVelocity = slot.body->GetAngularVelocity();
         s.colour = slot.def.colour;
+        s.texture = slot.def.texture;
         for (const BodyShapeDef& shape : slot.def.shapes) {
             BodyShapeView v = coupling::view(shape, slot.body->GetTransform());
             v.colour = shape.colour ? shape.colour : slot.def.colour;  // a shape's own colour wins

@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace spindrift::gpu {
@@ -42,7 +43,7 @@ VkDeviceMemory allocateMemory(Device& d, const VkMemoryRequirements& req, VkMemo
 }
 
 VkImageSubresourceRange wholeImage(const ImageShape& shape) {
-    return {shape.aspect, 0, 1, 0, shape.layers()};
+    return {shape.aspect, 0, shape.levels, 0, shape.layers()};
 }
 
 // Layout transition of the whole image with its execution and memory dependency.
@@ -89,7 +90,7 @@ Image createSampledImage(Device& d, const ImageShape& shape) {
     info.imageType = volume ? VK_IMAGE_TYPE_3D : VK_IMAGE_TYPE_2D;
     info.format = shape.format;
     info.extent = {shape.width, shape.height, volume ? shape.depth : 1u};
-    info.mipLevels = 1;
+    info.mipLevels = shape.levels;
     info.arrayLayers = shape.layers();
     info.samples = VK_SAMPLE_COUNT_1_BIT;
     info.tiling = VK_IMAGE_TILING_OPTIMAL;
@@ -121,14 +122,30 @@ void uploadImage(Device& d, Image& image, const ImageShape& shape, const void* t
     try {
         std::memcpy(staging.mapped, texels, bytes);
         fillImage(d, image, shape, [&](VkCommandBuffer cmd) {
-            VkBufferImageCopy region{};
-            region.bufferOffset = 0;
-            region.bufferRowLength = 0;  // tightly packed
-            region.bufferImageHeight = 0;
-            region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, 0, 0, shape.layers()};
-            region.imageOffset = {0, 0, 0};
-            region.imageExtent = {shape.width, shape.height, shape.viewType == VK_IMAGE_VIEW_TYPE_3D ? shape.depth : 1u};
-            vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1, &region);
+            // One region a mip level, all layers at once; the texel size
+            // follows from the bytes of level 0's layers and the rest.
+            const std::uint32_t depth = shape.viewType == VK_IMAGE_VIEW_TYPE_3D ? shape.depth : 1u;
+            VkDeviceSize texels = 0;
+            for (std::uint32_t level = 0; level < shape.levels; ++level) {
+                texels += VkDeviceSize{std::max(shape.width >> level, 1u)} * std::max(shape.height >> level, 1u) *
+                          std::max(depth >> level, 1u) * shape.layers();
+            }
+            const VkDeviceSize texelBytes = bytes / texels;
+            VkDeviceSize offset = 0;
+            for (std::uint32_t level = 0; level < shape.levels; ++level) {
+                VkBufferImageCopy region{};
+                region.bufferOffset = offset;
+                region.bufferRowLength = 0;  // tightly packed
+                region.bufferImageHeight = 0;
+                region.imageSubresource = {VK_IMAGE_ASPECT_COLOR_BIT, level, 0, shape.layers()};
+                region.imageOffset = {0, 0, 0};
+                region.imageExtent = {std::max(shape.width >> level, 1u), std::max(shape.height >> level, 1u),
+                                      std::max(depth >> level, 1u)};
+                vkCmdCopyBufferToImage(cmd, staging.buffer, image.image, VK_IMAGE_LAYOUT_TRANSFER_DST_OPTIMAL, 1,
+                                       &region);
+                offset += VkDeviceSize{region.imageExtent.width} * region.imageExtent.height *
+                          region.imageExtent.depth * shape.layers() * texelBytes;
+            }
         });
     } catch (...) {
         destroyBuffer(d, staging);

@@ -50,7 +50,14 @@ struct ImageShape {
     /// The renderer's targets add attachment and transfer-source uses.
     VkImageUsageFlags usage = VK_IMAGE_USAGE_SAMPLED_BIT | VK_IMAGE_USAGE_TRANSFER_DST_BIT;
     VkImageAspectFlags aspect = VK_IMAGE_ASPECT_COLOR_BIT;
-    std::uint32_t layers() const { return viewType == VK_IMAGE_VIEW_TYPE_CUBE ? 6u : 1u; }
+    /// Layers of a VK_IMAGE_VIEW_TYPE_2D_ARRAY (a cube has 6, others 1).
+    std::uint32_t arrayLayers = 1;
+    /// Mip levels, each half the one before (at least 1 texel a side).
+    std::uint32_t levels = 1;
+    std::uint32_t layers() const {
+        return viewType == VK_IMAGE_VIEW_TYPE_CUBE ? 6u
+                                                   : (viewType == VK_IMAGE_VIEW_TYPE_2D_ARRAY ? arrayLayers : 1u);
+    }
 };
 
 /// True when `format` with optimal tiling can be sampled with VK_FILTER_LINEAR
@@ -59,8 +66,8 @@ bool linearFilterable(const Device& d, VkFormat format);
 /// A device-local image that can be copied into and sampled, in layout
 /// UNDEFINED; fill it with uploadImage or clearImage.
 Image createSampledImage(Device& d, const ImageShape& shape);
-/// Copies `bytes` of tightly packed texels (layer, then z, y, x; x fastest)
-/// through a staging buffer into the whole image, with the layout transitions
+/// Copies `bytes` of tightly packed texels (mip level, then layer, z, y, x;
+/// x fastest) through a staging buffer into the whole image, with the layout transitions
 /// UNDEFINED -> TRANSFER_DST_OPTIMAL -> SHADER_READ_ONLY_OPTIMAL and barriers
 /// that make the copy visible to compute shaders. Counts the bytes as uploaded.
 void uploadImage(Device& d, Image& image, const ImageShape& shape, const void* texels, VkDeviceSize bytes);

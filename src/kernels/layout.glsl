@@ -173,7 +173,8 @@ SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;         // uniform FrameUniforms
 SD_CONST uint SD_RENDER_BINDING_BACKGROUND = 1u;    // sampler2D, the background image
 SD_CONST uint SD_RENDER_BINDING_SCENE_BEHIND = 2u;  // sampler2D, the colour target before the water
 SD_CONST uint SD_RENDER_BINDING_DEPTH = 3u;         // sampler2D, the opaque depth (pass B's read-only depth)
-SD_CONST uint SD_RENDER_FRAME_BINDINGS = 4u;
+SD_CONST uint SD_RENDER_BINDING_MATERIALS = 4u;     // sampler2DArray, the colliders' and bodies' textures
+SD_CONST uint SD_RENDER_FRAME_BINDINGS = 5u;
 // Point lights a frame carries (RenderDef::lights; kRenderMaxLights).
 SD_CONST uint SD_MAX_LIGHTS = 8u;
 struct FrameUniforms {

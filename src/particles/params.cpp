@@ -284,6 +284,7 @@ void validateColliderDef(const ColliderDef& d) {
     check.finite("half_extents", d.halfExtents);
     check.finite("rotation", d.rotationDegrees);
     if (d.colour) check.colour("color", *d.colour);
+    check.number("texture_scale", d.texture.scale, kTextureScale);
     switch (d.kind) {
         case ColliderKind::Plane:
             check.expect(glm::length(d.normal) > 0.0f, "normal", "a non-zero normal",

@@ -113,6 +113,35 @@ void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& 
     }
 }
 
+float layerOf(const MaterialLayers& layers, const SurfaceTexture& texture) {
+    if (texture.path.empty()) return -1.0f;
+    const auto it = std::find(layers.begin(), layers.end(), texture.path);
+    return it == layers.end() ? -1.0f : static_cast<float>(it - layers.begin());
+}
+
+// Texture coordinates of out[first..]: each vertex's position in the
+// object's frame (rotated by -angle about z around `origin`: a body's; 0 for
+// colliders, which do not move), projected along its normal's main axis,
+// one repeat per `scale` metres; v grows downward as the image's rows do.
+void applyTexture(std::vector<MeshVertex>& out, std::size_t first, const MaterialLayers& layers,
+                  const SurfaceTexture& texture, glm::vec2 origin = glm::vec2(0.0f), float angle = 0.0f) {
+    const float layer = layerOf(layers, texture);
+    if (layer < 0.0f) return;
+    const float c = std::cos(angle), s = std::sin(angle);
+    auto local = [&](glm::vec3 v, glm::vec2 shift) {
+        const glm::vec2 p = glm::vec2(v) - shift;
+        return glm::vec3(c * p.x + s * p.y, -s * p.x + c * p.y, v.z);
+    };
+    for (std::size_t i = first; i < out.size(); ++i) {
+        const glm::vec3 p = local(out[i].position, origin) / texture.scale;
+        const glm::vec3 n = glm::abs(local(out[i].normal, glm::vec2(0.0f)));
+        const glm::vec2 uv = n.z >= n.x && n.z >= n.y ? glm::vec2(p.x, -p.y)
+                             : n.y >= n.x             ? glm::vec2(p.x, p.z)
+                                                      : glm::vec2(p.z, -p.y);
+        out[i].uvLayer = glm::vec3(uv, layer);
+    }
+}
+
 }  // namespace
 
 float planeExtent(const CameraDef& camera, float aspect) {
@@ -151,14 +180,18 @@ void appendPrism(std::vector<MeshVertex>& out, const std::vector<glm::vec2>& pol
     }
 }
 
-std::vector<MeshVertex> staticColliderMesh(WorldId id, float extent) {
+std::vector<MeshVertex> staticColliderMesh(WorldId id, float extent, const MaterialLayers& layers) {
     const World& world = worldFromId(id);
     std::vector<MeshVertex> out;
     for (std::size_t i = 0; i < world.colliders.size(); ++i) {
         const kernels::ColliderParams& c = world.colliders[i];
         const glm::vec3 p(c.position);
+        // A texture's own colours show on white unless a colour is given.
         const glm::vec3 colour = world.colliderDefs[i].colour.value_or(
-            c.kind == kernels::SD_COLLIDER_TERRAIN ? kTerrainColour : kColliderColour);
+            !world.colliderDefs[i].texture.path.empty()  ? glm::vec3(1.0f)
+            : c.kind == kernels::SD_COLLIDER_TERRAIN ? kTerrainColour
+                                                     : kColliderColour);
+        const std::size_t first = out.size();
         switch (c.kind) {
             case kernels::SD_COLLIDER_PLANE: {
                 glm::mat3 axes = basisAround(glm::vec3(c.normal));
@@ -178,6 +211,7 @@ std::vector<MeshVertex> staticColliderMesh(WorldId id, float extent) {
                 break;
             default: break;  // cube maps: not drawn
         }
+        applyTexture(out, first, layers, world.colliderDefs[i].texture);
     }
     for (std::uint32_t f = 0; f < world.fluids.size(); ++f) {
         for (const FluidPolygonDef& polygon : fluidDef(id, FluidId{f + 1}).polygons) {
@@ -228,12 +262,18 @@ void appendBodyShape(std::vector<MeshVertex>& out, const BodyShapeView& shape, g
 
 }  // namespace
 
-std::vector<MeshVertex> bodyMesh(WorldId world) {
+std::vector<MeshVertex> bodyMesh(WorldId world, const MaterialLayers& layers) {
     std::vector<MeshVertex> out;
     for (const BodySnapshot& body : readBodies(world)) {
+        const std::size_t first = out.size();
+        // A texture's own colours show on white unless a colour is given.
+        const glm::vec3 fallback = !body.texture.path.empty() ? glm::vec3(1.0f)
+                                   : body.dynamic               ? kDynamicBodyColour
+                                                                : kObstacleColour;
         for (const BodyShapeView& shape : body.shapes) {
-            appendBodyShape(out, shape, shape.colour.value_or(body.dynamic ? kDynamicBodyColour : kObstacleColour));
+            appendBodyShape(out, shape, shape.colour.value_or(fallback));
         }
+        applyTexture(out, first, layers, body.texture, body.position, body.angle);
     }
     return out;
 }

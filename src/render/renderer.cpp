@@ -56,6 +56,7 @@ void createDescriptors(Renderer& r) {
     frameTypes[kernels::SD_RENDER_BINDING_BACKGROUND] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     frameTypes[kernels::SD_RENDER_BINDING_SCENE_BEHIND] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     frameTypes[kernels::SD_RENDER_BINDING_DEPTH] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    frameTypes[kernels::SD_RENDER_BINDING_MATERIALS] = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
     r.frameLayout = createSetLayout(d, frameTypes);
     VkDescriptorType spriteTypes[kernels::SD_SPRITE_BUFFERS + 1];
     std::fill(spriteTypes, spriteTypes + kernels::SD_SPRITE_BUFFERS, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER);
@@ -67,7 +68,7 @@ void createDescriptors(Renderer& r) {
 
     const std::uint32_t sets = static_cast<std::uint32_t>(worldFromId(r.world).emitters.size()) + 2;
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
-                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 3 + sets},
+                                     {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 + sets},
                                      {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * sets + 1}};
     auto info = gpu::vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     info.maxSets = sets;
@@ -93,6 +94,8 @@ void createDescriptors(Renderer& r) {
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo behind{r.linearSampler, r.target.behind.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo depth{r.nearestSampler, r.target.depth.view, kDepthReadLayout};
+    VkDescriptorImageInfo materials{r.materials.sampler, r.materials.image.view,
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkWriteDescriptorSet writes[kernels::SD_RENDER_FRAME_BINDINGS];
     for (std::uint32_t i = 0; i < kernels::SD_RENDER_FRAME_BINDINGS; ++i) {
         writes[i] = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
@@ -105,6 +108,7 @@ void createDescriptors(Renderer& r) {
     writes[kernels::SD_RENDER_BINDING_BACKGROUND].pImageInfo = &background;
     writes[kernels::SD_RENDER_BINDING_SCENE_BEHIND].pImageInfo = &behind;
     writes[kernels::SD_RENDER_BINDING_DEPTH].pImageInfo = &depth;
+    writes[kernels::SD_RENDER_BINDING_MATERIALS].pImageInfo = &materials;
     vkUpdateDescriptorSets(d.device, kernels::SD_RENDER_FRAME_BINDINGS, writes, 0, nullptr);
 }
 
@@ -123,7 +127,7 @@ void createPipelines(Renderer& r) {
     mesh.name = "colliders";
     mesh.vertexCode = code(s::kMeshVert, s::kMeshVertWords);
     mesh.fragmentCode = code(s::kMeshFrag, s::kMeshFragWords);
-    mesh.vertexFloat3Attributes = 3;
+    mesh.vertexFloat3Attributes = 4;  // MeshVertex
     mesh.depthTest = mesh.depthWrite = true;
     mesh.cullBackFaces = true;
     r.mesh = makePipeline(d, mesh);
@@ -215,6 +219,7 @@ void createResources(Renderer& r) {
     r.linearSampler = gpu::createLinearSampler(d);
     r.nearestSampler = nearestSampler(d);
     r.placeholderImage = whiteImage(d);
+    createMaterialTextures(d, r.materials, surfaceTexturePaths(r.world));
     if (r.def.background.kind == BackgroundKind::Image) {
         r.backgroundImage = loadImage(d, r.def.background.image, "render background");
     }
@@ -224,7 +229,7 @@ void createResources(Renderer& r) {
     createSurface(r);
     createCommands(r);
     const float aspect = float(r.def.width) / float(r.def.height);
-    r.staticMesh = vertexBuffer(d, r.def.drawColliders ? staticColliderMesh(r.world, planeExtent(r.def.camera, aspect))
+    r.staticMesh = vertexBuffer(d, r.def.drawColliders ? staticColliderMesh(r.world, planeExtent(r.def.camera, aspect), r.materials.paths)
                                                        : std::vector<MeshVertex>{});
     r.staticVertices = r.def.drawColliders
                            ? static_cast<std::uint32_t>(r.staticMesh.size / sizeof(MeshVertex))
@@ -280,6 +285,29 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
     return u;
 }
 
+// A body made after the renderer may bring a texture it has not loaded: the
+// array is made again with it (the previous frame has finished, so neither
+// the old image nor the descriptor is in use).
+void growMaterials(Renderer& r) {
+    MaterialLayers paths = r.materials.paths;
+    for (const std::string& path : surfaceTexturePaths(r.world)) {
+        if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
+    }
+    if (paths.size() == r.materials.paths.size()) {
+        return;
+    }
+    createMaterialTextures(*r.device, r.materials, paths);
+    VkDescriptorImageInfo materials{r.materials.sampler, r.materials.image.view,
+                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    auto write = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+    write.dstSet = r.frameSet;
+    write.dstBinding = kernels::SD_RENDER_BINDING_MATERIALS;
+    write.descriptorCount = 1;
+    write.descriptorType = VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER;
+    write.pImageInfo = &materials;
+    vkUpdateDescriptorSets(r.device->device, 1, &write, 0, nullptr);
+}
+
 // The bodies' mesh of this frame, in a host-visible buffer that grows as
 // needed (the previous frame has finished: renderFrame waits for it).
 void prepareBodies(Renderer& r) {
@@ -287,7 +315,8 @@ void prepareBodies(Renderer& r) {
     if (!r.def.drawColliders || bodyCount(r.world) == 0) {
         return;
     }
-    std::vector<MeshVertex> vertices = bodyMesh(r.world);
+    growMaterials(r);
+    std::vector<MeshVertex> vertices = bodyMesh(r.world, r.materials.paths);
     const VkDeviceSize bytes = vertices.size() * sizeof(MeshVertex);
     if (r.dynamicMesh.buffer == VK_NULL_HANDLE || r.dynamicMesh.size < bytes) {
         if (r.dynamicMesh.buffer != VK_NULL_HANDLE) {
@@ -412,6 +441,7 @@ void destroyRenderer(Renderer& r) {
         for (VkDescriptorSetLayout l : {r.frameLayout, r.spriteLayout, r.splatLayout}) {
             vkDestroyDescriptorSetLayout(d.device, l, nullptr);
         }
+        destroyMaterialTextures(d, r.materials);
         for (gpu::Image* i : {&r.backgroundImage, &r.placeholderImage}) {
             if (i->image != VK_NULL_HANDLE) {
                 gpu::destroyImage(d, *i);

@@ -19,6 +19,7 @@
 #include "gpu/vulkan_buffer.h"
 #include "kernels/layout.glsl"
 #include "render/fluid_splats.h"
+#include "render/material_textures.h"
 #include "render/point_lights.h"
 #include "render/render_pipelines.h"
 #include "render/render_target.h"
@@ -168,6 +169,7 @@ struct Renderer {
     OitTargets oit;  // pass == VK_NULL_HANDLE: no emitter uses OIT
     Light light;
     PointLights pointLights;
+    MaterialTextures materials;  // colliders' and bodies' textures
 
     // Colliders: the static mesh, built once; bodies are rebuilt each frame.
     gpu::Buffer staticMesh, dynamicMesh;

@@ -75,7 +75,7 @@ BodyShapeDef parseShape(const Table& t) {
 
 BodyDef parseBody(const Table& t, NameTable& names) {
     t.allowOnly({"name", "type", "position", "angle", "velocity", "angular_velocity", "density", "friction",
-                 "restitution", "fixed_rotation", "color", "shape"},
+                 "restitution", "fixed_rotation", "color", "texture", "texture_scale", "shape"},
                 "a [[body]]");
     BodyDef def;
     def.name = names.add(t);
@@ -92,6 +92,7 @@ BodyDef parseBody(const Table& t, NameTable& names) {
     def.restitution = t.real("restitution", def.restitution, body_rules::kRestitution);
     def.fixedRotation = t.boolean("fixed_rotation", def.fixedRotation);
     if (auto v = t.find("color")) def.colour = v->vec3();
+    def.texture = readSurfaceTexture(t);
     for (const Table& s : tableArray(t, "shape")) def.shapes.push_back(parseShape(s));
     validateAt(t, [&] { validateBodyDef(def); });
     return def;

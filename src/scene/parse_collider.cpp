@@ -23,7 +23,7 @@ namespace {
 enum class HeightSource { None, Hills, Image, Inline };
 
 const std::vector<std::string_view> kCommonKeys = {"name", "kind", "friction", "resilience",
-                                                   "rest_speed", "color"};
+                                                   "rest_speed", "color", "texture", "texture_scale"};
 
 std::vector<std::string_view> withCommon(std::initializer_list<std::string_view> keys) {
     std::vector<std::string_view> all = kCommonKeys;
@@ -283,6 +283,7 @@ void readSurface(const Table& t, ColliderDef& def) {
     def.restSpeed = t.real("rest_speed", def.restSpeed, collider_rules::kRestSpeed);
     // Type only: that each channel is >= 0 is validateColliderDef's rule.
     if (auto v = t.find("color")) def.colour = v->vec3();
+    def.texture = readSurfaceTexture(t);
 }
 
 }  // namespace

@@ -41,6 +41,9 @@ std::string readDataFile(const Value& value, DataFileRef& ref);
 /// and checked now, so a missing or broken file is an error at the value and
 /// not a failure mid-render. Returns the resolved path.
 std::string readPngPath(const Value& value);
+/// `texture` and `texture_scale` of a [[collider]] or [[body]] (the scale's
+/// type only; its range is the Def validator's).
+SurfaceTexture readSurfaceTexture(const Table& table);
 
 /// Refuses a generated field whose cost (noise evaluations, see
 /// kMaxNoiseEvaluations) is over the limit, before it is generated: at

@@ -158,6 +158,13 @@ std::string readPngPath(const Value& value) {
     return ref.display;
 }
 
+SurfaceTexture readSurfaceTexture(const Table& t) {
+    SurfaceTexture texture;
+    if (auto v = t.find("texture")) texture.path = readPngPath(*v);
+    texture.scale = t.real("texture_scale", texture.scale, kTextureScale);
+    return texture;
+}
+
 }  // namespace scene
 
 using scene::Table;

@@ -1,12 +1,17 @@
 #version 450
-// Simple shading so a scene reads at a glance: the scene's light
+// Simple shading so a scene reads at a glance: the surface's colour, times
+// its texture if it has one (SurfaceTexture), lit by the scene's light
 // (lighting.glsl: ambient brighter facing up, the sun, point lights), both
 // sides lit.
 #include "lighting.glsl"
 
+layout(set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_MATERIALS) uniform sampler2DArray materials;
+
 layout(location = 0) in vec3 worldNormal;
 layout(location = 1) in vec3 baseColour;
 layout(location = 2) in vec3 worldPosition;
+layout(location = 3) in vec2 uv;
+layout(location = 4) flat in float layer;
 layout(location = 0) out vec4 colour;
 
 void main() {
@@ -14,5 +19,9 @@ void main() {
     if (dot(n, frame.forward.xyz) > 0.0) {
         n = -n;  // the side facing the camera
     }
-    colour = vec4(baseColour * surfaceLight(worldPosition, n), 1.0);
+    vec3 albedo = baseColour;
+    if (layer >= 0.0) {
+        albedo *= texture(materials, vec3(uv, layer)).rgb;
+    }
+    colour = vec4(albedo * surfaceLight(worldPosition, n), 1.0);
 }

@@ -1,5 +1,5 @@
 #!/usr/bin/env python3
-"""Writes the showcase's night textures into scenes/data:
+"""Writes the showcase's procedural textures into scenes/data:
 
 - night_sky.png (512 x 288, RGB, a 16:9 background stretched over the frame):
   a dark blue sky that lightens toward a warm haze at the horizon, a moon
@@ -7,11 +7,16 @@
   about 400 stars, fewer and dimmer toward the horizon;
 - wisp.png (64 x 64, RGBA): a steam wisp, white with a ragged, stretched
   coverage (fractal value noise in streaks, under an elliptical falloff), so rotated and
-  scaled sprites read as wisps rather than round blobs.
+  scaled sprites read as wisps rather than round blobs;
+- bricks.png (64 x 64, RGB): four courses of bricks in running bond, each
+  brick its own shade of red-brown, in grey mortar, for a body's or
+  collider's `texture` (it tiles);
+- planks.png (64 x 64, RGB): four vertical wooden planks with grain and dark
+  seams, for the crates (it tiles).
 
 Procedural and deterministic (a fixed linear congruential generator; no
 downloaded art). Colours are computed in linear light and written sRGB
-encoded, as the renderer decodes them. Run `tools/make-night-textures.py`.
+encoded, as the renderer decodes them. Run `tools/make-textures.py`.
 """
 import math
 import os
@@ -111,12 +116,65 @@ def wisp(size=64):
     return rows
 
 
+def bricks(size=64):
+    rng = Lcg(11)
+    courses, per_course = 4, 2
+    shades = [[0.75 + 0.5 * rng.next() for _ in range(per_course + 1)] for _ in range(courses)]
+    height = size // courses
+    width = size // per_course
+    rows = []
+    for y in range(size):
+        course = y // height
+        offset = (width // 2) * (course % 2)          # running bond
+        row = []
+        for x in range(size):
+            xs = (x + offset) % size
+            brick = xs // width
+            mortar = y % height in (0, height - 1) or xs % width in (0, width - 1)
+            if mortar:
+                colour = (0.20, 0.19, 0.17)
+            else:
+                k = shades[course][brick] * (0.9 + 0.2 * rng.next())
+                colour = (0.36 * k, 0.12 * k, 0.07 * k)
+            row += [encode(c) for c in colour]
+        rows.append(row)
+    return rows
+
+
+def planks(size=64):
+    rng = Lcg(23)
+    count = 4
+    width = size // count
+    shades = [0.8 + 0.4 * rng.next() for _ in range(count)]
+    phases = [6.28 * rng.next() for _ in range(count)]
+    rows = []
+    for y in range(size):
+        row = []
+        for x in range(size):
+            plank = x // width
+            u = x % width
+            if u in (0, width - 1):
+                colour = (0.06, 0.035, 0.02)          # the seam
+            else:
+                # Grain: stripes along the plank that wander with height.
+                grain = 0.5 + 0.5 * math.sin(1.9 * u + 0.8 * math.sin(0.2 * y + phases[plank]))
+                k = shades[plank] * (0.85 + 0.15 * grain)
+                colour = (0.42 * k, 0.26 * k, 0.12 * k)
+            row += [encode(c) for c in colour]
+        rows.append(row)
+    return rows
+
+
 def main():
     folder = sys.argv[1] if len(sys.argv) > 1 else os.path.join("scenes", "data")
     with open(os.path.join(folder, "night_sky.png"), "wb") as f:
         f.write(png(512, 288, night_sky(), channels=3))
     with open(os.path.join(folder, "wisp.png"), "wb") as f:
         f.write(png(64, 64, wisp()))
+    with open(os.path.join(folder, "bricks.png"), "wb") as f:
+        f.write(png(64, 64, bricks(), channels=3))
+    with open(os.path.join(folder, "planks.png"), "wb") as f:
+        f.write(png(64, 64, planks(), channels=3))
 
 
 if __name__ == "__main__":

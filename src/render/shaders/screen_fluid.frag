@@ -81,6 +81,17 @@ vec3 tangent(vec3 here, vec4 ahead, vec4 behind) {
     return (a * wa + b * wb) / (wa + wb);
 }
 
+// The smaller of the two depth steps (m along the view) either side, 0
+// where a side has no water: large on both sides only where the field's
+// bilinear depth straddles a step between a drop in front and water behind,
+// whose in-between depths belong to no surface.
+float straddledStep(vec3 here, vec4 ahead, vec4 behind) {
+    if (ahead.w == 0.0 || behind.w == 0.0) {
+        return 0.0;
+    }
+    return min(abs(dot(ahead.xyz - here, frame.forward.xyz)), abs(dot(here - behind.xyz, frame.forward.xyz)));
+}
+
 // What the water reflects along r from p: the frame where the reflected ray
 // is kReflectReach m out, if that is on the frame (a screen-space reflection
 // without a march: right for a room's walls, not for what is occluded), else
@@ -115,8 +126,17 @@ void main() {
     if (clip.z / clip.w > texelFetch(opaqueDepth, ivec2(gl_FragCoord.xy), 0).r) {
         discard;  // behind a collider
     }
-    vec3 dx = tangent(p, pointAt(texel, vec2(1.0, 0.0)), pointAt(texel, vec2(-1.0, 0.0)));
-    vec3 dy = tangent(p, pointAt(texel, vec2(0.0, 1.0)), pointAt(texel, vec2(0.0, -1.0)));
+    vec4 right = pointAt(texel, vec2(1.0, 0.0)), left = pointAt(texel, vec2(-1.0, 0.0));
+    vec4 down = pointAt(texel, vec2(0.0, 1.0)), up = pointAt(texel, vec2(0.0, -1.0));
+    vec3 dx = tangent(p, right, left);
+    vec3 dy = tangent(p, down, up);
+    // How far this pixel can trust its normal: 1 on a surface, toward 0
+    // where it straddles a depth step of half a sphere's radius or more
+    // (a drop in front of water behind). There the Fresnel reflection and
+    // the highlight fade to what a surface facing the eye shows, so the
+    // step does not draw a bright seam along the drop's outline.
+    float step = max(straddledStep(p, right, left), straddledStep(p, down, up)) / (0.5 * push.pass.w);
+    float trust = exp(-step * step);
     vec3 view = frame.eye.w > 0.5 ? -frame.forward.xyz : normalize(frame.eye.xyz - p);
     vec3 n = cross(dx, dy);
     n = dot(n, n) > 1e-24 ? normalize(n) : view;  // 1e-24 m^4: (1 um)^2 squared
@@ -128,14 +148,14 @@ void main() {
     // the sun's highlight takes the sun's colour.
     vec3 lit = liquidLight(p, n);
     vec3 scatter = water * (vec3(1.0) - through) * (kScatter * lit);
-    float fresnel = kF0 + (1.0 - kF0) * pow(1.0 - max(dot(n, view), 0.0), 5.0);
+    float fresnel = kF0 + (1.0 - kF0) * pow(1.0 - max(dot(n, view), 0.0), 5.0) * trust;
     vec3 r = reflect(-view, n);
     float skyUp = clamp(0.5 + 0.5 * dot(r, frame.up.xyz), 0.0, 1.0);
     vec3 sky = reflected(p, r, frame.backgroundTop.w > 0.5
                                    ? mix(frame.backgroundBottom.rgb, frame.backgroundTop.rgb, skyUp)
                                    : frame.backgroundTop.rgb);
     vec3 halfway = normalize(frame.sun.xyz + view);
-    vec3 highlight = frame.sunColour.rgb * (kSpecular * pow(max(dot(n, halfway), 0.0), kShininess));
+    vec3 highlight = frame.sunColour.rgb * (kSpecular * trust * pow(max(dot(n, halfway), 0.0), kShininess));
     float foam = clamp(t.y / max(t.x, 1e-6), 0.0, 1.0) * kFoamWhite;
 
     vec3 light;

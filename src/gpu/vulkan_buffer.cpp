@@ -294,20 +294,24 @@ void download(Device& d, std::span<const Transfer> transfers) {
     d.bytesDownloaded += total;
 }
 
-VkSampler createLinearSampler(Device& d) {
+VkSampler createSampler(Device& d, VkFilter filter, VkSamplerAddressMode address, bool mipmaps) {
     auto info = vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeV = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
+    info.magFilter = filter;
+    info.minFilter = filter;
+    info.mipmapMode = mipmaps ? VK_SAMPLER_MIPMAP_MODE_LINEAR : VK_SAMPLER_MIPMAP_MODE_NEAREST;
+    info.addressModeU = address;
+    info.addressModeV = address;
+    info.addressModeW = address;
     info.minLod = 0.0f;
-    info.maxLod = 0.0f;
+    info.maxLod = mipmaps ? VK_LOD_CLAMP_NONE : 0.0f;
     info.unnormalizedCoordinates = VK_FALSE;
     VkSampler sampler = VK_NULL_HANDLE;
     check(vkCreateSampler(d.device, &info, nullptr, &sampler), "vkCreateSampler");
     return sampler;
+}
+
+VkSampler createLinearSampler(Device& d) {
+    return createSampler(d, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
 }
 
 void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange range, VkImageLayout from,

@@ -77,6 +77,10 @@ void clearImage(Device& d, Image& image, const ImageShape& shape);
 void destroyImage(Device& d, Image& image);
 
 /// Linear filtering, clamped at the edges (fields, sprites, backgrounds).
+/// A sampler of `filter` in both directions and `address` on every axis;
+/// with `mipmaps`, linear between mip levels over all of them, else level 0.
+VkSampler createSampler(Device& d, VkFilter filter, VkSamplerAddressMode address, bool mipmaps);
+/// createSampler(linear, clamp to edge, level 0).
 VkSampler createLinearSampler(Device& d);
 
 /// Layout transition of `range` of `image` with its execution and memory dependency.

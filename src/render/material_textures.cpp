@@ -89,18 +89,6 @@ LinearImage halve(const LinearImage& in) {
     return out;
 }
 
-VkSampler repeatSampler(gpu::Device& d) {
-    auto info = gpu::vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    info.magFilter = VK_FILTER_LINEAR;
-    info.minFilter = VK_FILTER_LINEAR;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_LINEAR;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_REPEAT;
-    info.maxLod = VK_LOD_CLAMP_NONE;
-    VkSampler sampler = VK_NULL_HANDLE;
-    gpu::check(vkCreateSampler(d.device, &info, nullptr, &sampler), "vkCreateSampler");
-    return sampler;
-}
-
 void addPath(MaterialLayers& paths, const std::string& path) {
     if (!path.empty() && std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
 }
@@ -153,7 +141,7 @@ void createMaterialTextures(gpu::Device& d, MaterialTextures& m, const MaterialL
         gpu::destroyImage(d, image);
         throw;
     }
-    if (m.sampler == VK_NULL_HANDLE) m.sampler = repeatSampler(d);
+    if (m.sampler == VK_NULL_HANDLE) m.sampler = gpu::createSampler(d, VK_FILTER_LINEAR, VK_SAMPLER_ADDRESS_MODE_REPEAT, true);
     gpu::destroyImage(d, m.image);
     m.image = image;
     m.paths = paths;

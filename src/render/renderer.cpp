@@ -198,17 +198,6 @@ void createCommands(Renderer& r) {
     }
 }
 
-VkSampler nearestSampler(gpu::Device& d) {
-    auto info = gpu::vkStruct<VkSamplerCreateInfo>(VK_STRUCTURE_TYPE_SAMPLER_CREATE_INFO);
-    info.magFilter = VK_FILTER_NEAREST;
-    info.minFilter = VK_FILTER_NEAREST;
-    info.mipmapMode = VK_SAMPLER_MIPMAP_MODE_NEAREST;
-    info.addressModeU = info.addressModeV = info.addressModeW = VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE;
-    VkSampler sampler = VK_NULL_HANDLE;
-    gpu::check(vkCreateSampler(d.device, &info, nullptr, &sampler), "vkCreateSampler");
-    return sampler;
-}
-
 void createResources(Renderer& r) {
     gpu::Device& d = *r.device;
     if (!d.graphics) {
@@ -217,7 +206,7 @@ void createResources(Renderer& r) {
     r.passes = createRenderPasses(d);
     r.target = createRenderTarget(d, r.passes, r.def.width, r.def.height);
     r.linearSampler = gpu::createLinearSampler(d);
-    r.nearestSampler = nearestSampler(d);
+    r.nearestSampler = gpu::createSampler(d, VK_FILTER_NEAREST, VK_SAMPLER_ADDRESS_MODE_CLAMP_TO_EDGE, false);
     r.placeholderImage = whiteImage(d);
     createMaterialTextures(d, r.materials, surfaceTexturePaths(r.world));
     if (r.def.background.kind == BackgroundKind::Image) {

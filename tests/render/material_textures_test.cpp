@@ -47,17 +47,8 @@ std::string writeQuadrants(const std::string& name) {
 // a clamp for a tone map, no bloom, the sun at (0.48, 0.6, 0.64): a face
 // toward the camera (n = +z) gets 0.35 + 0.65 x 0.64 of its colour.
 RenderDef flatView() {
-    RenderDef def;
-    def.width = 64;
-    def.height = 64;
-    def.camera.eye = {0.0f, 0.0f, 5.0f};
-    def.camera.orthographic = true;
-    def.camera.orthoHeight = 2.0f;
-    def.background.kind = BackgroundKind::Colour;
-    def.background.colour = glm::vec3(0.0f);
-    def.toneMap = ToneMap::None;
-    def.bloom = 0.0f;
-    def.sunDirection = {0.48f, 0.6f, 0.64f};
+    RenderDef def = orthoView(64, 64, 2.0f);
+    def.sunDirection = {0.48f, 0.6f, 0.64f};  // a unit vector: n . sun = 0.64 on a face toward the camera
     return def;
 }
 constexpr double kFaceLight = 0.35 + 0.65 * 0.64;
@@ -82,7 +73,7 @@ protected:
     std::vector<std::string> files;
 };
 
-// A static box 0.6 x 0.4 m, its texture repeating every 0.4 m. Its front
+// staticBox(), its texture repeating every 0.4 m. Its front
 // face's coordinates are (x, -y) / 0.4 in the body's frame, so the point
 // (0.1, 0.1) from its origin is at (0.25, 0.75): the bottom-left (blue)
 // quadrant; (-0.1, 0.1) wraps to (0.75, 0.75), white; (0.1, -0.1) red;
@@ -91,15 +82,10 @@ protected:
 TEST_F(MaterialTexturesRender, BodyTextureShowsItsQuadrantsAndTurnsWithTheBody) {
     files.push_back(writeQuadrants("quadrants"));
     for (float angle : {0.0f, 1.5707963f}) {
-        WorldDef wd;
-        wd.bodyGravity = glm::vec2(0.0f);
-        WorldId world = createWorld(wd);
-        BodyDef box;
-        box.type = BodyType::Static;
-        box.position = {0.0f, 0.4f};
+        WorldId world = worldWithoutBodyGravity();
+        BodyDef box = staticBox();
         box.angle = angle;
         box.texture = {files.back(), 0.4f};  // no colour: the image's own
-        box.shapes = {boxShape({0.3f, 0.2f})};
         createBody(world, box);
         {
             ScopedRenderer r(world, flatView());
@@ -155,17 +141,12 @@ TEST_F(MaterialTexturesRender, ColliderTextureIsInWorldCoordinatesTimesItsColour
 // loaded, is drawn with it from the next frame on.
 TEST_F(MaterialTexturesRender, BodyMadeLaterBringsItsTexture) {
     files.push_back(writeQuadrants("later"));
-    WorldDef wd;
-    wd.bodyGravity = glm::vec2(0.0f);
-    WorldId world = createWorld(wd);
+    WorldId world = worldWithoutBodyGravity();
     {
         ScopedRenderer r(world, flatView());
         renderFrame(r.id);
-        BodyDef box;
-        box.type = BodyType::Static;
-        box.position = {0.0f, 0.4f};
+        BodyDef box = staticBox();
         box.texture = {files.back(), 0.4f};
-        box.shapes = {boxShape({0.3f, 0.2f})};
         createBody(world, box);
         expectQuadrant(renderFrame(r.id), 0.1f, 0.5f, kBlue, "body made later");
     }

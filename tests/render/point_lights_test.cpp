@@ -24,33 +24,18 @@ constexpr int kCodeTolerance = 2;
 // y up. The tone map is a plain clamp and bloom off, so a pixel is the
 // linear colour through sRGB.
 RenderDef flatView() {
-    RenderDef def;
-    def.width = 64;
-    def.height = 64;
-    def.camera.eye = {0.0f, 0.0f, 5.0f};
-    def.camera.orthographic = true;
-    def.camera.orthoHeight = 2.0f;
-    def.background.kind = BackgroundKind::Colour;
-    def.background.colour = glm::vec3(0.0f);
-    def.toneMap = ToneMap::None;
-    def.bloom = 0.0f;
+    RenderDef def = orthoView(64, 64, 2.0f);
     def.sunDirection = {0.48f, 0.6f, 0.64f};  // a unit vector: n . sun = 0.64 on a face toward the camera
     return def;
 }
 
 const glm::vec3 kBoxColour{0.8f, 0.5f, 0.4f};
 
-// A static box 0.6 x 0.4 m centred at (0, 0.4); 2D bodies are drawn as slabs
-// whose front face is at z = 0.5 m, normal +z.
+// staticBox() in kBoxColour.
 WorldId worldWithBox() {
-    WorldDef wd;
-    wd.bodyGravity = glm::vec2(0.0f);
-    WorldId world = createWorld(wd);
-    BodyDef box;
-    box.type = BodyType::Static;
-    box.position = {0.0f, 0.4f};
+    WorldId world = worldWithoutBodyGravity();
+    BodyDef box = staticBox();
     box.colour = kBoxColour;
-    box.shapes = {boxShape({0.3f, 0.2f})};
     createBody(world, box);
     return world;
 }

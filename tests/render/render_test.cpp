@@ -18,23 +18,6 @@ class RenderTest : public GpuTest, public ::testing::WithParamInterface<Backend>
 // blending unit's own 8-bit sRGB round trip add at most another code.
 constexpr int kCodeTolerance = 2;
 
-RenderDef orthoView(std::uint32_t width, std::uint32_t height, float orthoHeight) {
-    RenderDef def;
-    def.width = width;
-    def.height = height;
-    def.camera.eye = {0.0f, 0.0f, 5.0f};
-    def.camera.target = {0.0f, 0.0f, 0.0f};
-    def.camera.orthographic = true;
-    def.camera.orthoHeight = orthoHeight;
-    def.background.kind = BackgroundKind::Colour;
-    def.background.colour = glm::vec3(0.0f);
-    // Closed forms of linear light: the tone map a plain clamp, no bloom
-    // (tests/render/light_test.cpp tests both).
-    def.toneMap = ToneMap::None;
-    def.bloom = 0.0f;
-    return def;
-}
-
 // One or more particles born at `at` at rest, white unless told, lasting 10 s.
 EmitterDef restingBurst(glm::vec3 at, std::uint32_t count, float size, glm::vec4 colour = glm::vec4(1.0f)) {
     EmitterDef e;
@@ -363,11 +346,8 @@ TEST_P(RenderTest, BodyAndColliderColoursAreShadedBySunAndAmbient) {
     floor.normal = {0.0f, 1.0f, 0.0f};
     floor.colour = glm::vec3(0.1f, 0.3f, 0.6f);
     createCollider(world, floor);
-    BodyDef box;
-    box.type = BodyType::Static;
-    box.position = {0.0f, 0.4f};
+    BodyDef box = staticBox();
     box.colour = glm::vec3(0.8f, 0.2f, 0.1f);
-    box.shapes = {boxShape({0.3f, 0.2f})};
     createBody(world, box);
     {
         RenderDef def = orthoView(64, 64, 2.0f);

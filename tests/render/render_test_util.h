@@ -39,6 +39,43 @@ inline const std::uint8_t* pixel(const Frame& f, std::uint32_t x, std::uint32_t 
     return &f.rgba[(std::size_t{y} * f.width + x) * 4];
 }
 
+/// A view down -z at the xy plane, `orthoHeight` m from bottom to top, over
+/// one background colour, for closed forms of linear light: the tone map a
+/// plain clamp, no bloom (tests/render/light_test.cpp tests both).
+inline RenderDef orthoView(std::uint32_t width, std::uint32_t height, float orthoHeight,
+                           glm::vec3 background = glm::vec3(0.0f)) {
+    RenderDef def;
+    def.width = width;
+    def.height = height;
+    def.camera.eye = {0.0f, 0.0f, 5.0f};
+    def.camera.target = {0.0f, 0.0f, 0.0f};
+    def.camera.orthographic = true;
+    def.camera.orthoHeight = orthoHeight;
+    def.background.kind = BackgroundKind::Colour;
+    def.background.colour = background;
+    def.toneMap = ToneMap::None;
+    def.bloom = 0.0f;
+    return def;
+}
+
+/// A world whose bodies do not fall (nothing moves between frames).
+inline WorldId worldWithoutBodyGravity() {
+    WorldDef wd;
+    wd.bodyGravity = glm::vec2(0.0f);
+    return createWorld(wd);
+}
+
+/// A static box 0.6 x 0.4 m centred at (0, 0.4): in orthoView(64, 64, 2) it
+/// covers pixels 22 to 41 across and 13 to 25 down; 2D bodies are drawn as
+/// slabs whose front face is at z = 0.5 m, normal +z.
+inline BodyDef staticBox() {
+    BodyDef box;
+    box.type = BodyType::Static;
+    box.position = {0.0f, 0.4f};
+    box.shapes = {boxShape({0.3f, 0.2f})};
+    return box;
+}
+
 /// Writes `f` to $SPINDRIFT_RENDER_DUMP/<name>.png when that variable is set
 /// (to look at what a test saw).
 inline void dumpFrame(const Frame& f, const std::string& name) {

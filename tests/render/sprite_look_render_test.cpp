@@ -18,23 +18,6 @@ class SpriteLookTest : public GpuTest, public ::testing::WithParamInterface<Back
 // 8-bit sRGB round trip add at most another code.
 constexpr int kCodeTolerance = 2;
 
-RenderDef orthoView(std::uint32_t width, std::uint32_t height, float orthoHeight, glm::vec3 background) {
-    RenderDef def;
-    def.width = width;
-    def.height = height;
-    def.camera.eye = {0.0f, 0.0f, 5.0f};
-    def.camera.target = {0.0f, 0.0f, 0.0f};
-    def.camera.orthographic = true;
-    def.camera.orthoHeight = orthoHeight;
-    def.background.kind = BackgroundKind::Colour;
-    def.background.colour = background;
-    // Closed forms of linear light: the tone map a plain clamp, no bloom
-    // (tests/render/light_test.cpp tests both).
-    def.toneMap = ToneMap::None;
-    def.bloom = 0.0f;
-    return def;
-}
-
 EmitterDef restingBurst(glm::vec3 at, float size, glm::vec4 colour) {
     EmitterDef e;
     e.name = "spot";

@@ -185,7 +185,8 @@ int validateCommand(const std::string& path) {
     const std::pair<const char*, std::size_t> counts[] = {{"fluids", scene.fluids.size()}, {"jets", jets},
                                                           {"bodies", scene.bodies.size()},
                                                           {"joints", scene.joints.size()},
-                                                          {"fires", scene.fires.size()}};
+                                                          {"fires", scene.fires.size()},
+                                                          {"lights", scene.render.lights.size()}};
     for (const auto& [kind, count] : counts) {
         if (count > 0) others += fmt::format(", {}: {}", kind, count);
     }

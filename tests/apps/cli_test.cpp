@@ -223,11 +223,17 @@ anchor = [1.0, 0.9]
 name = "bonfire"
 body = "log"
 flames = "flames"
+
+[[light]]
+name = "glow"
+emitter = "flames"
+[[light]]
+name = "lamp"
 )");
     const Result r = cli("validate " + quoted(scene));
     EXPECT_EQ(r.code, 0) << r.err;
     EXPECT_EQ(r.out, scene.string() + ": ok (emitters: 1, forces: 0, colliders: 0, fluids: 2, jets: 3, bodies: 3, "
-                                      "joints: 1, fires: 1)\n");
+                                      "joints: 1, fires: 1, lights: 2)\n");
 }
 
 TEST_F(CliTest, ValidateJetWithAimAndDirectionNamesBothAtTheSecond) {

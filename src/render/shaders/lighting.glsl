@@ -13,7 +13,7 @@
 // 2D scene's bodies is to a fire in their plane).
 vec3 pointLights(vec3 p, vec3 n) {
     vec3 sum = vec3(0.0);
-    int count = int(frame.ambient.w + 0.5);
+    int count = min(int(frame.ambient.w + 0.5), int(SD_MAX_LIGHTS));
     for (int i = 0; i < count; ++i) {
         vec3 toLight = frame.lightPosition[i].xyz - p;
         float reach = frame.lightPosition[i].w;

@@ -213,5 +213,54 @@ TEST_F(LiquidSurfaceRender, RestingFlatTopIsLevelToAThirdOfASpacing) {
     EXPECT_NEAR(edge, tank.topParticle(), RestingTank::kSpacing);
 }
 
+// The depth tint where the surface leaves the frame: a block of water seen
+// by a camera rolled 15 degrees, so its flat top crosses the frame's top edge
+// (right of the crossing the surface is out of the frame, left of it in).
+// On a row 6 pixels under the top edge, from 4 pixels left of the crossing's
+// column to 16 right (where the surface is 5 pixels or more above the row,
+// clear of the rim), the water's colour stays within 4 codes: its depth
+// under the surface, or under the frame's edge, is about the same 6 pixels
+// on both sides. Counting lookups above the frame as water tinted the right
+// side as deep: this test against that shader saw the colour change by 42,
+// 21 and 25 codes (red, green, blue) over those 20 pixels.
+TEST_F(LiquidSurfaceRender, DepthTintHasNoSeamWhereTheSurfaceLeavesTheFrame) {
+    FluidWorld world;
+    FluidDef def;
+    def.spacing = 0.05f;
+    def.blocks.push_back(FluidBlockDef{{0.0f, 0.0f, 0.0f}, {1.0f, 0.3f, 0.0f}, glm::vec3(0.0f)});
+    createFluid(world.id, def);
+    RenderDef r = orthoView(320, 180, 0.3f, RestingTank::kBackground);
+    r.camera.eye = {0.5f, 0.2f, 4.0f};
+    r.camera.target = {0.5f, 0.2f, 0.0f};
+    r.camera.up = {std::sin(glm::radians(15.0f)), std::cos(glm::radians(15.0f)), 0.0f};
+    r.fluid.refraction = false;  // the tint alone
+    ScopedRenderer renderer(world.id, r);
+    const Frame f = renderFrame(renderer.id);
+    dumpFrame(f, "tint_at_the_frame_top");
+    auto water = [&](std::uint32_t x, std::uint32_t y) {
+        int most = 0;
+        for (int c = 0; c < 3; ++c) {
+            most = std::max(most, std::abs(pixel(f, x, y)[c] - srgbByte(RestingTank::kBackground[c])));
+        }
+        return most > 40;
+    };
+    // The crossing: the first water pixel of the top row, with air left of it.
+    std::uint32_t crossing = 0;
+    while (crossing < f.width && !water(crossing, 0)) ++crossing;
+    ASSERT_GT(crossing, 40u) << "the surface does not cross the frame's top edge";
+    ASSERT_LT(crossing, f.width - 40u) << "the surface does not cross the frame's top edge";
+    const std::uint32_t y = 6;
+    for (int c = 0; c < 3; ++c) {
+        int lowest = 255, highest = 0;
+        for (std::uint32_t x = crossing - 4; x <= crossing + 16; ++x) {
+            ASSERT_TRUE(water(x, y)) << "pixel " << x << " of row " << y << " is not water";
+            lowest = std::min(lowest, int(pixel(f, x, y)[c]));
+            highest = std::max(highest, int(pixel(f, x, y)[c]));
+        }
+        EXPECT_LE(highest - lowest, 4) << "channel " << c << " along row " << y << " around column " << crossing
+                                       << ", where the surface leaves the frame";
+    }
+}
+
 }  // namespace
 }  // namespace spindrift::test

@@ -262,9 +262,9 @@ void appendBodyShape(std::vector<MeshVertex>& out, const BodyShapeView& shape, g
 
 }  // namespace
 
-std::vector<MeshVertex> bodyMesh(WorldId world, const MaterialLayers& layers) {
+std::vector<MeshVertex> bodyMesh(const std::vector<BodySnapshot>& bodies, const MaterialLayers& layers) {
     std::vector<MeshVertex> out;
-    for (const BodySnapshot& body : readBodies(world)) {
+    for (const BodySnapshot& body : bodies) {
         const std::size_t first = out.size();
         // A texture's own colours show on white unless a colour is given.
         const glm::vec3 fallback = !body.texture.path.empty() ? glm::vec3(1.0f)

@@ -41,7 +41,7 @@ std::vector<MeshVertex> staticColliderMesh(WorldId world, float extent, const Ma
 /// its colour (BodyShapeView::colour: the shape's, else the body's), else
 /// dynamic bodies in a wood colour, static and kinematic ones in grey.
 /// A textured body's texture is fixed to the body: it moves and turns with it.
-std::vector<MeshVertex> bodyMesh(WorldId world, const MaterialLayers& layers);
+std::vector<MeshVertex> bodyMesh(const std::vector<BodySnapshot>& bodies, const MaterialLayers& layers);
 
 /// Axis-aligned box helper shared with the bodies' mesh: a box of half
 /// extents `h` with world axes `axes` at `centre`.

@@ -95,11 +95,17 @@ void addPath(MaterialLayers& paths, const std::string& path) {
 
 }  // namespace
 
+bool addBodyTexturePaths(MaterialLayers& paths, const std::vector<BodySnapshot>& bodies) {
+    const std::size_t before = paths.size();
+    for (const BodySnapshot& b : bodies) addPath(paths, b.texture.path);
+    return paths.size() > before;
+}
+
 MaterialLayers surfaceTexturePaths(WorldId id) {
     const World& world = worldFromId(id);
     MaterialLayers paths;
     for (const ColliderDef& c : world.colliderDefs) addPath(paths, c.texture.path);
-    for (const BodySnapshot& b : readBodies(id)) addPath(paths, b.texture.path);
+    addBodyTexturePaths(paths, readBodies(id));
     return paths;
 }
 

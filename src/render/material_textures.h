@@ -21,6 +21,8 @@ struct MaterialTextures {
 /// The PNG paths of the world's textured colliders and bodies, each once, in
 /// the order first met.
 MaterialLayers surfaceTexturePaths(WorldId world);
+/// Appends the bodies' paths that `paths` lacks; true when it added any.
+bool addBodyTexturePaths(MaterialLayers& paths, const std::vector<BodySnapshot>& bodies);
 /// Loads `paths` (throws Error naming a file that cannot be read) into `m`,
 /// with its sampler on first use.
 void createMaterialTextures(gpu::Device& d, MaterialTextures& m, const MaterialLayers& paths);

@@ -31,12 +31,6 @@ namespace {
 
 std::string vec3Text(glm::vec3 v) { return fmt::format("[{}, {}, {}]", v.x, v.y, v.z); }
 
-void colour(const FieldCheck& check, std::string_view field, glm::vec3 c) {
-    for (std::size_t i = 0; i < 3; ++i) {
-        check.number(fieldPath(field, i), c[static_cast<int>(i)], render_rules::kColour);
-    }
-}
-
 // Renderers by id (index + 1); destroyed ones leave a null.
 std::mutex registryMutex;
 std::vector<std::unique_ptr<render::Renderer>> renderers;
@@ -87,8 +81,8 @@ void validateRenderDef(const RenderDef& def) {
     check.number("seconds", def.seconds, rules::kSeconds);
     check.finite("sun", def.sunDirection);
     check.expect(glm::length(def.sunDirection) > 0.0f, "sun", "a non-zero direction", vec3Text(def.sunDirection));
-    colour(check, "sun_color", def.sunColour);
-    colour(check, "ambient", def.ambient);
+    check.colour("sun_color", def.sunColour);
+    check.colour("ambient", def.ambient);
     check.expect(def.lights.size() <= kRenderMaxLights, "lights", fmt::format("at most {}", kRenderMaxLights),
                  std::to_string(def.lights.size()));
     for (const LightDef& light : def.lights) {
@@ -100,12 +94,12 @@ void validateRenderDef(const RenderDef& def) {
                              static_cast<std::uint32_t>(ToneMap::Aces)),
                  std::to_string(static_cast<std::uint32_t>(def.toneMap)));
     check.number("bloom", def.bloom, rules::kBloom);
-    colour(check, "background.color", def.background.colour);
-    colour(check, "background.top", def.background.top);
-    colour(check, "background.bottom", def.background.bottom);
+    check.colour("background.color", def.background.colour);
+    check.colour("background.top", def.background.top);
+    check.colour("background.bottom", def.background.bottom);
     check.expect(def.background.kind != BackgroundKind::Image || !def.background.image.empty(), "background.image",
                  "a PNG file path", "none");
-    colour(check, "fluid.color", def.fluid.colour);
+    check.colour("fluid.color", def.fluid.colour);
     check.number("fluid.opacity", def.fluid.opacity, rules::kFluidOpacity);
     check.number("fluid.radius_scale", def.fluid.radiusScale, rules::kFluidRadiusScale);
     check.expect(def.fluid.style == FluidStyle::Surface || def.fluid.style == FluidStyle::Splats, "fluid.style",

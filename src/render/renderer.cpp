@@ -48,6 +48,10 @@ std::span<const std::uint32_t> code(const T* words, std::size_t count) {
     return {words, count};
 }
 
+VkDescriptorImageInfo materialsImage(const Renderer& r) {
+    return {r.materials.sampler, r.materials.image.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+}
+
 void createDescriptors(Renderer& r) {
     gpu::Device& d = *r.device;
     // Bindings by number, as src/kernels/layout.glsl gives them to the shaders.
@@ -94,8 +98,7 @@ void createDescriptors(Renderer& r) {
                                      VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo behind{r.linearSampler, r.target.behind.view, VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
     VkDescriptorImageInfo depth{r.nearestSampler, r.target.depth.view, kDepthReadLayout};
-    VkDescriptorImageInfo materials{r.materials.sampler, r.materials.image.view,
-                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo materials = materialsImage(r);
     VkWriteDescriptorSet writes[kernels::SD_RENDER_FRAME_BINDINGS];
     for (std::uint32_t i = 0; i < kernels::SD_RENDER_FRAME_BINDINGS; ++i) {
         writes[i] = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
@@ -277,17 +280,13 @@ FrameUniforms frameUniforms(const RenderDef& def, double time) {
 // A body made after the renderer may bring a texture it has not loaded: the
 // array is made again with it (the previous frame has finished, so neither
 // the old image nor the descriptor is in use).
-void growMaterials(Renderer& r) {
+void growMaterials(Renderer& r, const std::vector<BodySnapshot>& bodies) {
     MaterialLayers paths = r.materials.paths;
-    for (const std::string& path : surfaceTexturePaths(r.world)) {
-        if (std::find(paths.begin(), paths.end(), path) == paths.end()) paths.push_back(path);
-    }
-    if (paths.size() == r.materials.paths.size()) {
+    if (!addBodyTexturePaths(paths, bodies)) {
         return;
     }
     createMaterialTextures(*r.device, r.materials, paths);
-    VkDescriptorImageInfo materials{r.materials.sampler, r.materials.image.view,
-                                    VK_IMAGE_LAYOUT_SHADER_READ_ONLY_OPTIMAL};
+    VkDescriptorImageInfo materials = materialsImage(r);
     auto write = gpu::vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
     write.dstSet = r.frameSet;
     write.dstBinding = kernels::SD_RENDER_BINDING_MATERIALS;
@@ -304,8 +303,9 @@ void prepareBodies(Renderer& r) {
     if (!r.def.drawColliders || bodyCount(r.world) == 0) {
         return;
     }
-    growMaterials(r);
-    std::vector<MeshVertex> vertices = bodyMesh(r.world, r.materials.paths);
+    const std::vector<BodySnapshot> bodies = readBodies(r.world);
+    growMaterials(r, bodies);
+    std::vector<MeshVertex> vertices = bodyMesh(bodies, r.materials.paths);
     const VkDeviceSize bytes = vertices.size() * sizeof(MeshVertex);
     if (r.dynamicMesh.buffer == VK_NULL_HANDLE || r.dynamicMesh.size < bytes) {
         if (r.dynamicMesh.buffer != VK_NULL_HANDLE) {

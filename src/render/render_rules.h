@@ -21,8 +21,6 @@ inline constexpr FieldRule kFrameSide = FieldRule::whole(Bounds::between(1, kRen
 inline constexpr std::uint32_t kMaxImageSide = 16384;
 inline constexpr FieldRule kFps = FieldRule::number(Bounds::positive());
 inline constexpr FieldRule kSeconds = FieldRule::number(Bounds::positive());  ///< s
-/// Linear RGB, each channel; above 1 is allowed (HDR).
-inline constexpr FieldRule kColour = kColourChannel;
 /// FluidRenderDef::upTo's n.
 inline constexpr FieldRule kFluidSteps = FieldRule::whole(Bounds::between(1, kFluidRenderSteps));
 inline constexpr FieldRule kFluidOpacity = FieldRule::number(Bounds{0.0, 1.0, true, false});

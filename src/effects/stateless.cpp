@@ -53,6 +53,10 @@ std::vector<StatelessRun> statelessRuns(const EmitterDef& def, double t) {
             last = std::min(last, std::ceil(def.duration * rate) - 1.0);  // born before the end
         }
         last = std::min(last, static_cast<double>(kBurstSerialBase) - 1.0);
+        // At most `capacity` of them, the newest (the likeliest alive): a
+        // rate of 3e38 would otherwise hand 2^30 candidates to the walk and
+        // to the sprite draw.
+        first = std::max(first, last - static_cast<double>(def.capacity) + 1.0);
         if (last >= first) {
             runs.push_back({static_cast<std::uint32_t>(first), static_cast<std::uint32_t>(last - first + 1.0), rate, 0.0});
         }
@@ -71,7 +75,8 @@ ParticleSnapshot evaluateStateless(const EmitterDef& def, std::uint32_t seed, st
     kernels::EmitterParams e = makeEmitterParams(def, seed, emitterIndex, 0u, 0u);
     ParticleSnapshot s;
     for (const StatelessRun& run : statelessRuns(def, static_cast<double>(t))) {
-        for (std::uint32_t j = 0; j < run.count; ++j) {
+        // A full snapshot takes no more: the rest of a run is not walked.
+        for (std::uint32_t j = 0; j < run.count && s.count() < def.capacity; ++j) {
             addIfAlive(s, e, run.firstSerial + j, run.bornAt(j), t, def.capacity);
         }
     }

@@ -22,7 +22,8 @@ struct StatelessRun {
 };
 
 /// Candidates alive at `t` (s): those born before t within the longest
-/// lifetime; each may still have died younger (its own lifetime).
+/// lifetime; each may still have died younger (its own lifetime). The rate's
+/// run holds at most the emitter's capacity of them, the newest.
 std::vector<StatelessRun> statelessRuns(const EmitterDef& def, double t);
 
 }  // namespace spindrift

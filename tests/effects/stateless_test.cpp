@@ -1,5 +1,6 @@
 // Stateless emitters: the closed form, nothing stored.
 #include "effects/effects_test_util.h"
+#include "effects/stateless.h"
 
 #include <gtest/gtest.h>
 
@@ -101,6 +102,28 @@ TEST(Stateless, LiveCountMatchesRateAndLifetimes) {
         burst += b >= 0x80000000u ? 1 : 0;
     }
     EXPECT_EQ(burst, 40);
+}
+
+// A rate far beyond the capacity: the emitter shows its capacity of particles,
+// the newest ones (serials just below rate x t), and the candidates handed to
+// the walk and the sprite draw are that many too, not the 2^30 the rate's
+// window holds (a mutant scene with rate = 3e38 took 5 s to evaluate). With
+// a fixed lifetime of 1 s every candidate born within the last second is
+// alive.
+TEST(Stateless, RateBeyondTheCapacityShowsTheNewestCapacity) {
+    EmitterDef e = sparks();
+    e.bursts.clear();
+    e.rate = 1.0e6f;
+    e.capacity = 100;
+    e.lifetime = {1.0f, 1.0f};
+    const std::vector<StatelessRun> runs = statelessRuns(e, 2.0);
+    ASSERT_EQ(runs.size(), 1u);
+    EXPECT_EQ(runs[0].count, 100u);
+    EXPECT_EQ(runs[0].firstSerial, 2000000u - 100u + 1u);  // serials up to floor(2 s x 1e6/s)
+    ParticleSnapshot s = evaluateStateless(e, 3, 0, 2.0f);
+    ASSERT_EQ(s.count(), 100u);
+    EXPECT_EQ(s.birth.front(), 1999901u);
+    EXPECT_EQ(s.birth.back(), 2000000u);
 }
 
 // A stateless emitter in a world stores nothing and is evaluated at the world's time.

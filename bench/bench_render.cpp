@@ -12,6 +12,8 @@
 // background and the floor); argument 1: world backend (0 cpu: one upload per
 // frame, 1 vulkan: drawn from the world's buffers); argument 2: blend (0
 // additive, 1 alpha sorted, 2 OIT).
+// Trails: 10,000 of the same fountain's particles with 0 or 16 trail points
+// (argument 0), CPU or Vulkan world (argument 1); step_ms is the world step.
 // Fluid: a 2D block of 100k particles at 1 cm after one step (so neighbour
 // data exists), every splat step on, refraction included.
 // Fluid look at 960x540: the 2D dam break of scenes/fluid_dam_break_2d.toml
@@ -36,6 +38,7 @@
 
 #include <benchmark/benchmark.h>
 
+#include <chrono>
 #include <cstdint>
 #include <exception>
 #include <initializer_list>
@@ -130,6 +133,54 @@ BENCHMARK(BM_Sprites)
     ->Args({100000, 1, 1})
     ->Args({100000, 1, 2})
     ->Args({1000000, 0, 0})
+    ->Unit(benchmark::kMillisecond)
+    ->Iterations(5);
+
+// Trails (EmitterDef::trail): 10,000 recycle particles of BM_Sprites' fountain
+// with 0 or 16 trail points, CPU world or Vulkan (the ribbons read from the
+// device buffers), additive. Counters: the frame's per-pass times as
+// BM_Sprites, and step_ms, the mean world step before the frames (the
+// update's trail writes included).
+void BM_Trails(benchmark::State& state) {
+    try {
+        WorldDef wd;
+        wd.backend = state.range(1) == 1 ? Backend::Vulkan : Backend::Cpu;
+        wd.threads = 2;
+        wd.framesInFlight = 1;
+        WorldId w = createWorld(wd);
+        createForce(w, ForceDef{});
+        EmitterDef e;
+        e.lifecycle = Lifecycle::Recycle;
+        e.capacity = 10000;
+        e.shape.kind = SpawnShapeKind::Cone;
+        e.shape.radius = 0.2f;
+        e.shape.spreadAngle = 0.35f;
+        e.speed = {6.0f, 8.0f};
+        e.lifetime = {1.0f, 1.5f};
+        e.size = {0.03f, 0.05f};
+        e.color = {{1.0f, 0.6f, 0.2f, 0.5f}, {0.3f, 0.6f, 1.0f, 0.8f}};
+        e.trail.points = static_cast<std::uint32_t>(state.range(0));
+        e.trail.width = 0.02f;
+        createEmitter(w, e);
+        const auto start = std::chrono::steady_clock::now();
+        for (int i = 0; i < 90; ++i) {
+            stepWorld(w, 1.0f / 60.0f);
+        }
+        flushWorld(w);
+        state.counters["step_ms"] =
+            std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count() / 90.0;
+        measureFrames(state, w, fullHd(false));
+        destroyWorld(w);
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+    }
+}
+BENCHMARK(BM_Trails)
+    ->ArgNames({"points", "vulkan"})
+    ->Args({0, 0})
+    ->Args({16, 0})
+    ->Args({0, 1})
+    ->Args({16, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 

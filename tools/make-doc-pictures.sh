@@ -4,7 +4,7 @@
 # each Sprinkle splat step (spindrift render --fluid-steps N), the 2D dam
 # break at t = 2 s and the 3D one at t = 1 s as the liquid surface and as
 # splats, the showcase level
-# at three moments, and the campfire's smoke three ways. Run after a build (cmake --build --preset release).
+# at three moments, the campfire's smoke three ways and the comets' trails. Run after a build (cmake --build --preset release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cli=build/release/spindrift
@@ -50,5 +50,9 @@ for variant in campfire "$tmp/campfire-sorted" "$tmp/campfire-hard"; do
   "$cli" render "$scene" --out "$tmp/$name" --start 3.0 --frames 1 --format png --width 480 --height 270 --quiet
   cp "$tmp/$name/frame_00000.png" "$out/$name.png"
 done
-echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{,3d-}{surface,splats}.png, $out/showcase-{1.5,4.0,8.9}.png" \
-  "and $out/campfire{,-sorted,-hard}.png"
+# Trails (docs/rendering.md, "Trails"): the comets at t = 3 s.
+"$cli" render scenes/comets.toml --out "$tmp/comets" --start 3.0 --frames 1 --format png --width 640 --height 360 \
+  --quiet
+cp "$tmp/comets/frame_00000.png" "$out/comets.png"
+echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{,3d-}{surface,splats}.png, $out/showcase-{1.5,4.0,8.9}.png," \
+  "$out/campfire{,-sorted,-hard}.png and $out/comets.png"

@@ -81,6 +81,11 @@ struct SpawnShapeDef {
 inline constexpr std::uint32_t kEmitterMaxCapacity = 16 * 1024 * 1024;
 /// Most particles one burst of the API may ask for (BurstDef::count).
 inline constexpr std::uint32_t kEmitterMaxBurstCount = (1u << 20) - 1;
+/// Most positions a particle's trail keeps (TrailDef::points).
+inline constexpr std::uint32_t kMaxTrailPoints = 64;
+/// Most trail positions one emitter keeps, capacity x points (12 bytes each:
+/// 192 MiB).
+inline constexpr std::uint64_t kEmitterMaxTrailPositions = 16u * 1024u * 1024u;
 
 /// Most samples along one axis of a flow field (FlowFieldDef::nx, ny, nz) and
 /// in all (48 MiB of vec3); the API and scene files check against them.
@@ -148,6 +153,24 @@ struct SpriteDef {
     float softDistance = 0.0f;
 };
 
+/// A ribbon through each particle's last positions, one kept per step
+/// (docs/scene-format.md, "Trails"): drawn from the particle's current
+/// position back along its path, facing the camera, in the sprite's blend
+/// mode. Both backends keep the positions where the particles live (on the
+/// device for Vulkan worlds); readParticles returns them.
+struct TrailDef {
+    /// Positions kept per particle, the current one included: 0 (no trail) or
+    /// 2 to kMaxTrailPoints; capacity x points at most
+    /// kEmitterMaxTrailPositions. The ribbon spans the last points - 1 steps; a newborn's starts
+    /// as a point at its birth position and grows.
+    std::uint32_t points = 0;
+    float width = 0.05f;    ///< m, at the head (the particle)
+    Curve widthOverLength;  ///< multiplies `width` from the head (t = 0) to the tail (1); uses .x
+    Curve colorOverLength;  ///< multiplies the particle's colour from the head (0) to the tail (1)
+
+    bool enabled() const { return points > 0; }
+};
+
 struct EmitterDef {
     std::string name;
     Lifecycle lifecycle = Lifecycle::Spawn;
@@ -201,6 +224,7 @@ struct EmitterDef {
     glm::vec3 statelessGravity{0.0f, -9.81f, 0.0f};
 
     SpriteDef sprite;  ///< how the renderer draws it
+    TrailDef trail;    ///< a ribbon behind each particle (state-preserving emitters)
 };
 
 enum class ForceKind : std::uint32_t {

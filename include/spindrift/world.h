@@ -142,6 +142,11 @@ struct ParticleSnapshot {
     /// Birth serial of each particle: the n-th particle the emitter made.
     std::vector<std::uint32_t> birth;
     std::vector<std::uint32_t> slot;
+    /// Trail positions (EmitterDef::trail) of every particle in turn,
+    /// `trailPoints` each, the newest (its current position) first; empty
+    /// without a trail.
+    std::vector<glm::vec3> trail;
+    std::uint32_t trailPoints = 0;
     std::size_t count() const { return position.size(); }
 };
 

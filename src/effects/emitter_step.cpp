@@ -4,6 +4,7 @@
 #include "effects/batch_update.h"
 
 #include "core/saturating.h"
+#include "kernels/trail.glsl"
 #include "particles/birth_schedule.h"
 
 #include <bit>
@@ -51,6 +52,16 @@ void storeParticle(ParticleArrays& a, std::size_t i, const kernels::Particle& p)
     a.rotation[i] = p.rotation;
     a.angularVelocity[i] = p.angularVelocity;
     a.birth[i] = p.birth;
+}
+
+// Slot i's trail once the slot is stored (src/kernels/trail.glsl, as
+// effects_update.comp's recordTrail).
+void recordTrail(ParticleArrays& a, std::uint32_t points, std::uint32_t head, std::size_t i, bool born) {
+    const auto slot = static_cast<std::uint32_t>(i);
+    const std::uint32_t writes = kernels::trailWrites(points, a.age[i] >= 0.0f, born);
+    for (std::uint32_t j = 0; j < writes; ++j) {
+        a.trail[kernels::trailWriteIndex(slot, j, head, points, born)] = a.position[i];
+    }
 }
 
 // Counts the update of `before` into r and, when events are recorded, keeps
@@ -101,6 +112,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
     const kernels::EmitterParams& params = e.params;
     const bool spawnMode = e.def.lifecycle == Lifecycle::Spawn;
     ParticleArrays& a = e.particles;
+    const std::uint32_t trailPoints = e.def.trail.points;
     std::vector<ChunkResult> chunks(WorkerPool::chunkCount(e.def.capacity, kChunk));
 
     // Update: age, forces, integration, collisions and over-life values of
@@ -119,6 +131,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                     finished = batches && i + kBatchLanes <= end ? updateBatch(target, ctx, params, a, i, dt) : 0u;
                 }
                 if ((finished >> lane & 1u) != 0u) {
+                    recordTrail(a, trailPoints, e.trailHead, i, false);
                     continue;  // done by the vector update: no events
                 }
                 if (spawnMode && a.age[i] < 0.0f) {
@@ -127,6 +140,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                 kernels::Particle p = loadParticle(a, params, i);
                 kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
                 storeParticle(a, i, r.particle);
+                recordTrail(a, trailPoints, e.trailHead, i, (r.events & kernels::SD_EVENT_BORN) != 0u);
                 countUpdate(p, r, index, glm::length(p.velocity), recordEvents, out);
                 if (spawnMode && slotFreed(r)) {
                     out.dead.push_back(static_cast<std::uint32_t>(i));
@@ -161,6 +175,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                     r.events |= kernels::SD_EVENT_DIED;
                 }
                 storeParticle(a, slot, r.particle);
+                recordTrail(a, trailPoints, e.trailHead, slot, true);
                 countUpdate(r.particle, r, index, glm::length(r.particle.velocity), recordEvents, birthChunks[c]);
                 if (slotFreed(r)) {
                     birthChunks[c].dead.push_back(slot);

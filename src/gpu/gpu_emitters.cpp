@@ -27,6 +27,7 @@ std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e, st
     b[kernels::SD_BINDING_ROTATIONS] = &e.rotations;
     b[kernels::SD_BINDING_COUNTERS] = &e.counters[frame];
     b[kernels::SD_BINDING_EVENTS] = &w.frames[frame].events;
+    b[kernels::SD_BINDING_TRAILS] = &e.trail;
     return b;
 }
 
@@ -65,7 +66,7 @@ void destroyEmitter(Device& d, GpuEmitter& e) {
     if (e.descriptorPool != VK_NULL_HANDLE) {
         vkDestroyDescriptorPool(d.device, e.descriptorPool, nullptr);  // frees its set
     }
-    for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.births, &e.rotations, &e.dead,
+    for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.births, &e.rotations, &e.trail, &e.dead,
                       &e.alive[0], &e.alive[1]}) {
         destroyBuffer(d, *b);
     }
@@ -86,6 +87,7 @@ void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
     e.ages = createStorageBuffer(d, n * 4);
     e.births = createStorageBuffer(d, n * 4);
     e.rotations = createStorageBuffer(d, n * 4);
+    e.trail = createStorageBuffer(d, std::max<VkDeviceSize>(VkDeviceSize{e.capacity} * e.trailPoints, 1) * 12);
     for (std::uint32_t f = 0; f < frames; ++f) {
         e.counters[f] = createHostStorageBuffer(d, sizeof(StepCounters));
         std::memset(e.counters[f].mapped, 0, sizeof(StepCounters));
@@ -107,15 +109,20 @@ void allocateSlots(Device& d, GpuEmitter& e, std::uint32_t frames) {
 
 // The stored slot arrays of an emitter paired with host arrays of the same
 // layout; serves both directions (upload at creation, download on
-// readParticles).
-std::array<Transfer, 5> slotTransfers(GpuEmitter& e, ParticleArrays& p) {
+// readParticles), with the trail's positions when the emitter keeps them
+// (p.trail sized to match).
+std::vector<Transfer> slotTransfers(GpuEmitter& e, ParticleArrays& p) {
     static_assert(kStoredBytesPerSlot == 12 + 12 + 4 + 4 + 4, "the arrays below");
     const VkDeviceSize n = e.capacity;
-    return {{{&e.positions, p.position.data(), n * 12},
-             {&e.velocities, p.velocity.data(), n * 12},
-             {&e.ages, p.age.data(), n * 4},
-             {&e.births, p.birth.data(), n * 4},
-             {&e.rotations, p.rotation.data(), n * 4}}};
+    std::vector<Transfer> t{{&e.positions, p.position.data(), n * 12},
+                            {&e.velocities, p.velocity.data(), n * 12},
+                            {&e.ages, p.age.data(), n * 4},
+                            {&e.births, p.birth.data(), n * 4},
+                            {&e.rotations, p.rotation.data(), n * 4}};
+    if (e.trailPoints > 0) {
+        t.push_back({&e.trail, p.trail.data(), n * e.trailPoints * 12});
+    }
+    return t;
 }
 
 void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
@@ -213,6 +220,7 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
     e->capacity = initial.def.capacity;
     e->spawn = initial.def.lifecycle == Lifecycle::Spawn;
     e->scheduleRuns = static_cast<std::uint32_t>(initial.def.bursts.size());
+    e->trailPoints = initial.def.trail.points;
     try {
         allocateSlots(d, *e, w.framesInFlight);
         uploadSlots(d, *e, initial);
@@ -238,6 +246,7 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterP
     const std::size_t n = e.capacity;
     ParticleArrays p;
     p.resize(n);
+    p.trail.resize(n * e.trailPoints);
     download(*w.device, slotTransfers(e, p));
     // What the device does not store, recomputed by the kernel that the
     // shader uses for the same purpose.

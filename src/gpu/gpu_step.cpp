@@ -45,7 +45,7 @@ void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, std::uint32_t frame, std::siz
     std::array<VkDescriptorSet, 3> sets{e.descriptorSets[frame],
                                         e.spawn ? e.listSets[e.parity][frame] : w.placeholderSet, w.fields.set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 3, sets.data(), 0, nullptr);
-    StepPush push{dt, count, static_cast<std::uint32_t>(index), time};
+    StepPush push{dt, count, static_cast<std::uint32_t>(index), time, e.trailPoints, e.trailHead, 0, 0};
     vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
@@ -189,6 +189,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
         if (!e || e->capacity == 0) {
             continue;
         }
+        e->trailHead = emitters[i]->trailHead;
         if (e->spawn) {
             births[i] = writeSchedule(*e, frame, *emitters[i], time, dt);
             anySpawn = true;

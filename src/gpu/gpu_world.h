@@ -52,7 +52,8 @@ struct GpuFields {
 
 /// Bytes a GPU emitter stores per slot: position 12, velocity 12, age 4,
 /// birth serial 4, rotation 4 (GpuEmitter). Creation uploads and readParticles
-/// downloads exactly this much per slot.
+/// downloads exactly this much per slot, plus 12 per trail point of an
+/// emitter with a trail.
 inline constexpr std::size_t kStoredBytesPerSlot = 12 + 12 + 4 + 4 + 4;
 
 /// Most steps a GPU world runs ahead of the host (WorldDef::framesInFlight).
@@ -66,6 +67,11 @@ inline constexpr std::uint32_t kMaxFramesInFlight = 3;
 struct GpuEmitter {
     std::uint32_t capacity = 0;
     Buffer params, positions, velocities, ages, births, rotations;
+    /// EmitterDef::trail's positions, trailPoints per slot (one placeholder
+    /// entry without a trail), written by the update and emit passes.
+    Buffer trail;
+    std::uint32_t trailPoints = 0;
+    std::uint32_t trailHead = 0;  // this step's (EmitterState::trailHead)
     Buffer counters[kMaxFramesInFlight];  // host-visible: kernels::StepCounters
     VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
     VkDescriptorSet descriptorSets[kMaxFramesInFlight] = {};  // set 0, per frame

@@ -29,6 +29,10 @@ SD_CONST uint SD_MAX_CUBE_MAPS = 8u;
 // Threads per workgroup of effects_update.comp (local_size_x).
 SD_CONST uint SD_UPDATE_WORKGROUP = 64u;
 
+// Most positions a particle's trail keeps (EmitterDef::trail.points): the
+// ribbon's vertices are drawn per instance, 6 (points - 1) of them.
+SD_CONST uint SD_MAX_TRAIL_POINTS = 64u;
+
 // The passes of one emitter's step: the PASS specialization constant.
 SD_CONST uint SD_PASS_RECYCLE_UPDATE = 0u;
 SD_CONST uint SD_PASS_SPAWN_UPDATE = 1u;
@@ -62,7 +66,8 @@ SD_CONST uint SD_BINDING_BIRTHS = 6u;     // uint[capacity], birth serials
 SD_CONST uint SD_BINDING_ROTATIONS = 7u;  // float[capacity] (rad)
 SD_CONST uint SD_BINDING_COUNTERS = 8u;   // StepCounters, host-visible, per frame
 SD_CONST uint SD_BINDING_EVENTS = 9u;     // EventsHeader, EventRecord[capacity], per frame
-SD_CONST uint SD_EMITTER_BINDINGS = 10u;
+SD_CONST uint SD_BINDING_TRAILS = 10u;    // float[3 points capacity] (m), trail.glsl; 1 entry without a trail
+SD_CONST uint SD_EMITTER_BINDINGS = 11u;
 
 // Set 1 bindings (spawn mode), in order.
 SD_CONST uint SD_BINDING_DEAD = 0u;       // DeadHeader, uint deadSlots[capacity]
@@ -128,12 +133,16 @@ struct EventsHeader {
 };
 
 // The push constants of every pass. count: slots (recycle update) or births
-// owed (spawn emit and finish). 16 bytes.
+// owed (spawn emit and finish). trailPoints, trailHead: the emitter's trail
+// (trail.glsl; 0 points: none), the ring index this step writes. 32 bytes.
 struct StepPush {
     float dt;  // s
     uint count;
     uint emitterIndex;
     float time;  // s, the world time at the start of the step (animated forces)
+    uint trailPoints;
+    uint trailHead;
+    uint pad0, pad1;
 };
 
 // The back-to-front sort (src/gpu/shaders/back_to_front_sort.comp, src/gpu/
@@ -208,8 +217,10 @@ SD_CONST uint SD_SPRITE_BINDING_BIRTHS = 4u;
 SD_CONST uint SD_SPRITE_BINDING_ROTATIONS = 5u;
 SD_CONST uint SD_SPRITE_BINDING_ORDER = 6u;       // uint[capacity]: slot of instance i
 SD_CONST uint SD_SPRITE_BINDING_RUNS = 7u;        // uvec4[]: stateless runs
-SD_CONST uint SD_SPRITE_BINDING_IMAGE = 8u;       // sampler2D
-SD_CONST uint SD_SPRITE_BUFFERS = 8u;             // storage buffers before the image
+SD_CONST uint SD_SPRITE_BINDING_TRAILS = 8u;      // float[3 points capacity]: trail.glsl
+SD_CONST uint SD_SPRITE_BINDING_TRAIL_LOOK = 9u;  // TrailLook
+SD_CONST uint SD_SPRITE_BINDING_IMAGE = 10u;      // sampler2D
+SD_CONST uint SD_SPRITE_BUFFERS = 10u;            // storage buffers before the image
 // SpriteDraw::mode.
 SD_CONST uint SD_SPRITE_MODE_SLOTS = 0u;      // stored slots in instance order
 SD_CONST uint SD_SPRITE_MODE_ORDERED = 1u;    // stored slots via order[] (back to front)
@@ -226,8 +237,17 @@ struct SpriteDraw {
     float fps;      // flipbook: frames/s, looping; 0: once over the life
     uint blendFrames;    // flipbook: 1 cross-fades to the next frame
     float softDistance;  // m: soft particles' depth fade; 0 off
-    uint pad0;
-    uint pad1;
+    uint trailPoints;    // > 0: draw the trails (6 (trailPoints - 1) vertices an instance), not the quads
+    uint trailHead;      // ring index of the trails' newest points (trail.glsl)
+};
+
+// How an emitter's trails look (EmitterDef::trail), set 1 of the sprite
+// pipelines. 368 bytes.
+struct TrailLook {
+    CurveParams widthOverLength;  // .x multiplies width, head (t = 0) to tail (1)
+    CurveParams colorOverLength;  // multiplies the particle's colour
+    float width;                  // m, at the head
+    uint pad0, pad1, pad2;
 };
 
 // Weighted blended OIT (src/render/oit_pass.cpp): the accumulation targets,
@@ -311,13 +331,17 @@ static_assert(offsetof(ScheduleHeader, maxAge) == 28);
 static_assert(sizeof(StepCounters) == 16 + 4 * SD_MAX_COLLIDERS);
 static_assert(offsetof(StepCounters, hits) == 16);
 static_assert(sizeof(EventsHeader) == 16);
-static_assert(sizeof(StepPush) == 16);
+static_assert(sizeof(StepPush) == 32);
+static_assert(offsetof(StepPush, trailHead) == 20);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
 static_assert(offsetof(StepPush, time) == 12);
 static_assert(sizeof(SortPush) == 48);
 static_assert(offsetof(SortPush, count) == 32);
 static_assert(sizeof(SpriteDraw) == 48);
 static_assert(offsetof(SpriteDraw, softDistance) == 36);
+static_assert(offsetof(SpriteDraw, trailHead) == 44);
+static_assert(sizeof(TrailLook) == 368);
+static_assert(offsetof(TrailLook, width) == 352);
 static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
 static_assert(sizeof(SplatInstance) == 48);
 static_assert(offsetof(SplatInstance, shade) == 32);

@@ -25,6 +25,9 @@ struct ParticleArrays {
     std::vector<float> rotation;
     std::vector<float> angularVelocity;
     std::vector<std::uint32_t> birth;
+    /// EmitterDef::trail's positions, points per slot (src/kernels/trail.glsl);
+    /// empty without a trail. Not sized by resize.
+    std::vector<glm::vec3> trail;
 
     void resize(std::size_t n);
 };
@@ -42,6 +45,9 @@ struct EmitterState {
     /// Fraction of a particle owed by the rate, carried between steps.
     double emissionCarry = 0.0;
     std::uint64_t alive = 0;
+    /// Ring index of the trails' newest points (src/kernels/trail.glsl),
+    /// advanced before each step by the world, for both backends.
+    std::uint32_t trailHead = 0;
     /// An emitter riding a body (EmitterDef::body): its shape's centre and
     /// direction in the body's frame; `def` holds them placed in the world.
     glm::vec3 mountCentre{0.0f};

@@ -31,6 +31,7 @@ static_assert(sizeof(kernels::CurveParams::values) / sizeof(kernels::CurveParams
 // Burst b's particles get serials b * SD_BURST_SERIAL_STRIDE + j
 // (src/kernels/stateless.glsl): a larger burst would run into the next one's.
 static_assert(kEmitterMaxBurstCount == kernels::SD_BURST_SERIAL_STRIDE - 1);
+static_assert(kMaxTrailPoints == kernels::SD_MAX_TRAIL_POINTS);
 
 // `color`'s two ends, each channel and the opacity against its rule.
 void checkColorRange(const FieldCheck& check, const ColorRange& color) {
@@ -65,6 +66,27 @@ void checkCurve(const FieldCheck& check, std::string_view field, const Curve& cu
             check.number(fieldPath(field, i, "value"), k.value[c], emitter_rules::kCurveFactor);
         }
     }
+}
+
+// A trail: 0 or 2+ points, within the emitter's share of memory, on an
+// emitter that stores its particles.
+void checkTrail(const FieldCheck& check, const EmitterDef& d) {
+    const TrailDef& t = d.trail;
+    check.number("trail.points", t.points, emitter_rules::kTrailPoints);
+    check.expect(t.points != 1, "trail.points", "0 (no trail) or at least 2 (a ribbon joins two points)", "1");
+    if (!t.enabled()) {
+        return;
+    }
+    if (d.stateless) {
+        check.fail("trail", "a stateless emitter keeps no past positions; expected no trail, or stateless = false");
+    }
+    const std::uint64_t positions = std::uint64_t{d.capacity} * t.points;
+    check.expect(positions <= kEmitterMaxTrailPositions, "trail.points",
+                 fmt::format("capacity x points at most {} (12 bytes each)", kEmitterMaxTrailPositions),
+                 fmt::format("{} x {} = {}", d.capacity, t.points, positions));
+    check.number("trail.width", t.width, emitter_rules::kTrailWidth);
+    checkCurve(check, "trail.width_over_length", t.widthOverLength, 1);
+    checkCurve(check, "trail.color_over_length", t.colorOverLength, 4);
 }
 
 }  // namespace
@@ -126,6 +148,7 @@ void validateEmitterDef(const EmitterDef& d) {
     checkCurve(check, "color_over_speed", d.colorOverSpeed, 4);
     checkCurve(check, "size_over_speed", d.sizeOverSpeed, 1);
     sprite_rules::validateSpriteDef(check, d.sprite);
+    checkTrail(check, d);
 }
 
 kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,

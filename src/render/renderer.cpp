@@ -73,7 +73,7 @@ void createDescriptors(Renderer& r) {
     const std::uint32_t sets = static_cast<std::uint32_t>(worldFromId(r.world).emitters.size()) + 2;
     VkDescriptorPoolSize sizes[3] = {{VK_DESCRIPTOR_TYPE_UNIFORM_BUFFER, 1},
                                      {VK_DESCRIPTOR_TYPE_COMBINED_IMAGE_SAMPLER, 4 + sets},
-                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 8 * sets + 1}};
+                                     {VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kernels::SD_SPRITE_BUFFERS * sets + 1}};
     auto info = gpu::vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
     info.maxSets = sets;
     info.poolSizeCount = 3;

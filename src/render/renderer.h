@@ -50,8 +50,11 @@ struct SpriteEmitter {
     float stretch = 0.0f;  // SpriteDef::stretch (s)
     FlipbookDef flipbook;
     float softDistance = 0.0f;  // m
+    std::uint32_t trailPoints = 0;  // TrailDef::points (0: no trail)
+    std::uint32_t trailHead = 0;    // this frame's (EmitterState::trailHead)
     // Owned (CPU world, or stateless): host-visible, mapped.
-    gpu::Buffer params, positions, velocities, ages, births, rotations, runs;
+    gpu::Buffer params, positions, velocities, ages, births, rotations, runs, trail;
+    gpu::Buffer trailLook;  // host-visible: kernels::TrailLook
     gpu::Buffer order;  // device-local: slot per instance (alpha blending)
     gpu::Image texture;
     bool ownTexture = false;

@@ -8,6 +8,7 @@
 #include "world/world.h"
 #include "gpu/gpu_world.h"
 #include "gpu/vulkan_pipeline.h"
+#include "particles/params.h"
 #include "render/render_images.h"
 
 #include <spindrift/effects.h>
@@ -64,6 +65,17 @@ void createOwnBuffers(gpu::Device& d, SpriteEmitter& s, const EmitterState& e) {
     s.ages = gpu::createHostStorageBuffer(d, n * 4);
     s.births = gpu::createHostStorageBuffer(d, n * 4);
     s.rotations = gpu::createHostStorageBuffer(d, n * 4);
+    s.trail = gpu::createHostStorageBuffer(d, std::max<VkDeviceSize>(n * s.trailPoints, 1) * 12);
+}
+
+// The trail's width and colour over its length (a placeholder without one).
+void writeTrailLook(gpu::Device& d, SpriteEmitter& s, const TrailDef& trail) {
+    kernels::TrailLook look{};
+    look.widthOverLength = makeCurveParams(trail.widthOverLength);
+    look.colorOverLength = makeCurveParams(trail.colorOverLength);
+    look.width = trail.width;
+    s.trailLook = gpu::createHostStorageBuffer(d, sizeof(look));
+    std::memcpy(s.trailLook.mapped, &look, sizeof(look));
 }
 
 }  // namespace
@@ -82,11 +94,13 @@ void createSpriteEmitters(Renderer& r) {
         s.stretch = e.def.sprite.stretch;
         s.flipbook = e.def.sprite.flipbook;
         s.softDistance = e.def.sprite.softDistance;
+        s.trailPoints = e.def.trail.points;
         const bool onDevice = w.gpu && !s.stateless;
         if (!onDevice) {
             createOwnBuffers(d, s, e);
         }
         s.runs = gpu::createHostStorageBuffer(d, (1 + e.def.bursts.size()) * 16);
+        writeTrailLook(d, s, e.def.trail);
         if (s.alpha && !s.stateless) {
             s.order = gpu::createBuffer(d, VkDeviceSize{s.capacity} * 4,
                                         VK_BUFFER_USAGE_STORAGE_BUFFER_BIT | VK_BUFFER_USAGE_TRANSFER_DST_BIT,
@@ -113,6 +127,8 @@ void createSpriteEmitters(Renderer& r) {
         buffers[kernels::SD_SPRITE_BINDING_ROTATIONS] = g ? &g->rotations : &s.rotations;
         buffers[kernels::SD_SPRITE_BINDING_ORDER] = &s.order;
         buffers[kernels::SD_SPRITE_BINDING_RUNS] = &s.runs;
+        buffers[kernels::SD_SPRITE_BINDING_TRAILS] = g ? &g->trail : &s.trail;
+        buffers[kernels::SD_SPRITE_BINDING_TRAIL_LOOK] = &s.trailLook;
         writeSet(d, s.set, buffers, s.ownTexture ? s.texture.view : r.placeholderImage.view, r.linearSampler);
     }
 }
@@ -121,7 +137,7 @@ void destroySpriteEmitters(Renderer& r) {
     gpu::Device& d = *r.device;
     for (SpriteEmitter& s : r.emitters) {
         for (gpu::Buffer* b : {&s.params, &s.positions, &s.velocities, &s.ages, &s.births, &s.rotations, &s.runs,
-                               &s.order}) {
+                               &s.trail, &s.trailLook, &s.order}) {
             if (b->buffer != VK_NULL_HANDLE) {
                 gpu::destroyBuffer(d, *b);
             }
@@ -143,6 +159,7 @@ void uploadSlots(SpriteEmitter& s, const EmitterState& e) {
     std::memcpy(s.ages.mapped, p.age.data(), n * 4);
     std::memcpy(s.births.mapped, p.birth.data(), n * 4);
     std::memcpy(s.rotations.mapped, p.rotation.data(), n * 4);
+    std::memcpy(s.trail.mapped, p.trail.data(), std::min(p.trail.size(), n * s.trailPoints) * 12);
     static_assert(sizeof(glm::vec3) == 12);
 }
 
@@ -208,6 +225,7 @@ void prepareSprites(Renderer& r) {
             uploadSlots(s, e);
         }
         s.instances = s.capacity;
+        s.trailHead = e.trailHead;
         r.stats.sprites += e.alive;
         if (s.alpha && s.capacity > 0) {
             auto start = std::chrono::steady_clock::now();
@@ -250,10 +268,19 @@ void recordSpriteGroup(Renderer& r, VkCommandBuffer cmd, const Pipeline& hard, c
             bound = &p;
         }
         vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_GRAPHICS, p.layout, 1, 1, &s.set, 0, nullptr);
-        const SpriteDraw draw = spriteDraw(s);
+        SpriteDraw draw = spriteDraw(s);
         vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0, sizeof(draw),
                            &draw);
         vkCmdDraw(cmd, 6, s.instances, 0, 0);
+        if (s.trailPoints > 0) {
+            // The ribbons, in the same order and blend: 6 vertices a segment.
+            draw.trailPoints = s.trailPoints;
+            draw.trailHead = s.trailHead;
+            draw.textured = 0u;
+            vkCmdPushConstants(cmd, p.layout, VK_SHADER_STAGE_VERTEX_BIT | VK_SHADER_STAGE_FRAGMENT_BIT, 0,
+                               sizeof(draw), &draw);
+            vkCmdDraw(cmd, 6 * (s.trailPoints - 1), s.instances, 0, 0);
+        }
     }
 }
 

@@ -1,5 +1,6 @@
 // [[emitter]]: spawning, launch shape, per-particle ranges, curves, forces,
-// collisions, the stateless closed form and the sprite it is drawn with.
+// collisions, the stateless closed form, and the sprite and trail it is drawn
+// with.
 // Angles in the file are degrees.
 //
 // Fields that have an EmitterDef rule (src/particles/emitter_rules.h) are
@@ -33,7 +34,8 @@ const std::vector<std::string_view> kEmitterKeys = {
     "size_over_life", "integrator", "forces",
     "collision",      "stateless",  "stateless_gravity",
     "sprite",         "over_speed_range", "color_over_speed",
-    "size_over_speed", "body",      "inherit_velocity"};
+    "size_over_speed", "body",      "inherit_velocity",
+    "trail"};
 
 FloatRange toRadians(FloatRange degrees) {
     return {degrees.min * kRadiansPerDegree, degrees.max * kRadiansPerDegree};
@@ -125,7 +127,7 @@ Curve readCurve(const Value& v, bool colorValues) {
         const Table t(key.context(), *key.node().as_table(), key.path());
         t.allowOnly({"t", "value"}, "a curve key");
         CurveKey k;
-        k.t = t.require("t", "a number in [0, 1] (normalised age or speed)").real(emitter_rules::kCurveTime);
+        k.t = t.require("t", "a number in [0, 1] (normalised age, speed or length)").real(emitter_rules::kCurveTime);
         const Value value =
             t.require("value", colorValues ? "a colour factor [r, g, b, a]" : "a size factor >= 0");
         k.value = colorValues ? readColor(value, emitter_rules::kCurveFactor, emitter_rules::kCurveFactor)
@@ -330,6 +332,20 @@ SpriteDef readSprite(const Table& t) {
     return def;
 }
 
+TrailDef readTrail(const Table& t) {
+    t.allowOnly({"points", "width", "width_over_length", "color_over_length"}, "[emitter.trail]");
+    TrailDef def;
+    def.points = t.whole<std::uint32_t>("points", def.points, emitter_rules::kTrailPoints);
+    def.width = t.real("width", def.width, emitter_rules::kTrailWidth);
+    if (auto v = t.find("width_over_length")) {
+        def.widthOverLength = readCurve(*v, false);
+    }
+    if (auto v = t.find("color_over_length")) {
+        def.colorOverLength = readCurve(*v, true);
+    }
+    return def;
+}
+
 }  // namespace
 
 EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& forces,
@@ -348,6 +364,9 @@ EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& force
     readDynamics(t, def, forces, colliders);
     if (auto sprite = t.subTable("sprite")) {
         def.sprite = readSprite(*sprite);
+    }
+    if (auto trail = t.subTable("trail")) {
+        def.trail = readTrail(*trail);
     }
     validateAt(t, [&] { validateEmitterDef(def); });
     checkBurstCounts(t, def);

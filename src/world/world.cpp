@@ -7,6 +7,7 @@
 #include "effects/emitter_step.h"
 #include "fluid/fluid_state.h"
 #include "gpu/gpu_world.h"
+#include "kernels/trail.glsl"
 #include "particles/params.h"
 
 #include <fmt/format.h>
@@ -34,6 +35,7 @@ void initialiseSlots(EmitterState& s) {
     const std::uint32_t n = s.def.capacity;
     s.particles.resize(n);
     ParticleArrays& p = s.particles;
+    p.trail.assign(std::size_t{n} * s.def.trail.points, glm::vec3(0.0f));
     if (s.def.lifecycle == Lifecycle::Recycle) {
         // Slot i is first born at i / n of a mean lifetime: an even stream from
         // the start, as the GPU particle talk's fixed slots.
@@ -375,6 +377,9 @@ void carryEmitters(World& w) {
 // Stage "emitters": every state-preserving emitter's step, on the device
 // (one submission) or on the CPU backend, emitter by emitter.
 void stepEmitters(World& w, float dt, StepStats& stats) {
+    for (const std::unique_ptr<EmitterState>& e : w.emitters) {
+        e->trailHead = kernels::nextTrailHead(e->trailHead, e->def.trail.points);
+    }
     if (w.gpu) {
         gpu::stepEmitters(*w.gpu, w.emitters, w.time, dt, w.stepIndex, stats, w.events);
         return;
@@ -481,6 +486,8 @@ ParticleSnapshot readParticles(WorldId id, EmitterId emitterId) {
         fromDevice = gpu::readSlots(*w.gpu, emitterId.index - 1, e.params);
     }
     const ParticleArrays& p = w.gpu ? fromDevice : e.particles;
+    const std::uint32_t points = e.def.trail.points;
+    s.trailPoints = points;
     for (std::uint32_t i = 0; i < e.def.capacity; ++i) {
         if (p.age[i] < 0.0f) {
             continue;
@@ -494,6 +501,9 @@ ParticleSnapshot readParticles(WorldId id, EmitterId emitterId) {
         s.color.push_back(p.color[i]);
         s.birth.push_back(p.birth[i]);
         s.slot.push_back(i);
+        for (std::uint32_t k = 0; k < points; ++k) {
+            s.trail.push_back(p.trail[kernels::trailPointIndex(i, k, e.trailHead, points)]);
+        }
     }
     return s;
 }

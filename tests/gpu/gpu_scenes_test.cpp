@@ -24,6 +24,7 @@ using test::runScene;
 // How far apart the two backends' copies of each particle are.
 struct Divergence {
     std::vector<float> position;  // m, largest coordinate difference per particle
+    std::vector<float> trail;     // m, the same over each particle's trail points
     float maxVelocity = 0.0f;     // m/s
     std::size_t unmatched = 0;    // serials alive on one backend only
 };
@@ -44,6 +45,18 @@ void compare(const ParticleSnapshot& cpu, const ParticleSnapshot& gpu, Divergenc
         glm::vec3 dp = glm::abs(cpu.position[i] - gpu.position[j]);
         glm::vec3 dv = glm::abs(cpu.velocity[i] - gpu.velocity[j]);
         d.position.push_back(std::max({dp.x, dp.y, dp.z}));
+        // Trail points are past positions: the same bounds hold for them.
+        const std::uint32_t n = cpu.trailPoints;
+        if (n > 0 && gpu.trailPoints == n) {
+            float worst = 0.0f;
+            for (std::uint32_t k = 0; k < n; ++k) {
+                glm::vec3 dt = glm::abs(cpu.trail[i * n + k] - gpu.trail[j * n + k]);
+                worst = std::max({worst, dt.x, dt.y, dt.z});
+            }
+            d.trail.push_back(worst);
+        } else if (n != gpu.trailPoints) {
+            d.trail.push_back(1e30f);  // one backend kept no trail
+        }
         d.maxVelocity = std::max({d.maxVelocity, dv.x, dv.y, dv.z});
     }
     d.unmatched += bySerial.size();
@@ -115,6 +128,12 @@ TEST_P(BundledScene, MatchesTheCpuBackend) {
     EXPECT_GT(d.position.size(), 0u);
     EXPECT_LT(median, 1e-4f);
     EXPECT_LT(p99, 1e-3f);
+    if (!d.trail.empty()) {
+        std::printf("%-14s trails: difference median %.2e m, 99%% %.2e m\n", GetParam().c_str(),
+                    quantile(d.trail, 0.5), quantile(d.trail, 0.99));
+        EXPECT_LT(quantile(d.trail, 0.5), 1e-4f);
+        EXPECT_LT(quantile(d.trail, 0.99), 1e-3f);
+    }
 }
 
 INSTANTIATE_TEST_SUITE_P(Scenes, BundledScene, ::testing::ValuesIn(effectSceneNames()),

@@ -500,6 +500,36 @@ TEST(OneValidationPath, SpriteFlipbookAndSoftDistanceReadTheSameFromTheApiAndAFi
     EXPECT_EQ(emitterApiError(def).field(), "sprite.flipbook");
 }
 
+// Trail settings: the same words from the API and a file; one point (no
+// ribbon), a trail on a stateless emitter and a trail past the memory limit
+// are refused at the key.
+TEST(OneValidationPath, TrailReadsTheSameFromTheApiAndAFile) {
+    EmitterDef def = emitterDef();
+    def.trail.points = 65;
+    const FieldError points = expectSameError(def, "trail = { points = 65 }", 20, "emitter[0].trail.points");
+    EXPECT_STREQ(points.what(), "emitter 'e': trail.points: expected an integer in [0, 64], got 65");
+    def.trail.points = 1;
+    const FieldError one = expectSameError(def, "trail = { points = 1 }", 20, "emitter[0].trail.points");
+    EXPECT_NE(std::string(one.what()).find("at least 2"), std::string::npos) << one.what();
+    def.trail.points = 64;
+    expectAccepted(def, "trail = { points = 64 }");
+    def.trail.width = 0.0f;
+    expectSameError(def, "trail = { points = 64, width = 0 }", 32, "emitter[0].trail.width");
+    def = emitterDef();
+    def.trail.points = 2;
+    def.trail.colorOverLength.keys = {{0.5f, glm::vec4(1.0f)}, {0.2f, glm::vec4(1.0f)}};
+    EXPECT_EQ(emitterApiError(def).field(), "trail.color_over_length[1].t");
+    def = emitterDef();
+    def.trail.points = 2;
+    def.stateless = true;
+    EXPECT_EQ(emitterApiError(def).field(), "trail");
+    def.stateless = false;
+    def.capacity = kEmitterMaxCapacity;  // 2 x 16777216 positions: past the limit
+    EXPECT_EQ(emitterApiError(def).field(), "trail.points");
+    def.capacity = kEmitterMaxCapacity / 2;
+    EXPECT_NO_THROW(validateEmitterDef(def));
+}
+
 TEST(OneValidationPath, RenderRulesReadTheSameFromTheApiAndAFile) {
     RenderDef def;
     def.fluid.opacity = 0.0f;

@@ -36,6 +36,8 @@ layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_VELOCITIES) buffer Vel
 layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_AGES) buffer Ages { float ages[]; };
 layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_BIRTHS) buffer Births { uint births[]; };
 layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_ROTATIONS) buffer Rotations { float rotations[]; };
+// The trail's positions (trail.glsl): float triples, step.trailPoints per slot.
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_TRAILS) buffer Trails { float trails[]; };
 // Counts of the step (one copy per frame in flight; StepCounters in layout.glsl).
 layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_COUNTERS) buffer Counters { StepCounters counters; };
 // Collision and death events of the step, shared by every emitter of the world
@@ -138,6 +140,7 @@ vec3 sampleCurlNoise(KernelContext ctx, ForceParams f, vec3 p) {
 
 #include "update.glsl"
 #include "birth_age.glsl"
+#include "trail.glsl"
 
 Particle loadParticle(uint i) {
     Particle p;
@@ -149,6 +152,22 @@ Particle loadParticle(uint i) {
     p.birth = births[i];
     p.alive = p.age >= 0.0f ? 1u : 0u;
     return restoreDerived(emitter, p);
+}
+
+void storeTrailPoint(uint index, vec3 p) {
+    trails[3u * index] = p.x;
+    trails[3u * index + 1u] = p.y;
+    trails[3u * index + 2u] = p.z;
+}
+
+// A stored slot's trail (trail.glsl, as the CPU's recordTrail in
+// src/effects/emitter_step.cpp).
+void recordTrail(uint i, Particle q, uint events) {
+    bool born = (events & SD_EVENT_BORN) != 0u;
+    uint writes = trailWrites(step.trailPoints, q.age >= 0.0f, born);
+    for (uint j = 0u; j < writes; ++j) {
+        storeTrailPoint(trailWriteIndex(i, j, step.trailHead, step.trailPoints, born), q.position);
+    }
 }
 
 // The birth serial changes only when the slot gets a new particle.
@@ -164,6 +183,7 @@ void storeParticle(uint i, Particle q, uint events) {
     if ((events & SD_EVENT_BORN) != 0u) {
         births[i] = q.birth;
     }
+    recordTrail(i, q, events);
 }
 
 // Atomics only where something happened: most slots in most steps have no

@@ -8,6 +8,8 @@
 #include "derived.glsl"
 #include "stateless.glsl"
 #include "sprite_look.glsl"
+#include "curves.glsl"
+#include "trail.glsl"
 
 layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_EMITTER) readonly buffer Emitter {
     EmitterParams emitter;
@@ -29,6 +31,12 @@ layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_ORDER) readonly 
 // Stateless candidates in runs: x first serial, y instances before this run,
 // z age of the first serial (float bits), w birth interval (float bits).
 layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_RUNS) readonly buffer Runs { uvec4 runs[]; };
+// Trails (draw.trailPoints > 0): the positions, trail.glsl's ring per slot,
+// and their width and colour over the ribbon.
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_TRAILS) readonly buffer Trails { float trails[]; };
+layout(std430, set = SD_SPRITE_SET, binding = SD_SPRITE_BINDING_TRAIL_LOOK) readonly buffer Look {
+    TrailLook trailLook;
+};
 
 layout(push_constant) uniform Draw { SpriteDraw draw; };  // SpriteDraw in layout.glsl
 
@@ -63,16 +71,54 @@ Particle statelessParticle(uint instance) {
     return p;
 }
 
+vec3 trailPoint(uint slot, uint k) {
+    uint i = trailPointIndex(slot, k, draw.trailHead, draw.trailPoints);
+    return vec3(trails[3u * i], trails[3u * i + 1u], trails[3u * i + 2u]);
+}
+
+// A trail instance: segment v / 6 of the ribbon joins points k and k + 1
+// (k = 0 the newest) with two triangles. Each point's edge is across the
+// ribbon's direction there and the view, so neighbouring segments share it.
+void trailVertex(Particle p, uint slot) {
+    uint v = uint(gl_VertexIndex);
+    uint corner = v % 6u;
+    uint k = v / 6u + ((corner == 2u || corner == 3u || corner == 5u) ? 1u : 0u);
+    float side = (corner == 1u || corner == 4u || corner == 5u) ? 1.0 : -1.0;
+    uint last = draw.trailPoints - 1u;
+    vec3 here = trailPoint(slot, k);
+    vec3 along = trailPoint(slot, k == 0u ? 0u : k - 1u) - trailPoint(slot, min(k + 1u, last));
+    vec3 view = frame.eye.w > 0.5 ? frame.forward.xyz : here - frame.eye.xyz;
+    vec3 across = cross(along, view);
+    float acrossLength = length(across);
+    float t = float(k) / float(last);
+    float halfWidth = 0.5 * trailLook.width * evaluateCurve(trailLook.widthOverLength, t).x;
+    // A ribbon not yet drawn out (a newborn's points all at its birth) has no
+    // direction: its vertices meet and it covers nothing.
+    vec3 offset = acrossLength > 1e-12 ? across * (side * halfWidth / acrossLength) : vec3(0.0);
+    gl_Position = frame.viewProj * vec4(here + offset, 1.0);
+    local = vec2(0.0, side);
+    cells = vec4(0.0);
+    frameMix = 0.0;
+    vec4 c = p.color * evaluateCurve(trailLook.colorOverLength, t);
+    float alpha = clamp(c.a, 0.0, 1.0);
+    colour = vec4(max(c.rgb, vec3(0.0)) * alpha, alpha);
+}
+
 void main() {
     uint instance = uint(gl_InstanceIndex);
     Particle p;
+    uint slot = draw.mode == SD_SPRITE_MODE_ORDERED ? order[instance] : instance;
     if (draw.mode == SD_SPRITE_MODE_STATELESS) {
         p = statelessParticle(instance);
     } else {
-        p = storedParticle(draw.mode == SD_SPRITE_MODE_ORDERED ? order[instance] : instance);
+        p = storedParticle(slot);
     }
-    if (p.alive == 0u || p.size <= 0.0) {
+    if (p.alive == 0u || (p.size <= 0.0 && draw.trailPoints == 0u)) {
         gl_Position = kCulled;
+        return;
+    }
+    if (draw.trailPoints > 0u) {
+        trailVertex(p, slot);
         return;
     }
     vec2 corner = quadCorner(gl_VertexIndex);

@@ -1,0 +1,138 @@
+// Trails (EmitterDef::trail) on both backends: what readParticles returns as
+// a particle's trail is, point for point, the positions the same backend
+// returned for that particle over the last steps (its birth position before
+// it was born), including slots reused by new particles; and the renderer
+// draws the ribbon over exactly that stretch of path.
+#include "gpu_test_util.h"
+#include "render/render_test_util.h"
+
+#include <spindrift/render.h>
+
+#include <gtest/gtest.h>
+
+#include <map>
+#include <vector>
+
+namespace spindrift {
+namespace {
+
+using test::GpuTest;
+
+class Trails : public GpuTest {};
+
+constexpr float kDt = 1.0f / 60.0f;
+
+// Short-lived particles under gravity from a sphere: slots die and are
+// reused (spawn) or re-born in place (recycle) within the run.
+EmitterDef churningEmitter(Lifecycle lifecycle) {
+    EmitterDef def;
+    def.name = "churn";
+    def.lifecycle = lifecycle;
+    def.capacity = 48;
+    def.rate = 300.0f;
+    def.shape.kind = SpawnShapeKind::Sphere;
+    def.shape.radius = 0.2f;
+    def.shape.direction = {0.0f, 1.0f, 0.0f};
+    def.shape.spreadAngle = 1.0f;
+    def.speed = {1.0f, 3.0f};
+    def.lifetime = {0.08f, 0.25f};
+    def.trail.points = 7;
+    return def;
+}
+
+// Exact equality: a trail point is a copy of a stored position, made by the
+// same backend in the same step.
+TEST_F(Trails, HoldEachParticlesLastPositionsOnBothBackends) {
+    for (Backend backend : {Backend::Cpu, Backend::Vulkan}) {
+        for (Lifecycle lifecycle : {Lifecycle::Spawn, Lifecycle::Recycle}) {
+            SCOPED_TRACE(::testing::Message() << (backend == Backend::Cpu ? "cpu" : "vulkan") << " "
+                                              << (lifecycle == Lifecycle::Spawn ? "spawn" : "recycle"));
+            test::BackendWorld w(backend);
+            ForceDef gravity;
+            gravity.kind = ForceKind::Gravity;
+            gravity.vector = {0.0f, -9.81f, 0.0f};
+            createForce(w.id, gravity);
+            const EmitterId id = createEmitter(w.id, churningEmitter(lifecycle));
+            const std::uint32_t points = 7;
+            // Positions by birth serial, one per step the particle was alive.
+            std::map<std::uint32_t, std::vector<glm::vec3>> paths;
+            std::size_t checked = 0, young = 0, reused = 0;
+            std::map<std::uint32_t, std::uint32_t> serialOfSlot;
+            for (int step = 0; step < 40; ++step) {
+                stepWorld(w.id, kDt);
+                const ParticleSnapshot s = readParticles(w.id, id);
+                ASSERT_EQ(s.trailPoints, points);
+                ASSERT_EQ(s.trail.size(), s.count() * points);
+                for (std::size_t i = 0; i < s.count(); ++i) {
+                    std::vector<glm::vec3>& path = paths[s.birth[i]];
+                    path.push_back(s.position[i]);
+                    auto [it, fresh] = serialOfSlot.try_emplace(s.slot[i], s.birth[i]);
+                    if (!fresh && it->second != s.birth[i]) {
+                        ++reused;
+                        it->second = s.birth[i];
+                    }
+                    for (std::uint32_t k = 0; k < points; ++k) {
+                        const std::size_t back = std::min<std::size_t>(k, path.size() - 1);
+                        const glm::vec3 expected = path[path.size() - 1 - back];
+                        const glm::vec3 got = s.trail[i * points + k];
+                        ASSERT_EQ(got, expected) << "serial " << s.birth[i] << " point " << k << " step " << step;
+                    }
+                    young += path.size() < points ? 1 : 0;
+                    ++checked;
+                }
+            }
+            // The run covered particles younger than their trail and slots
+            // that changed particle (a stale ring would fail above).
+            EXPECT_GT(checked, 500u);
+            EXPECT_GT(young, 100u);
+            EXPECT_GT(reused, 20u);
+        }
+    }
+}
+
+// One particle along +x at 1.2 m/s (0.02 m a step) from x = -0.5 m, 11
+// points: after 20 steps it is at x = -0.1 m and its ribbon spans the last 10
+// steps, x = -0.3 to -0.1 m, 0.1 m wide about y = 0. orthoView(64, 64, 2) has
+// 32 px a metre, x = -1 m at the left edge: the ribbon covers pixel columns
+// 22.4 to 28.8 and rows 30.4 to 33.6. Its size 0 draws no quad, so every lit
+// pixel is the ribbon's. The colour falls from 1 at the head to 0.2 at the
+// tail (color_over_length), so the head's end is brighter.
+TEST_F(Trails, RibbonCoversTheLastStepsOfThePathOnBothBackends) {
+    for (Backend backend : {Backend::Cpu, Backend::Vulkan}) {
+        SCOPED_TRACE(backend == Backend::Cpu ? "cpu" : "vulkan");
+        test::BackendWorld w(backend);
+        test::OneShot o;
+        o.start = {-0.5f, 0.0f, 0.0f};
+        o.velocity = {1.2f, 0.0f, 0.0f};
+        o.size = 0.0f;
+        EmitterDef def = test::oneShotEmitter(o);
+        def.trail.points = 11;
+        def.trail.width = 0.1f;
+        def.trail.colorOverLength.keys = {{0.0f, glm::vec4(1.0f)}, {1.0f, glm::vec4(0.2f, 0.2f, 0.2f, 1.0f)}};
+        createEmitter(w.id, def);
+        for (int step = 0; step < 20; ++step) {
+            stepWorld(w.id, kDt);
+        }
+        test::ScopedRenderer r(w.id, test::orthoView(64, 64, 2.0f));
+        const Frame f = renderFrame(r.id);
+        test::dumpFrame(f, backend == Backend::Cpu ? "trail_cpu" : "trail_vulkan");
+        auto red = [&](std::uint32_t x, std::uint32_t y) { return static_cast<int>(test::pixel(f, x, y)[0]); };
+        for (std::uint32_t x = 23; x <= 28; ++x) {
+            EXPECT_GT(red(x, 31), 40) << "on the ribbon, column " << x;
+            EXPECT_GT(red(x, 32), 40) << "on the ribbon, column " << x;
+        }
+        // Outside: before its tail, past the particle, and beside it.
+        for (std::uint32_t x : {0u, 10u, 20u, 21u, 30u, 31u, 40u, 63u}) {
+            EXPECT_EQ(red(x, 31), 0) << "off the ribbon, column " << x;
+            EXPECT_EQ(red(x, 32), 0) << "off the ribbon, column " << x;
+        }
+        for (std::uint32_t x = 23; x <= 28; ++x) {
+            EXPECT_EQ(red(x, 28), 0) << "above the ribbon, column " << x;
+            EXPECT_EQ(red(x, 35), 0) << "below the ribbon, column " << x;
+        }
+        EXPECT_GT(red(28, 32), red(23, 32) + 20) << "brighter at the head than at the tail";
+    }
+}
+
+}  // namespace
+}  // namespace spindrift

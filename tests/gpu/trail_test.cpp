@@ -7,9 +7,11 @@
 #include "render/render_test_util.h"
 
 #include <spindrift/render.h>
+#include <spindrift/scene.h>
 
 #include <gtest/gtest.h>
 
+#include <algorithm>
 #include <map>
 #include <vector>
 
@@ -132,6 +134,54 @@ TEST_F(Trails, RibbonCoversTheLastStepsOfThePathOnBothBackends) {
         }
         EXPECT_GT(red(28, 32), red(23, 32) + 20) << "brighter at the head than at the tail";
     }
+}
+
+// A newborn's ribbon has points that have not spread yet: segments of zero
+// length, whose triangles have no area. Drawn, such a triangle gave NaN
+// fragments where its line crossed a pixel centre (llvmpipe), which the
+// bloom spread into a black square (seen in scenes/fireworks.toml). 20,000
+// ribbons two steps after a burst, seen as the fireworks are, left two black
+// pixels with the old shader (one after four steps); the sky is nowhere
+// black, so no pixel may be (0, 0, 0). Bloom off: a NaN stays one pixel.
+TEST_F(Trails, NewbornRibbonsLeaveNoHoleInTheFrame) {
+    const SceneDef scene = parseScene(R"(
+[world]
+seed = 11
+[camera]
+eye = [0.0, 6.0, 19.0]
+target = [0.0, 8.5, 0.0]
+fov = 50
+[render]
+bloom = 0.0
+[[emitter]]
+name = "burst"
+capacity = 20000
+rate = 0
+bursts = [{ time = 0.0, count = 20000 }]
+lifetime = 5.0
+speed = [6.0, 8.0]
+size = 0.0
+shape = { kind = "sphere", center = [0.0, 8.0, 0.0], radius = 0.05, surface = true, spread = 180 }
+trail = { points = 12, width = 0.05, width_over_length = [{ t = 0.0, value = 1.0 }, { t = 1.0, value = 0.0 }] }
+)",
+                                      "burst.toml");
+    const WorldId world = buildWorld(scene);
+    stepWorld(world, kDt);  // born: every point at the birth position
+    stepWorld(world, kDt);  // the heads moved on; points 1 to 11 still there
+    {
+        test::ScopedRenderer r(world, scene.render);
+        const Frame f = renderFrame(r.id);
+        test::dumpFrame(f, "trail_newborn");
+        int black = 0;
+        for (std::uint32_t y = 0; y < f.height; ++y) {
+            for (std::uint32_t x = 0; x < f.width; ++x) {
+                const std::uint8_t* p = test::pixel(f, x, y);
+                black += p[0] == 0 && p[1] == 0 && p[2] == 0 ? 1 : 0;
+            }
+        }
+        EXPECT_EQ(black, 0);
+    }
+    destroyWorld(world);
 }
 
 }  // namespace

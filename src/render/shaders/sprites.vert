@@ -76,29 +76,44 @@ vec3 trailPoint(uint slot, uint k) {
     return vec3(trails[3u * i], trails[3u * i + 1u], trails[3u * i + 2u]);
 }
 
-// A trail instance: segment v / 6 of the ribbon joins points k and k + 1
-// (k = 0 the newest) with two triangles. Each point's edge is across the
-// ribbon's direction there and the view, so neighbouring segments share it.
-void trailVertex(Particle p, uint slot) {
-    uint v = uint(gl_VertexIndex);
-    uint corner = v % 6u;
-    uint k = v / 6u + ((corner == 2u || corner == 3u || corner == 5u) ? 1u : 0u);
-    float side = (corner == 1u || corner == 4u || corner == 5u) ? 1.0 : -1.0;
+// Half the ribbon's width across at point k, perpendicular to its direction
+// there (from the neighbouring points) and to the view; zero where it has no
+// direction (a newborn's points all at its birth) or no width.
+vec3 trailEdge(uint slot, uint k, vec3 here) {
     uint last = draw.trailPoints - 1u;
-    vec3 here = trailPoint(slot, k);
     vec3 along = trailPoint(slot, k == 0u ? 0u : k - 1u) - trailPoint(slot, min(k + 1u, last));
     vec3 view = frame.eye.w > 0.5 ? frame.forward.xyz : here - frame.eye.xyz;
     vec3 across = cross(along, view);
     float acrossLength = length(across);
-    float t = float(k) / float(last);
-    float halfWidth = 0.5 * trailLook.width * evaluateCurve(trailLook.widthOverLength, t).x;
-    // A ribbon not yet drawn out (a newborn's points all at its birth) has no
-    // direction: its vertices meet and it covers nothing.
-    vec3 offset = acrossLength > 1e-12 ? across * (side * halfWidth / acrossLength) : vec3(0.0);
-    gl_Position = frame.viewProj * vec4(here + offset, 1.0);
+    float halfWidth = 0.5 * trailLook.width * evaluateCurve(trailLook.widthOverLength, float(k) / float(last)).x;
+    return acrossLength > 1e-12 && halfWidth > 0.0 ? across * (halfWidth / acrossLength) : vec3(0.0);
+}
+
+// A trail instance: segment v / 6 of the ribbon joins points k and k + 1
+// (k = 0 the newest) with two triangles, (k-, k+, (k+1)-) and ((k+1)-, k+,
+// (k+1)+), so neighbouring segments share their edges. A triangle that
+// would have no area (a segment of zero length, an edge of zero width) is
+// culled whole: rasterising one gave NaN fragments on llvmpipe.
+void trailVertex(Particle p, uint slot) {
+    uint v = uint(gl_VertexIndex);
+    uint corner = v % 6u;
+    uint k0 = v / 6u;
+    vec3 a = trailPoint(slot, k0);
+    vec3 b = trailPoint(slot, k0 + 1u);
+    vec3 edgeA = trailEdge(slot, k0, a);
+    vec3 edgeB = trailEdge(slot, k0 + 1u, b);
+    bool firstTriangle = corner < 3u;
+    if (a == b || (firstTriangle ? edgeA == vec3(0.0) : edgeB == vec3(0.0))) {
+        gl_Position = kCulled;
+        return;
+    }
+    bool atB = corner == 2u || corner == 3u || corner == 5u;
+    float side = (corner == 1u || corner == 4u || corner == 5u) ? 1.0 : -1.0;
+    gl_Position = frame.viewProj * vec4((atB ? b : a) + (atB ? edgeB : edgeA) * side, 1.0);
     local = vec2(0.0, side);
     cells = vec4(0.0);
     frameMix = 0.0;
+    float t = float(atB ? k0 + 1u : k0) / float(draw.trailPoints - 1u);
     vec4 c = p.color * evaluateCurve(trailLook.colorOverLength, t);
     float alpha = clamp(c.a, 0.0, 1.0);
     colour = vec4(max(c.rgb, vec3(0.0)) * alpha, alpha);

@@ -136,6 +136,38 @@ TEST_F(Trails, RibbonCoversTheLastStepsOfThePathOnBothBackends) {
     }
 }
 
+// A ribbon far thinner than a pixel (1 cm at 32 px a metre: a third of a
+// pixel) is drawn at least 1.5 px wide and fainter, so it stays continuous:
+// drawn at its width it fell between pixel centres and broke into dashes.
+// A particle along a slanted line; every pixel column the ribbon spans has
+// a lit pixel.
+TEST_F(Trails, ThinRibbonsStayContinuous) {
+    test::BackendWorld w(Backend::Cpu);
+    test::OneShot o;
+    o.start = {-0.5f, -0.2f, 0.0f};
+    o.velocity = {1.2f, 0.5f, 0.0f};
+    o.size = 0.0f;
+    EmitterDef def = test::oneShotEmitter(o);
+    def.color = {glm::vec4(4.0f, 4.0f, 4.0f, 1.0f), glm::vec4(4.0f, 4.0f, 4.0f, 1.0f)};  // HDR: a faint line still shows
+    def.trail.points = 31;
+    def.trail.width = 0.01f;
+    createEmitter(w.id, def);
+    for (int step = 0; step < 30; ++step) {
+        stepWorld(w.id, kDt);
+    }
+    // From x = -0.5 to -0.1 m: columns 16 to 28.8.
+    test::ScopedRenderer r(w.id, test::orthoView(64, 64, 2.0f));
+    const Frame f = renderFrame(r.id);
+    test::dumpFrame(f, "trail_thin");
+    for (std::uint32_t x = 17; x <= 28; ++x) {
+        int brightest = 0;
+        for (std::uint32_t y = 0; y < f.height; ++y) {
+            brightest = std::max(brightest, static_cast<int>(test::pixel(f, x, y)[0]));
+        }
+        EXPECT_GT(brightest, 20) << "column " << x;
+    }
+}
+
 // A newborn's ribbon has points that have not spread yet: segments of zero
 // length, whose triangles have no area. Drawn, such a triangle gave NaN
 // fragments where its line crossed a pixel centre (llvmpipe), which the

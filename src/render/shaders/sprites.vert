@@ -89,6 +89,22 @@ vec3 trailEdge(uint slot, uint k, vec3 here) {
     return acrossLength > 1e-12 && halfWidth > 0.0 ? across * (halfWidth / acrossLength) : vec3(0.0);
 }
 
+// A ribbon thinner than this (half its width, in pixels) is widened to it
+// and made fainter by as much: thinner, it fell between pixel centres and
+// broke into dashes.
+const float kTrailMinHalfPixels = 0.75;
+
+// Half the ribbon's width on screen (pixels) at `at` with edge `edge`; 0
+// where the point is behind the camera.
+float edgePixels(vec3 at, vec3 edge) {
+    vec4 c0 = frame.viewProj * vec4(at, 1.0);
+    vec4 c1 = frame.viewProj * vec4(at + edge, 1.0);
+    if (c0.w <= 0.0 || c1.w <= 0.0) {
+        return 0.0;
+    }
+    return length((c1.xy / c1.w - c0.xy / c0.w) * 0.5 * vec2(frame.right.w, frame.up.w));
+}
+
 // A trail instance: segment v / 6 of the ribbon joins points k and k + 1
 // (k = 0 the newest) with two triangles, (k-, k+, (k+1)-) and ((k+1)-, k+,
 // (k+1)+), so neighbouring segments share their edges. A triangle that
@@ -109,14 +125,18 @@ void trailVertex(Particle p, uint slot) {
     }
     bool atB = corner == 2u || corner == 3u || corner == 5u;
     float side = (corner == 1u || corner == 4u || corner == 5u) ? 1.0 : -1.0;
-    gl_Position = frame.viewProj * vec4((atB ? b : a) + (atB ? edgeB : edgeA) * side, 1.0);
+    vec3 at = atB ? b : a;
+    vec3 edge = atB ? edgeB : edgeA;
+    float pixels = edgePixels(at, edge);
+    float grow = pixels > 0.0 && pixels < kTrailMinHalfPixels ? kTrailMinHalfPixels / pixels : 1.0;
+    gl_Position = frame.viewProj * vec4(at + edge * (grow * side), 1.0);
     local = vec2(0.0, side);
     cells = vec4(0.0);
     frameMix = 0.0;
     float t = float(atB ? k0 + 1u : k0) / float(draw.trailPoints - 1u);
     vec4 c = p.color * evaluateCurve(trailLook.colorOverLength, t);
     float alpha = clamp(c.a, 0.0, 1.0);
-    colour = vec4(max(c.rgb, vec3(0.0)) * alpha, alpha);
+    colour = vec4(max(c.rgb, vec3(0.0)) * alpha, alpha) / grow;
 }
 
 void main() {

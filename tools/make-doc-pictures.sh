@@ -4,7 +4,8 @@
 # each Sprinkle splat step (spindrift render --fluid-steps N), the 2D dam
 # break at t = 2 s and the 3D one at t = 1 s as the liquid surface and as
 # splats, the showcase level
-# at three moments, the campfire's smoke three ways and the comets' trails. Run after a build (cmake --build --preset release).
+# at three moments, the campfire's smoke three ways, the comets' trails and
+# the fireworks built up in three steps. Run after a build (cmake --build --preset release).
 set -euo pipefail
 cd "$(dirname "$0")/.."
 cli=build/release/spindrift
@@ -54,5 +55,16 @@ done
 "$cli" render scenes/comets.toml --out "$tmp/comets" --start 3.0 --frames 1 --format png --width 640 --height 360 \
   --quiet
 cp "$tmp/comets/frame_00000.png" "$out/comets.png"
+# Fireworks (docs/tutorial-fireworks.md), built up as the tutorial does: the
+# rockets alone, then with the burst, then the whole scene with its crackle;
+# the first two are the scene cut before the named emitter.
+awk '/^name = "burst"/ { exit } { print }' scenes/fireworks.toml | sed '$d' > "$tmp/fireworks-rockets.toml"
+awk '/^name = "crackle"/ { exit } { print }' scenes/fireworks.toml | sed '$d' > "$tmp/fireworks-burst.toml"
+cp scenes/fireworks.toml "$tmp/fireworks.toml"
+for name in fireworks-rockets fireworks-burst fireworks; do
+  "$cli" render "$tmp/$name.toml" --out "$tmp/$name" --start 3.0 --frames 1 --format png --width 640 --height 360 \
+    --quiet
+  cp "$tmp/$name/frame_00000.png" "$out/$name.png"
+done
 echo "wrote $out/splat-step-{1..7}.png, $out/dam-break-{,3d-}{surface,splats}.png, $out/showcase-{1.5,4.0,8.9}.png," \
-  "$out/campfire{,-sorted,-hard}.png and $out/comets.png"
+  "$out/campfire{,-sorted,-hard}.png, $out/comets.png and $out/fireworks{-rockets,-burst,}.png"

@@ -3,7 +3,7 @@
 # as errors, then the same tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Exits non-zero on any failure.
 #
-# The sanitizer pass leaves out 46 tests (the asan test preset's filter in
+# The sanitizer pass leaves out 48 tests (the asan test preset's filter in
 # CMakePresets.json), which would put CI (2 cores) over its 30 minutes (a
 # clean run with only the first nine left out took 31 minutes, 11 of them the
 # sanitizer tests); all of them run in the optimised pass:
@@ -18,7 +18,9 @@
 #   shaders: the render and sprite-look tests drawing a Vulkan world (their
 #   CPU-world twins run, through the same renderer, and so do the Vulkan
 #   world's reference image and scene comparisons of `default`, `bees` and
-#   `sparks`), eight more CPU-against-Vulkan scene comparisons, three of the
+#   `sparks`), ten more CPU-against-Vulkan scene comparisons (the trails and
+#   sub-emitters of `comets` and `fireworks` run under the sanitizers in
+#   tests/gpu/trail_test.cpp and sub_emitter_test.cpp), three of the
 #   four integrators of the gale scene on both backends (explicit Euler
 #   runs), the campfire's and the effects close-up's
 #   Vulkan reference images (their CPU twins run), the showcase's two

@@ -81,6 +81,8 @@ struct SpawnShapeDef {
 inline constexpr std::uint32_t kEmitterMaxCapacity = 16 * 1024 * 1024;
 /// Most particles one burst of the API may ask for (BurstDef::count).
 inline constexpr std::uint32_t kEmitterMaxBurstCount = (1u << 20) - 1;
+/// Most particles a sub-emitter makes per parent event (SpawnOnDef::count).
+inline constexpr std::uint32_t kMaxSpawnPerEvent = 4096;
 /// Most positions a particle's trail keeps (TrailDef::points).
 inline constexpr std::uint32_t kMaxTrailPoints = 64;
 /// Most trail positions one emitter keeps, capacity x points (12 bytes each:
@@ -151,6 +153,29 @@ struct SpriteDef {
     /// Soft particles: a sprite fades out linearly over this distance (m, along
     /// the view) in front of opaque geometry; 0: hard intersections.
     float softDistance = 0.0f;
+};
+
+/// The events of another emitter's particles that a sub-emitter follows.
+enum class SpawnEvent : std::uint32_t {
+    Birth = 0,      ///< each particle born
+    Death = 1,      ///< each particle that dies (age, or killed by a collider)
+    Collision = 2,  ///< each impact on a collider (one per collider hit)
+};
+
+/// A sub-emitter (docs/scene-format.md, "Sub-emitters"): besides its own rate
+/// and bursts, the emitter gets `count` particles at each `event` of the
+/// parent's particles, born where the event happened: its `shape` is centred
+/// there, and each particle gets `inheritVelocity` of the parent particle's
+/// velocity on top of its launch velocity. On the vulkan backend the events
+/// feed the child's births on the device, with no round trip.
+struct SpawnOnDef {
+    /// The parent, created before this emitter; 0: not a sub-emitter.
+    EmitterId parent;
+    SpawnEvent event = SpawnEvent::Death;
+    std::uint32_t count = 1;      ///< particles per event, 1 to kMaxSpawnPerEvent
+    float inheritVelocity = 0.0f; ///< share in [0, 1] of the parent particle's velocity
+
+    bool enabled() const { return parent.index != 0; }
 };
 
 /// A ribbon through each particle's last positions, one kept per step
@@ -225,6 +250,8 @@ struct EmitterDef {
 
     SpriteDef sprite;  ///< how the renderer draws it
     TrailDef trail;    ///< a ribbon behind each particle (state-preserving emitters)
+    /// Born at another emitter's particle events (spawn lifecycle only).
+    SpawnOnDef spawnOn;
 };
 
 enum class ForceKind : std::uint32_t {

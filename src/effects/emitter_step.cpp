@@ -4,6 +4,7 @@
 #include "effects/batch_update.h"
 
 #include "core/saturating.h"
+#include "kernels/sub_emit.glsl"
 #include "kernels/trail.glsl"
 #include "particles/birth_schedule.h"
 
@@ -24,6 +25,16 @@ struct ChunkResult {
     std::uint64_t hits[32] = {};
     std::vector<std::uint32_t> dead;  // spawn mode: slots that died, ascending
     std::vector<kernels::EventRecord> events;
+    std::vector<kernels::SpawnRequest> requests[kernels::SD_SPAWN_EVENT_KINDS];  // for sub-emitters
+};
+
+// What every update of one emitter's step shares.
+struct StepScope {
+    const kernels::KernelContext& ctx;
+    EmitterState& e;
+    std::uint32_t index;  // the emitter's, in its world
+    std::uint32_t step;   // the world's step (low 32 bits; spawn requests)
+    bool recordEvents;
 };
 
 kernels::Particle loadParticle(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i) {
@@ -65,18 +76,26 @@ void recordTrail(ParticleArrays& a, std::uint32_t points, std::uint32_t head, st
 }
 
 // Counts the update of `before` into r and, when events are recorded, keeps
-// its events (speed: m/s at the start of the step).
-void countUpdate(const kernels::Particle& before, const kernels::ParticleUpdate& r, std::uint32_t emitter,
-                 float speed, bool recordEvents, ChunkResult& out) {
+// its events (speed: m/s at the start of the step) and the spawn requests its
+// sub-emitters follow.
+void countUpdate(const StepScope& scope, const kernels::Particle& before, const kernels::ParticleUpdate& r,
+                 float speed, ChunkResult& out) {
     out.born += (r.events & kernels::SD_EVENT_BORN) != 0u ? 1 : 0;
     out.died += (r.events & kernels::SD_EVENT_DIED) != 0u ? 1 : 0;
     out.nonFinite += (r.events & kernels::SD_EVENT_NON_FINITE) != 0u ? 1 : 0;
     for (std::uint32_t mask = r.hitMask; mask != 0u; mask &= mask - 1u) {
         out.hits[std::countr_zero(mask)] += 1;
     }
-    const std::uint32_t n = recordEvents ? kernels::eventCountOf(r) : 0u;
+    const std::uint32_t n = scope.recordEvents ? kernels::eventCountOf(r) : 0u;
     for (std::uint32_t k = 0; k < n; ++k) {
-        out.events.push_back(kernels::updateEvent(k, before, r, emitter, speed));
+        out.events.push_back(kernels::updateEvent(k, before, r, scope.index, speed));
+    }
+    for (std::uint32_t kinds = scope.e.requestKinds; kinds != 0u; kinds &= kinds - 1u) {
+        const auto kind = static_cast<std::uint32_t>(std::countr_zero(kinds));
+        const std::uint32_t count = kernels::spawnRequestCount(r, kind);
+        for (std::uint32_t k = 0; k < count; ++k) {
+            out.requests[kind].push_back(kernels::spawnRequest(k, before, r, kind, scope.step));
+        }
     }
 }
 
@@ -101,14 +120,59 @@ void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& s
             stats.colliderHits[k].hits += c.hits[k];
         }
         e.freeSlots.insert(e.freeSlots.end(), c.dead.begin(), c.dead.end());
+        for (std::uint32_t kind = 0; kind < kernels::SD_SPAWN_EVENT_KINDS; ++kind) {
+            // At most the capacity a step, as the device's request buffers.
+            std::vector<kernels::SpawnRequest>& to = e.requests[kind];
+            const std::size_t room = e.def.capacity - std::min<std::size_t>(e.def.capacity, to.size());
+            const std::size_t take = std::min(room, c.requests[kind].size());
+            to.insert(to.end(), c.requests[kind].begin(), c.requests[kind].begin() + static_cast<std::ptrdiff_t>(take));
+            e.requestsDropped[kind] += c.requests[kind].size() - take;
+        }
     }
+}
+
+// Places `count` births (spawn mode) on the back of the free list, the last
+// free slot first: birth k is makeBirth(k), a particle born at once; one that
+// a collision killed at once leaves its slot free. The births are chunked by
+// index, so their results merge in the same order for any thread count.
+template <class MakeBirth>
+void placeBirths(WorkerPool& pool, const StepScope& scope, std::size_t count, MakeBirth makeBirth,
+                 StepStats& stats, StepEvents& events, std::uint64_t& born, std::uint64_t& died,
+                 std::uint64_t& nonFinite) {
+    EmitterState& e = scope.e;
+    ParticleArrays& a = e.particles;
+    std::vector<std::uint32_t> slots(e.freeSlots.end() - static_cast<std::ptrdiff_t>(count), e.freeSlots.end());
+    e.freeSlots.resize(e.freeSlots.size() - count);
+    std::vector<ChunkResult> chunks(WorkerPool::chunkCount(count, kChunk));
+    pool.forChunks(count, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
+        for (std::size_t k = begin; k < end; ++k) {
+            const std::uint32_t slot = slots[count - 1 - k];
+            kernels::ParticleUpdate r = makeBirth(k);
+            if (r.particle.age >= r.particle.lifetime) {
+                r.particle = kernels::deadParticle(r.particle);  // killed at once by a collision
+                r.events |= kernels::SD_EVENT_DIED;
+            }
+            storeParticle(a, slot, r.particle);
+            recordTrail(a, e.def.trail.points, e.trailHead, slot, true);
+            countUpdate(scope, r.particle, r, glm::length(r.particle.velocity), chunks[c]);
+            if (slotFreed(r)) {
+                chunks[c].dead.push_back(slot);
+            }
+        }
+    });
+    mergeChunks(chunks, e, stats, events, born, died, nonFinite);
 }
 
 }  // namespace
 
 void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterState& e, std::uint32_t index,
-                 double time, float dt, StepStats& stats, StepEvents& events) {
-    const bool recordEvents = events.capacity > 0;
+                 std::uint64_t step, double time, float dt, const EmitterState* parent, StepStats& stats,
+                 StepEvents& events) {
+    const StepScope scope{ctx, e, index, static_cast<std::uint32_t>(step), events.capacity > 0};
+    for (std::uint32_t kind = 0; kind < kernels::SD_SPAWN_EVENT_KINDS; ++kind) {
+        e.requests[kind].clear();
+        e.requestsDropped[kind] = 0;
+    }
     const kernels::EmitterParams& params = e.params;
     const bool spawnMode = e.def.lifecycle == Lifecycle::Spawn;
     ParticleArrays& a = e.particles;
@@ -141,7 +205,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                 kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
                 storeParticle(a, i, r.particle);
                 recordTrail(a, trailPoints, e.trailHead, i, (r.events & kernels::SD_EVENT_BORN) != 0u);
-                countUpdate(p, r, index, glm::length(p.velocity), recordEvents, out);
+                countUpdate(scope, p, r, glm::length(p.velocity), out);
                 if (spawnMode && slotFreed(r)) {
                     out.dead.push_back(static_cast<std::uint32_t>(i));
                 }
@@ -160,30 +224,35 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
         const std::vector<float> ages = schedule.ages(e.freeSlots.size());
         const std::size_t count = ages.size();
         stats.clamped = saturatingAdd(stats.clamped, saturatingAdd(schedule.total() - count, schedule.dropped));
-        std::vector<std::uint32_t> slots(e.freeSlots.end() - static_cast<std::ptrdiff_t>(count), e.freeSlots.end());
-        e.freeSlots.resize(e.freeSlots.size() - count);
         const std::uint32_t firstSerial = e.nextSerial;
-        std::vector<ChunkResult> birthChunks(WorkerPool::chunkCount(count, kChunk));
-        pool.forChunks(count, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
-            for (std::size_t k = begin; k < end; ++k) {
-                // The slot at the back of the free list is used first.
-                std::uint32_t slot = slots[count - 1 - k];
-                auto serial = firstSerial + static_cast<std::uint32_t>(k);
-                kernels::ParticleUpdate r = kernels::bornParticle(ctx, params, serial, ages[k]);
-                if (r.particle.age >= r.particle.lifetime) {
-                    r.particle = kernels::deadParticle(r.particle);  // killed at once by a collision
-                    r.events |= kernels::SD_EVENT_DIED;
-                }
-                storeParticle(a, slot, r.particle);
-                recordTrail(a, trailPoints, e.trailHead, slot, true);
-                countUpdate(r.particle, r, index, glm::length(r.particle.velocity), recordEvents, birthChunks[c]);
-                if (slotFreed(r)) {
-                    birthChunks[c].dead.push_back(slot);
-                }
-            }
-        });
+        placeBirths(
+            pool, scope, count,
+            [&](std::size_t k) {
+                return kernels::bornParticle(ctx, params, firstSerial + static_cast<std::uint32_t>(k), ages[k]);
+            },
+            stats, events, born, died, nonFinite);
         e.nextSerial += static_cast<std::uint32_t>(count);
-        mergeChunks(birthChunks, e, stats, events, born, died, nonFinite);
+    }
+
+    // Sub-emission: `count` births at each of the parent's requests of this
+    // step (src/kernels/sub_emit.glsl), in request order, after the
+    // emitter's own; beyond the free slots, and for requests the parent
+    // could not keep, they are dropped and counted.
+    if (parent != nullptr) {
+        const SpawnOnDef& on = e.def.spawnOn;
+        const auto kind = static_cast<std::uint32_t>(on.event);
+        const std::vector<kernels::SpawnRequest>& requests = parent->requests[kind];
+        const std::uint64_t owed = std::uint64_t{requests.size()} * on.count;
+        const std::uint64_t owedAll = owed + parent->requestsDropped[kind] * on.count;
+        const std::size_t count = static_cast<std::size_t>(std::min<std::uint64_t>(owed, e.freeSlots.size()));
+        stats.clamped = saturatingAdd(stats.clamped, owedAll - count);
+        placeBirths(
+            pool, scope, count,
+            [&](std::size_t k) {
+                return kernels::childParticle(ctx, params, requests[k / on.count],
+                                              static_cast<std::uint32_t>(k % on.count), on.inheritVelocity);
+            },
+            stats, events, born, died, nonFinite);
     }
 
     // Tally.

@@ -21,10 +21,13 @@ struct StepEvents {
     std::uint64_t dropped = 0;
 };
 
-/// Advances emitter `e` (index `index` of its world) by dt from `time` (s),
-/// reading forces, colliders and fields through `ctx`; adds its births, deaths
-/// and hits to `stats` and its events to `events`.
+/// Advances emitter `e` (index `index` of its world) in world step `step` by
+/// dt from `time` (s), reading forces, colliders and fields through `ctx`;
+/// adds its births, deaths and hits to `stats` and its events to `events`,
+/// and keeps this step's spawn requests for its sub-emitters. A sub-emitter
+/// gets its `parent`, stepped before it in the same world step.
 void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterState& e, std::uint32_t index,
-                 double time, float dt, StepStats& stats, StepEvents& events);
+                 std::uint64_t step, double time, float dt, const EmitterState* parent, StepStats& stats,
+                 StepEvents& events);
 
 }  // namespace spindrift

@@ -28,16 +28,26 @@ std::array<Buffer*, kBindingCount> bindingBuffers(GpuWorld& w, GpuEmitter& e, st
     b[kernels::SD_BINDING_COUNTERS] = &e.counters[frame];
     b[kernels::SD_BINDING_EVENTS] = &w.frames[frame].events;
     b[kernels::SD_BINDING_TRAILS] = &e.trail;
+    static_assert(kernels::SD_BINDING_DEATH_REQUESTS == kernels::SD_BINDING_BIRTH_REQUESTS + kernels::SD_SPAWN_ON_DEATH);
+    static_assert(kernels::SD_BINDING_COLLISION_REQUESTS ==
+                  kernels::SD_BINDING_BIRTH_REQUESTS + kernels::SD_SPAWN_ON_COLLISION);
+    for (std::uint32_t kind = 0; kind < kernels::SD_SPAWN_EVENT_KINDS; ++kind) {
+        Buffer& r = e.requests[kind];
+        b[kernels::SD_BINDING_BIRTH_REQUESTS + kind] = r.buffer != VK_NULL_HANDLE ? &r : &w.placeholder;
+    }
     return b;
 }
 
 // Set 1 of a spawn emitter: alive[p] is the current list, alive[1 - p] the next.
-std::array<Buffer*, kListBindingCount> listBuffers(GpuEmitter& e, std::uint32_t p, std::uint32_t frame) {
+std::array<Buffer*, kListBindingCount> listBuffers(GpuWorld& w, GpuEmitter& e, std::uint32_t p,
+                                                   std::uint32_t frame) {
     std::array<Buffer*, kListBindingCount> b{};
     b[kernels::SD_BINDING_DEAD] = &e.dead;
     b[kernels::SD_BINDING_ALIVE_IN] = &e.alive[p];
     b[kernels::SD_BINDING_ALIVE_OUT] = &e.alive[1 - p];
     b[kernels::SD_BINDING_SCHEDULE] = &e.schedules[frame];
+    b[kernels::SD_BINDING_PARENT_REQUESTS] =
+        e.parent >= 0 ? &w.emitters[static_cast<std::size_t>(e.parent)]->requests[e.parentKind] : &w.placeholder;
     return b;
 }
 
@@ -53,7 +63,7 @@ void createDescriptorSets(GpuWorld& w, GpuEmitter& e) {
         e.descriptorSets[f] = writeSet(d, e.descriptorPool, w.setLayout, buffers);
         if (e.spawn) {
             for (std::uint32_t p = 0; p < 2; ++p) {
-                std::array<Buffer*, kListBindingCount> lists = listBuffers(e, p, f);
+                std::array<Buffer*, kListBindingCount> lists = listBuffers(w, e, p, f);
                 e.listSets[p][f] = writeSet(d, e.descriptorPool, w.listLayout, lists);
             }
         }
@@ -67,7 +77,7 @@ void destroyEmitter(Device& d, GpuEmitter& e) {
         vkDestroyDescriptorPool(d.device, e.descriptorPool, nullptr);  // frees its set
     }
     for (Buffer* b : {&e.params, &e.positions, &e.velocities, &e.ages, &e.births, &e.rotations, &e.trail, &e.dead,
-                      &e.alive[0], &e.alive[1]}) {
+                      &e.alive[0], &e.alive[1], &e.requests[0], &e.requests[1], &e.requests[2]}) {
         destroyBuffer(d, *b);
     }
     for (std::uint32_t f = 0; f < kMaxFramesInFlight; ++f) {
@@ -221,6 +231,10 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
     e->spawn = initial.def.lifecycle == Lifecycle::Spawn;
     e->scheduleRuns = static_cast<std::uint32_t>(initial.def.bursts.size());
     e->trailPoints = initial.def.trail.points;
+    if (initial.def.spawnOn.enabled()) {
+        e->parent = initial.def.spawnOn.parent.index - 1;
+        e->parentKind = static_cast<std::uint32_t>(initial.def.spawnOn.event);
+    }
     try {
         allocateSlots(d, *e, w.framesInFlight);
         uploadSlots(d, *e, initial);
@@ -230,6 +244,32 @@ void addEmitter(GpuWorld& w, const EmitterState& initial) {
         throw;
     }
     w.emitters.push_back(std::move(e));
+}
+
+void followEvents(GpuWorld& w, std::size_t index, std::uint32_t kind) {
+    GpuEmitter& e = *w.emitters.at(index);
+    Buffer& r = e.requests[kind];
+    if (r.buffer != VK_NULL_HANDLE) {
+        return;  // another sub-emitter follows the same kind
+    }
+    waitForSteps(w);
+    Device& d = *w.device;
+    r = createStorageBuffer(d, sizeof(EventsHeader) +
+                                   std::max<VkDeviceSize>(e.capacity, 1) * sizeof(kernels::SpawnRequest));
+    EventsHeader header{0, e.capacity, 0, 0};
+    const std::array<Transfer, 1> t{{{&r, &header, sizeof(header)}}};
+    upload(d, t);
+    // Point the emitter's sets at the new buffer (no step is using them).
+    for (std::uint32_t f = 0; f < w.framesInFlight; ++f) {
+        VkDescriptorBufferInfo info{r.buffer, 0, VK_WHOLE_SIZE};
+        auto write = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        write.dstSet = e.descriptorSets[f];
+        write.dstBinding = kernels::SD_BINDING_BIRTH_REQUESTS + kind;
+        write.descriptorCount = 1;
+        write.descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        write.pBufferInfo = &info;
+        vkUpdateDescriptorSets(d.device, 1, &write, 0, nullptr);
+    }
 }
 
 void setEmitterParams(GpuWorld& w, std::size_t index, const kernels::EmitterParams& params) {

@@ -40,12 +40,13 @@ std::uint32_t writeSchedule(GpuEmitter& e, std::uint32_t frame, EmitterState& s,
 }
 
 void bindEmitter(GpuWorld& w, VkCommandBuffer cmd, std::uint32_t frame, std::size_t index, float time, float dt,
-                 std::uint32_t count) {
+                 std::uint32_t count, float inherit = 0.0f) {
     GpuEmitter& e = *w.emitters[index];
     std::array<VkDescriptorSet, 3> sets{e.descriptorSets[frame],
                                         e.spawn ? e.listSets[e.parity][frame] : w.placeholderSet, w.fields.set};
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, w.pipelineLayout, 0, 3, sets.data(), 0, nullptr);
-    StepPush push{dt, count, static_cast<std::uint32_t>(index), time, e.trailPoints, e.trailHead, 0, 0};
+    StepPush push{dt, count, static_cast<std::uint32_t>(index), time, e.trailPoints, e.trailHead,
+                  e.step, e.requestKinds, inherit, 0, 0, 0};
     vkCmdPushConstants(cmd, w.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
 }
 
@@ -67,9 +68,10 @@ void collectCounters(GpuEmitter& e, std::uint32_t frame, EmitterState& s, StepSt
     stats.clamped = saturatingAdd(stats.clamped, saturatingAdd(c.clamped, e.scheduleDropped[frame]));
     e.scheduleDropped[frame] = 0;
     if (e.spawn) {
-        // Every birth of a spawn emitter came from the emit pass, numbered
-        // from the device's nextSerial in schedule order, as the CPU does.
-        s.nextSerial += c.born;
+        // Every birth of a spawn emitter but the sub-emitted ones came from
+        // the emit pass, numbered from the device's nextSerial in schedule
+        // order, as the CPU does.
+        s.nextSerial += c.born - c.subBorn;
     }
 }
 
@@ -182,7 +184,7 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     std::vector<std::uint32_t> births(w.emitters.size(), 0);
     // The pipelines of each emitter's passes (compiled here on first use, not
     // while recording).
-    std::vector<std::array<VkPipeline, 3>> pipelines(w.emitters.size());
+    std::vector<std::array<VkPipeline, 4>> pipelines(w.emitters.size());
     bool anySpawn = false;
     for (std::size_t i = 0; i < w.emitters.size(); ++i) {
         GpuEmitter* e = w.emitters[i].get();
@@ -190,12 +192,15 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
             continue;
         }
         e->trailHead = emitters[i]->trailHead;
+        e->step = static_cast<std::uint32_t>(step);
+        e->requestKinds = emitters[i]->requestKinds;
         if (e->spawn) {
             births[i] = writeSchedule(*e, frame, *emitters[i], time, dt);
             anySpawn = true;
             pipelines[i] = {pipelineFor(w, Pass::SpawnUpdate, *emitters[i]),
                             pipelineFor(w, Pass::SpawnEmit, *emitters[i]),
-                            pipelineFor(w, Pass::SpawnFinish, *emitters[i])};
+                            pipelineFor(w, Pass::SpawnFinish, *emitters[i]),
+                            e->parent >= 0 ? pipelineFor(w, Pass::SubEmit, *emitters[i]) : VK_NULL_HANDLE};
         } else {
             pipelines[i][0] = pipelineFor(w, Pass::RecycleUpdate, *emitters[i]);
         }
@@ -209,6 +214,20 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
     if (w.timestamps != VK_NULL_HANDLE) {
         vkCmdResetQueryPool(cmd, w.timestamps, 2 * frame, 2);
         vkCmdWriteTimestamp(cmd, VK_PIPELINE_STAGE_TOP_OF_PIPE_BIT, w.timestamps, 2 * frame);
+    }
+    // This step's spawn requests start empty: the count zeroed once the
+    // previous step's passes are done reading it.
+    bool anyRequests = false;
+    for (const auto& e : w.emitters) {
+        for (std::uint32_t kind = 0; e && kind < kernels::SD_SPAWN_EVENT_KINDS; ++kind) {
+            if (e->requests[kind].buffer != VK_NULL_HANDLE) {
+                if (!anyRequests) {
+                    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, 0, VK_PIPELINE_STAGE_TRANSFER_BIT, 0);
+                    anyRequests = true;
+                }
+                vkCmdFillBuffer(cmd, e->requests[kind].buffer, 0, 4, 0u);
+            }
+        }
     }
     // Earlier steps' and uploads' writes (lists, the indirect dispatch)
     // before this step reads them, also as an indirect command.
@@ -245,9 +264,22 @@ void stepEmitters(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> em
                 vkCmdDispatch(cmd, groupsFor(std::min(births[i], w.emitters[i]->capacity)), 1, 1);
             }
         }
+        // Sub-emit: each sub-emitter's births from its parent's requests of
+        // this step, in emitter order with a barrier after each, so that a
+        // sub-emitter's own requests (a chain) are complete before its
+        // children read them. One thread per slot of its capacity.
+        computeToCompute(cmd);
+        for (std::size_t i = 0; i < w.emitters.size(); ++i) {
+            if (spawning(i) && w.emitters[i]->parent >= 0) {
+                const SpawnOnDef& on = emitters[i]->def.spawnOn;
+                vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][3]);
+                bindEmitter(w, cmd, frame, i, static_cast<float>(time), dt, on.count, on.inheritVelocity);
+                vkCmdDispatch(cmd, groupsFor(w.emitters[i]->capacity), 1, 1);
+                computeToCompute(cmd);
+            }
+        }
         // Finish: pop the taken slots, number the births, write the next
         // update's dispatch.
-        computeToCompute(cmd);
         for (std::size_t i = 0; i < w.emitters.size(); ++i) {
             if (spawning(i)) {
                 vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipelines[i][2]);

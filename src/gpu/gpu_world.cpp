@@ -150,8 +150,8 @@ std::unique_ptr<GpuWorld> createGpuWorld(std::uint32_t framesInFlight, std::uint
         w->pipelineLayout = createPipelineLayout(d, w->setLayout, w->listLayout, w->fields.layout);
         w->placeholder = createStorageBuffer(d, 64);
         w->placeholderPool = createDescriptorPool(d, 1, kListBindingCount);
-        std::array<Buffer*, kListBindingCount> placeholders{&w->placeholder, &w->placeholder, &w->placeholder,
-                                                             &w->placeholder};
+        std::array<Buffer*, kListBindingCount> placeholders{};
+        placeholders.fill(&w->placeholder);
         w->placeholderSet = writeSet(d, w->placeholderPool, w->listLayout, placeholders);
         w->forces = createStorageBuffer(d, sizeof(TableHeader) + kernels::SD_MAX_FORCES * sizeof(kernels::ForceParams));
         w->colliders = createStorageBuffer(d, sizeof(TableHeader) + kernels::SD_MAX_COLLIDERS * sizeof(kernels::ColliderParams));

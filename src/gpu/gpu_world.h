@@ -72,6 +72,16 @@ struct GpuEmitter {
     Buffer trail;
     std::uint32_t trailPoints = 0;
     std::uint32_t trailHead = 0;  // this step's (EmitterState::trailHead)
+    std::uint32_t step = 0;          // this step's index, low 32 bits (spawn requests)
+    std::uint32_t requestKinds = 0;  // EmitterState::requestKinds
+    /// This step's spawn requests per event kind (EventsHeader, SpawnRequest
+    /// [capacity]) for the kinds some sub-emitter follows (followEvents);
+    /// no buffer for the others (the placeholder is bound).
+    Buffer requests[kernels::SD_SPAWN_EVENT_KINDS];
+    /// A sub-emitter's parent (index into GpuWorld::emitters) and the kind of
+    /// its requests it reads; -1: none.
+    std::int64_t parent = -1;
+    std::uint32_t parentKind = 0;
     Buffer counters[kMaxFramesInFlight];  // host-visible: kernels::StepCounters
     VkDescriptorPool descriptorPool = VK_NULL_HANDLE;
     VkDescriptorSet descriptorSets[kMaxFramesInFlight] = {};  // set 0, per frame
@@ -172,6 +182,11 @@ void collectAll(GpuWorld& w, std::span<const std::unique_ptr<EmitterState>> emit
 /// Waits until the device has finished every submitted step (collects
 /// nothing): before the host reads or rewrites what a step uses.
 void waitForSteps(GpuWorld& w);
+
+/// Emitter `index` keeps its spawn requests of `kind` (SD_SPAWN_ON_*) on the
+/// device from the next step on, for a sub-emitter about to be added (its
+/// descriptor sets bind them). Waits for the steps in flight.
+void followEvents(GpuWorld& w, std::size_t index, std::uint32_t kind);
 
 /// Replaces emitter `index`'s parameters on the device, after the steps in
 /// flight (which read them) have finished.

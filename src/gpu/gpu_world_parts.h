@@ -35,6 +35,7 @@ enum class Pass : std::uint32_t {
     SpawnUpdate = kernels::SD_PASS_SPAWN_UPDATE,
     SpawnEmit = kernels::SD_PASS_SPAWN_EMIT,
     SpawnFinish = kernels::SD_PASS_SPAWN_FINISH,
+    SubEmit = kernels::SD_PASS_SUB_EMIT,
 };
 
 // gpu_world.cpp

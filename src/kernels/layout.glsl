@@ -38,6 +38,7 @@ SD_CONST uint SD_PASS_RECYCLE_UPDATE = 0u;
 SD_CONST uint SD_PASS_SPAWN_UPDATE = 1u;
 SD_CONST uint SD_PASS_SPAWN_EMIT = 2u;
 SD_CONST uint SD_PASS_SPAWN_FINISH = 3u;
+SD_CONST uint SD_PASS_SUB_EMIT = 4u;  // a sub-emitter's births from its parent's requests (sub_emit.glsl)
 
 // Specialization constant ids, in the order the host passes them.
 SD_CONST uint SD_SPEC_PASS = 0u;
@@ -67,14 +68,21 @@ SD_CONST uint SD_BINDING_ROTATIONS = 7u;  // float[capacity] (rad)
 SD_CONST uint SD_BINDING_COUNTERS = 8u;   // StepCounters, host-visible, per frame
 SD_CONST uint SD_BINDING_EVENTS = 9u;     // EventsHeader, EventRecord[capacity], per frame
 SD_CONST uint SD_BINDING_TRAILS = 10u;    // float[3 points capacity] (m), trail.glsl; 1 entry without a trail
-SD_CONST uint SD_EMITTER_BINDINGS = 11u;
+// This step's spawn requests for sub-emitters (sub_emit.glsl), one buffer per
+// event kind: EventsHeader (count, capacity), SpawnRequest[capacity]; a
+// placeholder for a kind no sub-emitter follows.
+SD_CONST uint SD_BINDING_BIRTH_REQUESTS = 11u;
+SD_CONST uint SD_BINDING_DEATH_REQUESTS = 12u;
+SD_CONST uint SD_BINDING_COLLISION_REQUESTS = 13u;
+SD_CONST uint SD_EMITTER_BINDINGS = 14u;
 
 // Set 1 bindings (spawn mode), in order.
 SD_CONST uint SD_BINDING_DEAD = 0u;       // DeadHeader, uint deadSlots[capacity]
 SD_CONST uint SD_BINDING_ALIVE_IN = 1u;   // TableHeader, uint slots[capacity]
 SD_CONST uint SD_BINDING_ALIVE_OUT = 2u;  // TableHeader, uint slots[capacity]
 SD_CONST uint SD_BINDING_SCHEDULE = 3u;   // ScheduleHeader, uvec2 runs[], host-visible, per frame
-SD_CONST uint SD_LIST_BINDINGS = 4u;
+SD_CONST uint SD_BINDING_PARENT_REQUESTS = 4u;  // a sub-emitter's parent's requests of its kind (else a placeholder)
+SD_CONST uint SD_LIST_BINDINGS = 5u;
 
 // Set 2 bindings: combined image samplers, arrays of SD_MAX_* elements.
 SD_CONST uint SD_BINDING_FLOW_FIELDS = 0u;  // sampler3D, xyz velocity (m/s)
@@ -94,10 +102,11 @@ struct TableHeader {
 // 1]). dispatch*: the indirect dispatch (VkDispatchIndirectCommand) of the
 // next update pass; popped: slots the emit pass took; nextSerial: serial of
 // the emitter's next birth, kept on the device so the host need not wait for a
-// step's birth count to schedule the next. 32 bytes.
+// step's birth count to schedule the next; subPopped: slots the sub-emit pass
+// took, after the emit pass's. 32 bytes.
 struct DeadHeader {
     uint dispatchX, dispatchY, dispatchZ, deadCount;
-    uint popped, nextSerial, pad0, pad1;
+    uint popped, nextSerial, subPopped, pad1;
 };
 
 // Head of a step's birth schedule (BirthSchedule of
@@ -114,13 +123,15 @@ struct ScheduleHeader {
 };
 
 // Counts of one emitter's step, read by the host through a mapping once the
-// step's fence has signalled. 144 bytes.
+// step's fence has signalled. 160 bytes.
 struct StepCounters {
     uint born;
     uint died;
     uint clamped;  // births without a free slot
     uint nonFinite;  // removed: a number became NaN or infinite (SD_EVENT_NON_FINITE)
     uint hits[SD_MAX_COLLIDERS];  // per collider
+    uint subBorn;  // of born: sub-emitted (they take no serial from nextSerial)
+    uint pad0, pad1, pad2;
 };
 
 // Head of a frame's events buffer, shared by every emitter of the world: at
@@ -133,8 +144,11 @@ struct EventsHeader {
 };
 
 // The push constants of every pass. count: slots (recycle update) or births
-// owed (spawn emit and finish). trailPoints, trailHead: the emitter's trail
-// (trail.glsl; 0 points: none), the ring index this step writes. 32 bytes.
+// owed (spawn emit and finish), particles per request (sub-emit).
+// trailPoints, trailHead: the emitter's trail (trail.glsl; 0 points: none),
+// the ring index this step writes. step: the world's step (low 32 bits);
+// requestKinds: bit k, record spawn requests of kind k (sub_emit.glsl);
+// inherit: a sub-emitter's share of the parent's velocity. 48 bytes.
 struct StepPush {
     float dt;  // s
     uint count;
@@ -142,7 +156,10 @@ struct StepPush {
     float time;  // s, the world time at the start of the step (animated forces)
     uint trailPoints;
     uint trailHead;
-    uint pad0, pad1;
+    uint step;
+    uint requestKinds;
+    float inherit;
+    uint pad0, pad1, pad2;
 };
 
 // The back-to-front sort (src/gpu/shaders/back_to_front_sort.comp, src/gpu/
@@ -328,10 +345,12 @@ static_assert(offsetof(DeadHeader, nextSerial) == 20);
 static_assert(sizeof(ScheduleHeader) == 32);
 static_assert(offsetof(ScheduleHeader, rateSpan) == 16);
 static_assert(offsetof(ScheduleHeader, maxAge) == 28);
-static_assert(sizeof(StepCounters) == 16 + 4 * SD_MAX_COLLIDERS);
+static_assert(sizeof(StepCounters) == 32 + 4 * SD_MAX_COLLIDERS);
+static_assert(offsetof(StepCounters, subBorn) == 16 + 4 * SD_MAX_COLLIDERS);
 static_assert(offsetof(StepCounters, hits) == 16);
 static_assert(sizeof(EventsHeader) == 16);
-static_assert(sizeof(StepPush) == 32);
+static_assert(sizeof(StepPush) == 48);
+static_assert(offsetof(StepPush, inherit) == 32);
 static_assert(offsetof(StepPush, trailHead) == 20);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
 static_assert(offsetof(StepPush, time) == 12);

@@ -122,6 +122,24 @@ struct EventRecord {
     uvec4 header;        // kind, collider index + 1 (0: none), emitter index, birth serial
 };
 
+// Sub-emitters (src/kernels/sub_emit.glsl): one parent particle's event.
+// The event kinds a sub-emitter can follow (SpawnEvent in effects.h).
+SD_CONST uint SD_SPAWN_ON_BIRTH = 0u;
+SD_CONST uint SD_SPAWN_ON_DEATH = 1u;
+SD_CONST uint SD_SPAWN_ON_COLLISION = 2u;
+SD_CONST uint SD_SPAWN_EVENT_KINDS = 3u;
+
+// Serials of sub-emitted particles have this bit set (and the 30 bits below
+// it hashed from their request); an emitter's own births count up from 0.
+SD_CONST uint SD_SUB_SERIAL_BIT = 0x40000000u;
+
+// Where and how one parent particle's event happened. 48 bytes.
+struct SpawnRequest {
+    vec4 position;  // xyz (m): where the particle was at the event
+    vec4 velocity;  // xyz (m/s): its velocity then
+    uvec4 header;   // x: its birth serial; y: collider index + 1 (collisions; 0 otherwise); z: world step; w: kind
+};
+
 SD_END
 
 // The C++ side must have the std430 sizes and offsets too, or the GPU would
@@ -131,6 +149,8 @@ SD_END
 namespace spindrift::kernels {
 
 static_assert(sizeof(EventRecord) == 32);
+static_assert(sizeof(SpawnRequest) == 48);
+static_assert(offsetof(SpawnRequest, header) == 32);
 static_assert(offsetof(EventRecord, header) == 16);
 static_assert(sizeof(CurveParams) == 176);
 static_assert(offsetof(CurveParams, times) == 128);

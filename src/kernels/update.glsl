@@ -131,13 +131,18 @@ SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterPar
     return finiteParticle(r.particle) ? r : removedUpdate(r);
 }
 
-// A fresh particle with serial `serial` that has lived `age` seconds of this step.
-SD_FN ParticleUpdate bornParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, uint serial, float age) {
-    Particle p = spawnParticle(e, serial);
+// A spawned particle p (spawnParticle) that has lived `age` seconds of this
+// step: simulated over them, marked born.
+SD_FN ParticleUpdate startParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, Particle p, float age) {
     p.age = min(age, p.lifetime * 0.999f);
     ParticleUpdate r = simulateParticle(ctx, e, p, p.age);
     r.events = r.events | SD_EVENT_BORN;
     return r;
+}
+
+// A fresh particle with serial `serial` that has lived `age` seconds of this step.
+SD_FN ParticleUpdate bornParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterParams) e, uint serial, float age) {
+    return startParticle(ctx, e, spawnParticle(e, serial), age);
 }
 
 SD_FN Particle deadParticle(Particle p) {

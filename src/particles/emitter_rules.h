@@ -56,6 +56,10 @@ inline constexpr FieldRule kCurveFactor = FieldRule::number(Bounds::nonNegative(
 inline constexpr FieldRule kInheritVelocity = FieldRule::number(Bounds::unit());
 /// m/s, each end of the speeds the over-speed curves span.
 inline constexpr FieldRule kOverSpeed = FieldRule::number(Bounds::nonNegative());
+/// Particles a sub-emitter makes per parent event.
+inline constexpr FieldRule kSpawnCount = FieldRule::whole(Bounds::between(1, kMaxSpawnPerEvent));
+/// Share of the parent particle's velocity a sub-emitted particle inherits.
+inline constexpr FieldRule kSpawnInherit = FieldRule::number(Bounds::unit());
 /// Positions a trail keeps: 0 (none) or 2 and more (one point is no ribbon).
 inline constexpr FieldRule kTrailPoints = FieldRule::whole(Bounds::between(0, kMaxTrailPoints));
 inline constexpr FieldRule kTrailWidth = FieldRule::number(Bounds::positive());  ///< m

@@ -45,6 +45,15 @@ struct EmitterState {
     /// Fraction of a particle owed by the rate, carried between steps.
     double emissionCarry = 0.0;
     std::uint64_t alive = 0;
+    /// Sub-emitters following this emitter: bit k for event kind k
+    /// (SD_SPAWN_ON_* of src/kernels/types.glsl).
+    std::uint32_t requestKinds = 0;
+    /// This step's spawn requests per kind, at most the capacity each, in slot
+    /// order (CPU backend; the Vulkan backend keeps them on the device).
+    std::vector<kernels::SpawnRequest> requests[kernels::SD_SPAWN_EVENT_KINDS];
+    /// This step's requests per kind beyond the capacity: not kept, their
+    /// births counted as clamped by the sub-emitter.
+    std::uint64_t requestsDropped[kernels::SD_SPAWN_EVENT_KINDS] = {};
     /// Ring index of the trails' newest points (src/kernels/trail.glsl),
     /// advanced before each step by the world, for both backends.
     std::uint32_t trailHead = 0;

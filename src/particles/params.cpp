@@ -32,6 +32,9 @@ static_assert(sizeof(kernels::CurveParams::values) / sizeof(kernels::CurveParams
 // (src/kernels/stateless.glsl): a larger burst would run into the next one's.
 static_assert(kEmitterMaxBurstCount == kernels::SD_BURST_SERIAL_STRIDE - 1);
 static_assert(kMaxTrailPoints == kernels::SD_MAX_TRAIL_POINTS);
+static_assert(static_cast<std::uint32_t>(SpawnEvent::Birth) == kernels::SD_SPAWN_ON_BIRTH);
+static_assert(static_cast<std::uint32_t>(SpawnEvent::Death) == kernels::SD_SPAWN_ON_DEATH);
+static_assert(static_cast<std::uint32_t>(SpawnEvent::Collision) == kernels::SD_SPAWN_ON_COLLISION);
 
 // `color`'s two ends, each channel and the opacity against its rule.
 void checkColorRange(const FieldCheck& check, const ColorRange& color) {
@@ -87,6 +90,25 @@ void checkTrail(const FieldCheck& check, const EmitterDef& d) {
     check.number("trail.width", t.width, emitter_rules::kTrailWidth);
     checkCurve(check, "trail.width_over_length", t.widthOverLength, 1);
     checkCurve(check, "trail.color_over_length", t.colorOverLength, 4);
+}
+
+// A sub-emitter: a spawn-mode emitter that stores its particles; the parent
+// is checked by the world that holds it (createEmitter).
+void checkSpawnOn(const FieldCheck& check, const EmitterDef& d) {
+    const SpawnOnDef& on = d.spawnOn;
+    if (!on.enabled()) {
+        return;
+    }
+    check.number("spawn_on.count", on.count, emitter_rules::kSpawnCount);
+    check.number("spawn_on.inherit_velocity", on.inheritVelocity, emitter_rules::kSpawnInherit);
+    if (d.stateless) {
+        check.fail("spawn_on", "a stateless emitter is a closed form of time and cannot be born at events; "
+                               "expected no spawn_on, or stateless = false");
+    }
+    if (d.lifecycle != Lifecycle::Spawn) {
+        check.fail("spawn_on", "a recycle emitter re-births its own slots; expected lifecycle = \"spawn\" for a "
+                               "sub-emitter");
+    }
 }
 
 }  // namespace
@@ -149,6 +171,7 @@ void validateEmitterDef(const EmitterDef& d) {
     checkCurve(check, "size_over_speed", d.sizeOverSpeed, 1);
     sprite_rules::validateSpriteDef(check, d.sprite);
     checkTrail(check, d);
+    checkSpawnOn(check, d);
 }
 
 kernels::EmitterParams makeEmitterParams(const EmitterDef& d, std::uint32_t seed, std::uint32_t emitterIndex,

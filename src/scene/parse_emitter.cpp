@@ -35,7 +35,7 @@ const std::vector<std::string_view> kEmitterKeys = {
     "collision",      "stateless",  "stateless_gravity",
     "sprite",         "over_speed_range", "color_over_speed",
     "size_over_speed", "body",      "inherit_velocity",
-    "trail"};
+    "trail",          "spawn_on"};
 
 FloatRange toRadians(FloatRange degrees) {
     return {degrees.min * kRadiansPerDegree, degrees.max * kRadiansPerDegree};
@@ -332,6 +332,31 @@ SpriteDef readSprite(const Table& t) {
     return def;
 }
 
+// A sub-emitter's parent: an emitter above this one in the file that stores
+// its particles (the world creates emitters in file order).
+SpawnOnDef readSpawnOn(const Table& t, const NameTable& names, const std::vector<EmitterDef>& earlier) {
+    t.allowOnly({"parent", "event", "count", "inherit_velocity"}, "[emitter.spawn_on]");
+    SpawnOnDef def;
+    const Value parent = t.require("parent", "the name of an emitter defined above this one");
+    const std::uint32_t index = names.resolve(parent);
+    if (index >= earlier.size()) {
+        parent.fail("an emitter cannot follow its own events; expected an emitter defined above this one");
+    }
+    if (earlier[index].stateless) {
+        parent.fail(fmt::format("emitter '{}' is stateless: a closed form has no particle events to follow; "
+                                "expected a state-preserving emitter",
+                                earlier[index].name));
+    }
+    def.parent = {index + 1};
+    if (auto v = t.find("event")) {
+        def.event = v->choice<SpawnEvent>(
+            {{"birth", SpawnEvent::Birth}, {"death", SpawnEvent::Death}, {"collision", SpawnEvent::Collision}});
+    }
+    def.count = t.whole<std::uint32_t>("count", def.count, emitter_rules::kSpawnCount);
+    def.inheritVelocity = t.real("inherit_velocity", def.inheritVelocity, emitter_rules::kSpawnInherit);
+    return def;
+}
+
 TrailDef readTrail(const Table& t) {
     t.allowOnly({"points", "width", "width_over_length", "color_over_length"}, "[emitter.trail]");
     TrailDef def;
@@ -349,7 +374,7 @@ TrailDef readTrail(const Table& t) {
 }  // namespace
 
 EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& forces,
-                        const NameTable& colliders, const NameTable& bodies) {
+                        const NameTable& colliders, const NameTable& bodies, const std::vector<EmitterDef>& earlier) {
     t.allowOnly(kEmitterKeys, "an emitter");
     EmitterDef def;
     def.name = names.add(t);
@@ -367,6 +392,12 @@ EmitterDef parseEmitter(const Table& t, NameTable& names, const NameTable& force
     }
     if (auto trail = t.subTable("trail")) {
         def.trail = readTrail(*trail);
+    }
+    if (auto on = t.subTable("spawn_on")) {
+        def.spawnOn = readSpawnOn(*on, names, earlier);
+        if (!t.find("rate")) {
+            def.rate = 0.0f;  // a file's sub-emitter emits at its parent's events only, unless it says so
+        }
     }
     validateAt(t, [&] { validateEmitterDef(def); });
     checkBurstCounts(t, def);

@@ -64,7 +64,9 @@ LightDef parseLight(const Table& table, NameTable& names, const NameTable& emitt
 /// [render] with its [render.background] and [render.fluid]; the camera is
 /// left at its default ([camera] is read separately).
 RenderDef parseRender(const Table& table);
+/// `earlier`: the emitters read before this one (a sub-emitter's parent is
+/// one of them).
 EmitterDef parseEmitter(const Table& table, NameTable& names, const NameTable& forces,
-                        const NameTable& colliders, const NameTable& bodies);
+                        const NameTable& colliders, const NameTable& bodies, const std::vector<EmitterDef>& earlier);
 
 }  // namespace spindrift::scene

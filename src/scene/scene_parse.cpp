@@ -217,7 +217,7 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
         scene.bodies.push_back(scene::parseBody(t, bodyNames));
     }
     for (const Table& t : scene::tableArray(root, "emitter")) {
-        scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames, bodyNames));
+        scene.emitters.push_back(scene::parseEmitter(t, emitterNames, forceNames, colliderNames, bodyNames, scene.emitters));
     }
     // Fluids after bodies: a jet may ride on a body.
     scene::NameTable fluidNames("fluid");

@@ -3,6 +3,7 @@
 // named list of stages (docs/design.md, "A step of the world").
 #include "world/world.h"
 
+#include "core/field_rules.h"
 #include "coupling/body_world.h"
 #include "effects/emitter_step.h"
 #include "fluid/fluid_state.h"
@@ -257,11 +258,36 @@ EmitterId createEmitter(WorldId id, const EmitterDef& def) {
         state->def = placed.def;
         carried = placed.velocity;
     }
+    if (def.spawnOn.enabled()) {
+        validateEmitterDef(def);  // its own rules first (lifecycle, count), at their keys
+        const std::uint32_t parent = def.spawnOn.parent.index;
+        if (parent > w.emitters.size()) {
+            throw FieldError(objectLabel("emitter", def.name), "spawn_on.parent",
+                             fmt::format("expected an emitter created before this one (ids 1 to {}), got {}",
+                                         w.emitters.size(), parent));
+        }
+        if (w.emitters[parent - 1]->def.stateless) {
+            throw FieldError(objectLabel("emitter", def.name), "spawn_on.parent",
+                             fmt::format("emitter '{}' is stateless: a closed form has no particle events to "
+                                         "follow; expected a state-preserving emitter",
+                                         w.emitters[parent - 1]->def.name));
+        }
+    }
     state->params = makeEmitterParams(state->def, w.def.seed, index, forceMask, colliderMask);
     state->params.carriedVelocityX = carried.x;
     state->params.carriedVelocityY = carried.y;
     if (!def.stateless) {
         initialiseSlots(*state);
+    }
+    if (def.spawnOn.enabled()) {
+        // The parent keeps this kind's requests from now on (on the device,
+        // in a buffer the child's passes bind).
+        EmitterState& parent = *w.emitters[def.spawnOn.parent.index - 1];
+        const auto kind = static_cast<std::uint32_t>(def.spawnOn.event);
+        parent.requestKinds |= 1u << kind;
+        if (w.gpu) {
+            gpu::followEvents(*w.gpu, def.spawnOn.parent.index - 1, kind);
+        }
     }
     if (w.gpu) {
         // The same initial slots as the CPU backend, uploaded once; the device
@@ -389,8 +415,12 @@ void stepEmitters(World& w, float dt, StepStats& stats) {
                                      &w.fields, static_cast<float>(w.time)};
     StepEvents events{w.events.capacity, {}, 0};
     for (std::uint32_t i = 0; i < w.emitters.size(); ++i) {
-        if (!w.emitters[i]->def.stateless) {
-            stepEmitter(w.pool, ctx, *w.emitters[i], i, w.time, dt, stats, events);
+        EmitterState& e = *w.emitters[i];
+        if (!e.def.stateless) {
+            // A sub-emitter's parent was created, and so is stepped, before it.
+            const EmitterState* parent =
+                e.def.spawnOn.enabled() ? w.emitters[e.def.spawnOn.parent.index - 1].get() : nullptr;
+            stepEmitter(w.pool, ctx, e, i, w.stepIndex, w.time, dt, parent, stats, events);
         }
     }
     w.events.addStep(w.stepIndex, events.records, events.dropped);

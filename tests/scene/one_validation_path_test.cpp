@@ -10,6 +10,8 @@
 
 #include "particles/params.h"  // validate{Emitter,Force,Collider,FlowField}Def, what create* checks
 
+#include "effects/effects_test_util.h"
+
 #include <gtest/gtest.h>
 
 #include <string>
@@ -528,6 +530,67 @@ TEST(OneValidationPath, TrailReadsTheSameFromTheApiAndAFile) {
     EXPECT_EQ(emitterApiError(def).field(), "trail.points");
     def.capacity = kEmitterMaxCapacity / 2;
     EXPECT_NO_THROW(validateEmitterDef(def));
+}
+
+// Sub-emitters: the count and velocity share have one rule each; a parent
+// must be an earlier, state-preserving emitter and the child a spawn-mode
+// one, refused at the key from a file and in the same words from the API.
+TEST(OneValidationPath, SubEmitterReadsTheSameFromTheApiAndAFile) {
+    const std::string parent = "[[emitter]]\nname = \"p\"\n";
+    EmitterDef def = emitterDef();
+    def.spawnOn.parent = {1};
+    def.spawnOn.count = 0;
+    const FieldError count = emitterApiError(def);
+    EXPECT_EQ(count.field(), "spawn_on.count");
+    SceneError scene = sceneError(parent + "[[emitter]]\nname = \"e\"\nspawn_on = { parent = \"p\", count = 0 }\n");
+    EXPECT_EQ(scene.message(), count.message());
+    EXPECT_EQ(scene.line(), 5);
+    EXPECT_EQ(scene.keyPath(), "emitter[1].spawn_on.count");
+    def.spawnOn.count = 2;
+    def.spawnOn.inheritVelocity = 1.5f;
+    EXPECT_EQ(emitterApiError(def).field(), "spawn_on.inherit_velocity");
+    def.spawnOn.inheritVelocity = 1.0f;
+    def.lifecycle = Lifecycle::Recycle;
+    const FieldError recycle = emitterApiError(def);
+    EXPECT_EQ(recycle.field(), "spawn_on");
+    scene = sceneError(parent + "[[emitter]]\nname = \"e\"\nlifecycle = \"recycle\"\nspawn_on = { parent = \"p\" }\n");
+    EXPECT_EQ(scene.message(), recycle.message());
+    EXPECT_EQ(scene.keyPath(), "emitter[1].spawn_on");
+
+    // The parent, from a file: not itself, not stateless, an emitter above.
+    scene = sceneError("[[emitter]]\nname = \"e\"\nspawn_on = { parent = \"e\" }\n");
+    EXPECT_EQ(scene.line(), 3);
+    EXPECT_NE(std::string(scene.what()).find("cannot follow its own events"), std::string::npos) << scene.what();
+    scene = sceneError("[[emitter]]\nname = \"p\"\nstateless = true\n[[emitter]]\nname = \"e\"\n"
+                       "spawn_on = { parent = \"p\" }\n");
+    EXPECT_EQ(scene.line(), 6);
+    EXPECT_NE(std::string(scene.what()).find("is stateless"), std::string::npos) << scene.what();
+    scene = sceneError("[[emitter]]\nname = \"e\"\nspawn_on = { parent = \"later\" }\n"
+                       "[[emitter]]\nname = \"later\"\n");
+    EXPECT_EQ(scene.line(), 3);
+    scene = sceneError(parent + "[[emitter]]\nname = \"e\"\nspawn_on = { parent = \"p\", event = \"hit\" }\n");
+    EXPECT_EQ(scene.keyPath(), "emitter[1].spawn_on.event");
+
+    // The parent, from the API: created before, and state-preserving.
+    test::ScopedWorld w;
+    def = emitterDef();
+    def.spawnOn.parent = {1};
+    try {
+        createEmitter(w.id, def);
+        ADD_FAILURE() << "a sub-emitter of an emitter the world does not have was created";
+    } catch (const FieldError& e) {
+        EXPECT_EQ(e.field(), "spawn_on.parent");
+    }
+    EmitterDef stateless = emitterDef();
+    stateless.stateless = true;
+    createEmitter(w.id, stateless);
+    try {
+        createEmitter(w.id, def);
+        ADD_FAILURE() << "a sub-emitter of a stateless emitter was created";
+    } catch (const FieldError& e) {
+        EXPECT_EQ(e.field(), "spawn_on.parent");
+        EXPECT_NE(std::string(e.what()).find("is stateless"), std::string::npos) << e.what();
+    }
 }
 
 TEST(OneValidationPath, RenderRulesReadTheSameFromTheApiAndAFile) {

@@ -8,7 +8,9 @@
 //   1 spawn update: the current alive list (indirect dispatch); the dead go on
 //     the dead stack, survivors on the next alive list;
 //   2 spawn emit: birth k of the step's schedule pops a dead slot, or is clamped;
-//   3 spawn finish: one thread writes the next step's indirect dispatch.
+//   3 spawn finish: one thread writes the next step's indirect dispatch;
+//   4 sub-emit: a sub-emitter's births from its parent's spawn requests
+//     (sub_emit.glsl), after the emit pass, one thread per birth.
 #include "layout.glsl"
 #include "noise.glsl"
 
@@ -47,6 +49,22 @@ layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_EVENTS) buffer Events 
     EventRecord events[];
 };
 
+// This step's spawn requests of the emitter's particles, one buffer per event
+// kind (sub_emit.glsl), written where some sub-emitter follows the kind
+// (step.requestKinds); count goes on past capacity, so the excess is known.
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_BIRTH_REQUESTS) buffer BirthRequests {
+    EventsHeader birthHeader;
+    SpawnRequest birthRequests[];
+};
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_DEATH_REQUESTS) buffer DeathRequests {
+    EventsHeader deathHeader;
+    SpawnRequest deathRequests[];
+};
+layout(std430, set = SD_SET_EMITTER, binding = SD_BINDING_COLLISION_REQUESTS) buffer CollisionRequests {
+    EventsHeader collisionHeader;
+    SpawnRequest collisionRequests[];
+};
+
 // Spawn mode (set 1; recycle emitters bind a placeholder that is never read).
 // The dead stack (DeadHeader in layout.glsl) starts as the CPU's free list
 // (slot 0 on top).
@@ -63,6 +81,11 @@ layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_ALIVE_IN) buffer AliveIn
 layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_ALIVE_OUT) buffer AliveOut {
     TableHeader aliveOutTable;
     uint aliveOut[];
+};
+// A sub-emitter's parent's requests of the kind it follows.
+layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_PARENT_REQUESTS) readonly buffer ParentRequests {
+    EventsHeader parentHeader;
+    SpawnRequest parentRequests[];
 };
 // The step's births (ScheduleHeader in layout.glsl, written by the CPU).
 layout(std430, set = SD_SET_LISTS, binding = SD_BINDING_SCHEDULE) readonly buffer Schedule {
@@ -140,6 +163,7 @@ vec3 sampleCurlNoise(KernelContext ctx, ForceParams f, vec3 p) {
 
 #include "update.glsl"
 #include "birth_age.glsl"
+#include "sub_emit.glsl"
 #include "trail.glsl"
 
 Particle loadParticle(uint i) {
@@ -186,9 +210,42 @@ void storeParticle(uint i, Particle q, uint events) {
     recordTrail(i, q, events);
 }
 
+void appendRequest(uint kind, SpawnRequest q) {
+    if (kind == SD_SPAWN_ON_BIRTH) {
+        uint i = atomicAdd(birthHeader.count, 1u);
+        if (i < birthHeader.capacity) {
+            birthRequests[i] = q;
+        }
+    } else if (kind == SD_SPAWN_ON_DEATH) {
+        uint i = atomicAdd(deathHeader.count, 1u);
+        if (i < deathHeader.capacity) {
+            deathRequests[i] = q;
+        }
+    } else {
+        uint i = atomicAdd(collisionHeader.count, 1u);
+        if (i < collisionHeader.capacity) {
+            collisionRequests[i] = q;
+        }
+    }
+}
+
+// The spawn requests of the update of `before` into r, for the kinds some
+// sub-emitter follows. Their order in the buffers varies run to run; what a
+// child makes of one does not (childSerial).
+void writeRequests(Particle before, ParticleUpdate r) {
+    for (uint kinds = step.requestKinds; kinds != 0u; kinds &= kinds - 1u) {
+        uint kind = uint(findLSB(kinds));
+        uint n = spawnRequestCount(r, kind);
+        for (uint k = 0u; k < n; ++k) {
+            appendRequest(kind, spawnRequest(k, before, r, kind, step.step));
+        }
+    }
+}
+
 // Atomics only where something happened: most slots in most steps have no
 // event. speed: m/s at the start of the step (EventRecord).
 void countEvents(Particle before, ParticleUpdate r, float speed) {
+    writeRequests(before, r);
     if ((r.events & SD_EVENT_BORN) != 0u) {
         atomicAdd(counters.born, 1u);
     }
@@ -280,12 +337,58 @@ void spawnEmit(KernelContext ctx, uint k) {
     countEvents(r.particle, r, speed);
 }
 
+// Sub-emitted birth k: copy k % step.count of the parent's request k /
+// step.count, into the slots the emit pass left free (the popped count is
+// fixed by then; this pass counts its own). Births beyond the capacity or
+// the free slots, and those of requests the parent could not keep, are
+// dropped and counted, as the CPU's stepEmitter does.
+uint saturatingProduct(uint a, uint b) {
+    return a > 0u && b > 0xFFFFFFFFu / a ? 0xFFFFFFFFu : a * b;
+}
+
+void subEmit(KernelContext ctx, uint k) {
+    uint requests = min(parentHeader.count, parentHeader.capacity);
+    uint copies = step.count;
+    uint owed = saturatingProduct(requests, copies);
+    // With the requests the parent could not keep (beyond its capacity).
+    uint owedAll = saturatingProduct(parentHeader.count, copies);
+    uint dispatched = min(owed, emitter.capacity);
+    if (k == 0u && owedAll > dispatched) {
+        atomicAdd(counters.clamped, owedAll - dispatched);
+    }
+    if (k >= dispatched) {
+        return;
+    }
+    uint free = dead.deadCount - dead.popped;
+    if (k >= free) {
+        atomicAdd(counters.clamped, 1u);
+        return;
+    }
+    ParticleUpdate r = childParticle(ctx, emitter, parentRequests[k / copies], k % copies, step.inherit);
+    atomicAdd(counters.subBorn, 1u);
+    float speed = length(r.particle.velocity);
+    if ((r.events & SD_EVENT_NON_FINITE) != 0u) {
+        countEvents(r.particle, r, 0.0f);
+        return;
+    }
+    if (r.particle.age >= r.particle.lifetime) {
+        r.events = r.events | SD_EVENT_DIED;
+        countEvents(r.particle, r, speed);
+        return;
+    }
+    uint slot = deadSlots[dead.deadCount - 1u - dead.popped - atomicAdd(dead.subPopped, 1u)];
+    storeParticle(slot, r.particle, r.events);
+    aliveOut[atomicAdd(aliveOutTable.count, 1u)] = slot;
+    countEvents(r.particle, r, speed);
+}
+
 // Births numbered this step: every one that found a free slot (as on the CPU,
 // one killed at once by a collision still took a serial).
 void spawnFinish() {
     dead.nextSerial += min(min(step.count, emitter.capacity), dead.deadCount);
-    dead.deadCount -= dead.popped;
+    dead.deadCount -= dead.popped + dead.subPopped;
     dead.popped = 0u;
+    dead.subPopped = 0u;
     dead.dispatchX = (aliveOutTable.count + gl_WorkGroupSize.x - 1u) / gl_WorkGroupSize.x;
     dead.dispatchY = 1u;
     dead.dispatchZ = 1u;
@@ -302,6 +405,8 @@ void main() {
         spawnUpdate(ctx, i);
     } else if (PASS == SD_PASS_SPAWN_EMIT) {
         spawnEmit(ctx, i);
+    } else if (PASS == SD_PASS_SUB_EMIT) {
+        subEmit(ctx, i);
     } else if (i == 0u) {
         spawnFinish();
     }

@@ -89,6 +89,22 @@ void measureFrames(benchmark::State& state, WorldId world, const RenderDef& def)
     destroyRenderer(r);
 }
 
+// The sprites' and trails' fountain: n recycle slots launched up a cone,
+// every slot alive after 1.5 s.
+EmitterDef fountain(std::uint32_t n) {
+    EmitterDef e;
+    e.lifecycle = Lifecycle::Recycle;
+    e.capacity = n;
+    e.shape.kind = SpawnShapeKind::Cone;
+    e.shape.radius = 0.2f;
+    e.shape.spreadAngle = 0.35f;
+    e.speed = {6.0f, 8.0f};
+    e.lifetime = {1.0f, 1.5f};
+    e.size = {0.03f, 0.05f};
+    e.color = {{1.0f, 0.6f, 0.2f, 0.5f}, {0.3f, 0.6f, 1.0f, 0.8f}};
+    return e;
+}
+
 void BM_Sprites(benchmark::State& state) {
     try {
         const auto n = static_cast<std::uint32_t>(state.range(0));
@@ -101,16 +117,7 @@ void BM_Sprites(benchmark::State& state) {
         createForce(w, g);
         ColliderDef floor;
         createCollider(w, floor);
-        EmitterDef e;
-        e.lifecycle = Lifecycle::Recycle;
-        e.capacity = n;
-        e.shape.kind = SpawnShapeKind::Cone;
-        e.shape.radius = 0.2f;
-        e.shape.spreadAngle = 0.35f;
-        e.speed = {6.0f, 8.0f};
-        e.lifetime = {1.0f, 1.5f};
-        e.size = {0.03f, 0.05f};
-        e.color = {{1.0f, 0.6f, 0.2f, 0.5f}, {0.3f, 0.6f, 1.0f, 0.8f}};
+        EmitterDef e = fountain(n);
         const SpriteBlend blends[3] = {SpriteBlend::Additive, SpriteBlend::Alpha, SpriteBlend::WeightedOit};
         e.sprite.blend = blends[state.range(2)];
         createEmitter(w, e);
@@ -149,16 +156,7 @@ void BM_Trails(benchmark::State& state) {
         wd.framesInFlight = 1;
         WorldId w = createWorld(wd);
         createForce(w, ForceDef{});
-        EmitterDef e;
-        e.lifecycle = Lifecycle::Recycle;
-        e.capacity = 10000;
-        e.shape.kind = SpawnShapeKind::Cone;
-        e.shape.radius = 0.2f;
-        e.shape.spreadAngle = 0.35f;
-        e.speed = {6.0f, 8.0f};
-        e.lifetime = {1.0f, 1.5f};
-        e.size = {0.03f, 0.05f};
-        e.color = {{1.0f, 0.6f, 0.2f, 0.5f}, {0.3f, 0.6f, 1.0f, 0.8f}};
+        EmitterDef e = fountain(10000);
         e.trail.points = static_cast<std::uint32_t>(state.range(0));
         e.trail.width = 0.02f;
         createEmitter(w, e);

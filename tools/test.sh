@@ -3,7 +3,7 @@
 # as errors, then the same tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Exits non-zero on any failure.
 #
-# The sanitizer pass leaves out 48 tests (the asan test preset's filter in
+# The sanitizer pass leaves out 49 tests (the asan test preset's filter in
 # CMakePresets.json), which would put CI (2 cores) over its 30 minutes (a
 # clean run with only the first nine left out took 31 minutes, 11 of them the
 # sanitizer tests); all of them run in the optimised pass:
@@ -29,8 +29,11 @@
 #   reference image (tests/render/screen_fluid_test.cpp draws the same
 #   passes), the run-to-run determinism test (the one-against-two-threads
 #   test runs the same code), the non-finite removal and the emitter on a
-#   spinning body on the device (their CPU twins run), one of the two Vulkan sort-order tests, and the viewer's
-#   pour-and-remove script (the other viewer tests run).
+#   spinning body on the device (their CPU twins run), one of the two Vulkan sort-order tests, the viewer's
+#   pour-and-remove script (the other viewer tests run), and the trails'
+#   history on both backends (53 s under the sanitizers; the CPU trail
+#   writes run in the other trail tests, the device's trail buffers in the
+#   Vulkan half of Trails.RibbonCoversTheLastStepsOfThePathOnBothBackends).
 # Under the sanitizers every code path they drive still runs: the short fluid
 # tests, SceneBuild.EverySceneBuildsAndRuns (every bundled scene, the showcase
 # and the fluid tanks included, for 2 s) and the two-thread determinism tests

@@ -159,7 +159,9 @@ void uploadSlots(SpriteEmitter& s, const EmitterState& e) {
     std::memcpy(s.ages.mapped, p.age.data(), n * 4);
     std::memcpy(s.births.mapped, p.birth.data(), n * 4);
     std::memcpy(s.rotations.mapped, p.rotation.data(), n * 4);
-    std::memcpy(s.trail.mapped, p.trail.data(), std::min(p.trail.size(), n * s.trailPoints) * 12);
+    if (s.trailPoints > 0) {
+        std::memcpy(s.trail.mapped, p.trail.data(), std::min(p.trail.size(), n * s.trailPoints) * 12);
+    }
     static_assert(sizeof(glm::vec3) == 12);
 }
 

@@ -49,7 +49,7 @@ protected:
     /// our own code is not listed there.
     Result view(const std::string& args) {
         return spindrift::test::runCaptured(
-            "cd " + quoted(kSource) + " && SPINDRIFT_VULKAN_VALIDATION=1 LSAN_OPTIONS=suppressions=" +
+            "cd " + quoted(kSource) + " && SPINDRIFT_VULKAN_VALIDATION=1 LSAN_OPTIONS=print_suppressions=0:suppressions=" +
                 quoted(kSource / "tests/apps/lsan_viewer.supp") + " xvfb-run -a -s '-screen 0 1024x768x24' " +
                 quoted(kCli) + " view " + args,
             dir_);

@@ -188,26 +188,30 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
         const bool batches = target != UpdateTarget::Scalar && batchUpdateEligible(ctx, params);
         pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
-            std::uint32_t finished = 0;
-            for (std::size_t i = begin; i < end; ++i) {
-                const std::size_t lane = (i - begin) % kBatchLanes;
-                if (lane == 0) {
-                    finished = batches && i + kBatchLanes <= end ? updateBatch(target, ctx, params, a, i, dt) : 0u;
+            constexpr std::uint32_t kAllLanes = (1u << kBatchLanes) - 1u;
+            for (std::size_t first = begin; first < end; first += kBatchLanes) {
+                const std::size_t last = std::min(first + kBatchLanes, end);
+                const std::uint32_t finished =
+                    batches && last - first == kBatchLanes ? updateBatch(target, ctx, params, a, first, dt) : 0u;
+                if (finished == kAllLanes && trailPoints == 0u) {
+                    continue;  // the usual batch: nothing left to do
                 }
-                if ((finished >> lane & 1u) != 0u) {
-                    recordTrail(a, trailPoints, e.trailHead, i, false);
-                    continue;  // done by the vector update: no events
-                }
-                if (spawnMode && a.age[i] < 0.0f) {
-                    continue;  // free slot
-                }
-                kernels::Particle p = loadParticle(a, params, i);
-                kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
-                storeParticle(a, i, r.particle);
-                recordTrail(a, trailPoints, e.trailHead, i, (r.events & kernels::SD_EVENT_BORN) != 0u);
-                countUpdate(scope, p, r, glm::length(p.velocity), out);
-                if (spawnMode && slotFreed(r)) {
-                    out.dead.push_back(static_cast<std::uint32_t>(i));
+                for (std::size_t i = first; i < last; ++i) {
+                    if ((finished >> (i - first) & 1u) != 0u) {
+                        recordTrail(a, trailPoints, e.trailHead, i, false);
+                        continue;  // done by the vector update: no events
+                    }
+                    if (spawnMode && a.age[i] < 0.0f) {
+                        continue;  // free slot
+                    }
+                    kernels::Particle p = loadParticle(a, params, i);
+                    kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
+                    storeParticle(a, i, r.particle);
+                    recordTrail(a, trailPoints, e.trailHead, i, (r.events & kernels::SD_EVENT_BORN) != 0u);
+                    countUpdate(scope, p, r, glm::length(p.velocity), out);
+                    if (spawnMode && slotFreed(r)) {
+                        out.dead.push_back(static_cast<std::uint32_t>(i));
+                    }
                 }
             }
         });

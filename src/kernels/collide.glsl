@@ -54,20 +54,25 @@ SD_FN float planeDistance(SD_IN(ColliderParams) c, vec3 p) {
     return dot(p - vec3(c.position), vec3(c.normal));
 }
 
-// No hit when the end point is on or above the plane (d1 >= 0).
+// No hit when the end point is on or above the plane (d1 >= 0). Selects, not
+// branches, so the CPU's lane loops vectorise: every case is computed and the
+// discarded ones may divide by 0, which is harmless.
 SD_FN Hit intersectPlane(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     vec3 n = vec3(c.normal);
     float d0 = planeDistance(c, p0);
     float d1 = planeDistance(c, p1);
-    if (d1 >= 0.0f) {
-        return noHit();
-    }
-    if (d0 >= 0.0f) {
-        float t = contactFraction(d0, d1);
-        return makeHit(mix(p0, p1, t), n, t);
-    }
-    // Started behind (spawned inside): project the end point out.
-    return makeHit(p1 - n * d1, n, 1.0f);
+    float t = contactFraction(d0, d1);
+    // Crossing from above: where the path meets the plane. Started behind
+    // (spawned inside): the end point projected out.
+    bool crossing = d0 >= 0.0f;
+    Hit h = makeHit(select3(p1 - n * d1, mix(p0, p1, t), crossing), n, crossing ? t : 1.0f);
+    Hit none = noHit();
+    bool hit = !(d1 >= 0.0f);  // not d1 < 0: a NaN distance hits, as it always has
+    h.point = select3(none.point, h.point, hit);
+    h.normal = select3(none.normal, h.normal, hit);
+    h.t = hit ? h.t : none.t;
+    h.hit = hit ? h.hit : none.hit;
+    return h;
 }
 
 // --- Sphere: first root of |p0 + t (p1 - p0) - c| = r ------------------------
@@ -295,15 +300,14 @@ SD_FN Hit intersectCollider(SD_IN(KernelContext) ctx, SD_IN(ColliderParams) c, v
 }
 
 // Velocity response at a contact; v is the velocity at the moment of contact.
+// Selects, not branches, so the CPU's lane loops vectorise.
 SD_FN vec3 collisionVelocity(SD_IN(ColliderParams) c, vec3 n, vec3 v) {
     float vn = dot(v, n);
-    if (vn >= 0.0f) {
-        return v;  // already leaving the surface
-    }
     vec3 normalPart = n * vn;
     vec3 tangentPart = v - normalPart;
-    float keep = length(tangentPart) > c.restSpeed ? 1.0f - c.friction : 1.0f;
-    return tangentPart * keep - normalPart * c.resilience;
+    float keep = selectf(1.0f, 1.0f - c.friction, length(tangentPart) > c.restSpeed);
+    vec3 response = tangentPart * keep - normalPart * c.resilience;
+    return select3(response, v, vn >= 0.0f);  // already leaving the surface: unchanged
 }
 
 SD_END

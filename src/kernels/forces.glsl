@@ -109,13 +109,13 @@ SD_FN float stokesCoefficient(float viscosity, float radius) {
 SD_FN float relaxationFactor(float rate, float dt) {
     return exp(-rate * dt);
 }
+// A select instead of an early return for a particle at rest, so the CPU's
+// lane loops vectorise; the discarded side may divide by 0, which is harmless.
 SD_FN vec3 relaxSpeedBy(vec3 v, float target, float factor) {
     float s = length(v);
-    if (s <= 1e-20f) {
-        return v;
-    }
     float relaxed = target + (s - target) * factor;
-    return v * (max(relaxed, 0.0f) / s);
+    vec3 scaled = v * (max(relaxed, 0.0f) / s);
+    return select3(scaled, v, s <= 1e-20f);
 }
 SD_FN vec3 relaxSpeed(vec3 v, float target, float rate, float dt) {
     return relaxSpeedBy(v, target, relaxationFactor(rate, dt));

@@ -16,6 +16,7 @@
 #include <glm/glm.hpp>
 #include <glm/gtc/packing.hpp>
 
+#include <bit>
 #include <cstdint>
 
 #define SD_BEGIN                        \
@@ -43,6 +44,30 @@
 SD_BEGIN
 SD_CONST float SD_PI = 3.14159265358979f;
 SD_CONST uint SD_NONE = 0xFFFFFFFFu;
+
+// whenTrue where c holds, else whenFalse, as a select of each component. In
+// C++ `c ? a : b` on vectors is a branch around a copy, and g++ turns a `?:`
+// between two loaded floats into a load from a selected address; either keeps
+// the CPU's lane loops scalar (src/effects/batch_update_body.inc). A blend of
+// the bits is neither, and gives exactly the chosen value.
+#ifdef __cplusplus
+SD_FN float selectf(float whenFalse, float whenTrue, bool c) {
+    const std::uint32_t mask = 0u - static_cast<std::uint32_t>(c);
+    return std::bit_cast<float>((std::bit_cast<std::uint32_t>(whenFalse) & ~mask) |
+                                (std::bit_cast<std::uint32_t>(whenTrue) & mask));
+}
+SD_FN vec3 select3(vec3 whenFalse, vec3 whenTrue, bool c) {
+    return vec3(selectf(whenFalse.x, whenTrue.x, c), selectf(whenFalse.y, whenTrue.y, c),
+                selectf(whenFalse.z, whenTrue.z, c));
+}
+#else
+float selectf(float whenFalse, float whenTrue, bool c) {
+    return c ? whenTrue : whenFalse;
+}
+vec3 select3(vec3 whenFalse, vec3 whenTrue, bool c) {
+    return mix(whenFalse, whenTrue, bvec3(c));
+}
+#endif
 SD_END
 
 #endif

@@ -72,8 +72,8 @@ SD_FN ParticleUpdate removedUpdate(ParticleUpdate r) {
 }
 
 // The response to a hit h on collider c of a step that began at velocity v0
-// and ended at m: the velocity at the contact (v0 to m's, at the hit's
-// fraction t) reflected by the collider's rule and the position put on the
+// and ended at velocity v1: the velocity at the contact (v0 to v1, at the
+// hit's fraction t) reflected by the collider's rule and the position put on the
 // surface, a skin outside. impact = 1 when the particle approached faster
 // than the rest speed (events, kills, life loss); a particle resting on the
 // ground is pushed out every step but is not hitting it. Shared with the
@@ -83,9 +83,9 @@ struct Contact {
     uint impact;
 };
 
-SD_FN Contact contactResponse(SD_IN(ColliderParams) c, Hit h, vec3 v0, Motion m) {
+SD_FN Contact contactResponse(SD_IN(ColliderParams) c, Hit h, vec3 v0, vec3 v1) {
     Contact k;
-    vec3 contactVelocity = mix(v0, m.velocity, h.t);
+    vec3 contactVelocity = mix(v0, v1, h.t);
     k.motion.velocity = collisionVelocity(c, h.normal, contactVelocity);
     k.motion.position = h.point + h.normal * SD_COLLISION_SKIN;
     k.impact = -dot(contactVelocity, h.normal) > c.restSpeed ? 1u : 0u;
@@ -110,7 +110,7 @@ SD_FN ParticleUpdate simulateParticle(SD_IN(KernelContext) ctx, SD_IN(EmitterPar
             if (h.hit == 0u) {
                 continue;
             }
-            Contact k = contactResponse(c, h, p.velocity, m);
+            Contact k = contactResponse(c, h, p.velocity, m.velocity);
             m = k.motion;
             if (k.impact != 0u) {
                 r.hitMask = r.hitMask | (1u << i);

@@ -146,13 +146,36 @@ bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::Emitt
     return true;
 }
 
+BatchConstants batchConstants(const kernels::KernelContext& ctx, const kernels::EmitterParams& e, float dt) {
+    using namespace kernels;
+    BatchConstants out;
+    DragSum drag = noDrag();
+    for (uint i = 0u; i < forceCount(ctx); ++i) {
+        if ((e.forceMask & (1u << i)) == 0u) {
+            continue;
+        }
+        const ForceParams& f = forceAt(ctx, i);
+        if (f.kind == SD_FORCE_GRAVITY) {
+            out.gravity += glm::vec3(f.vector);
+        } else if (f.kind == SD_FORCE_WIND) {
+            drag = addDrag(drag, f.strength, glm::vec3(f.vector));
+        } else if ((f.kind == SD_FORCE_DAMPING || f.kind == SD_FORCE_UNDAMPING) && f.position.w <= 0.0f) {
+            // relaxationRate ignores the position without a range.
+            out.relaxationFactor[i] = relaxationFactor(relaxationRate(f, glm::vec3(0.0f)), dt);
+        }
+    }
+    out.drag = linearDrag(drag, e.mass);
+    out.weights = dragWeights(out.drag.rate, dt);
+    return out;
+}
+
 std::uint32_t updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
-                          ParticleArrays& a, std::size_t first, float dt) {
+                          const BatchConstants& constants, ParticleArrays& a, std::size_t first, float dt) {
     switch (target) {
     case UpdateTarget::Scalar: return 0u;
-    case UpdateTarget::Sse2: return sse2::updateBatch(ctx, e, a, first, dt);
-    case UpdateTarget::Sse4: return sse4::updateBatch(ctx, e, a, first, dt);
-    case UpdateTarget::Avx2: return avx2::updateBatch(ctx, e, a, first, dt);
+    case UpdateTarget::Sse2: return sse2::updateBatch(ctx, e, constants, a, first, dt);
+    case UpdateTarget::Sse4: return sse4::updateBatch(ctx, e, constants, a, first, dt);
+    case UpdateTarget::Avx2: return avx2::updateBatch(ctx, e, constants, a, first, dt);
     }
     return 0u;
 }

@@ -6,6 +6,7 @@
 // vector_update_test.cpp).
 #pragma once
 
+#include "kernels/layout.glsl"
 #include "particles/cpu_kernels.h"
 #include "particles/emitter_state.h"
 
@@ -45,10 +46,22 @@ std::string_view updateTargetName(UpdateTarget target);
 /// (anything else runs the scalar kernel, as before).
 bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::EmitterParams& e);
 
+/// What every batch of an emitter's step shares (forcingAt's gravity and
+/// drag, the drag's weights over dt, and the factor of each damping force
+/// without range), computed once per step by batchConstants with the same
+/// kernel calls in the same order as the scalar kernel makes them per slot.
+struct BatchConstants {
+    glm::vec3 gravity{0.0f};
+    kernels::LinearDrag drag{};
+    kernels::DragWeights weights{};
+    float relaxationFactor[kernels::SD_MAX_FORCES] = {};  // by force index; damping without range only
+};
+BatchConstants batchConstants(const kernels::KernelContext& ctx, const kernels::EmitterParams& e, float dt);
+
 /// Updates the slots first .. first + kBatchLanes - 1 that take the common case
 /// and returns them as a lane mask (bit l: slot first + l); the other slots are
 /// untouched, for the scalar kernel. Requires batchUpdateEligible.
 std::uint32_t updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
-                          ParticleArrays& a, std::size_t first, float dt);
+                          const BatchConstants& constants, ParticleArrays& a, std::size_t first, float dt);
 
 }  // namespace spindrift

@@ -186,13 +186,14 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
         // a time (src/effects/batch_update.h); the scalar kernel the rest.
         const UpdateTarget target = updateTarget();
         const bool batches = target != UpdateTarget::Scalar && batchUpdateEligible(ctx, params);
+        const BatchConstants constants = batches ? batchConstants(ctx, params, dt) : BatchConstants{};
         pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
             constexpr std::uint32_t kAllLanes = (1u << kBatchLanes) - 1u;
             for (std::size_t first = begin; first < end; first += kBatchLanes) {
                 const std::size_t last = std::min(first + kBatchLanes, end);
                 const std::uint32_t finished =
-                    batches && last - first == kBatchLanes ? updateBatch(target, ctx, params, a, first, dt) : 0u;
+                    batches && last - first == kBatchLanes ? updateBatch(target, ctx, params, constants, a, first, dt) : 0u;
                 if (finished == kAllLanes && trailPoints == 0u) {
                     continue;  // the usual batch: nothing left to do
                 }

@@ -4,6 +4,7 @@
 // Requires the backend hooks declared in context_hooks.glsl.
 #ifndef SPINDRIFT_KERNELS_FORCES
 #define SPINDRIFT_KERNELS_FORCES
+#include "math.glsl"
 #include "types.glsl"
 SD_BEGIN
 
@@ -28,7 +29,7 @@ SD_FN float falloffMagnitude(SD_IN(ForceParams) f, float d) {
     if (f.falloff == -1.0f) {
         return f.strength * softened / f.radius;
     }
-    return f.strength * pow(q, f.falloff);
+    return f.strength * sdPow(q, f.falloff);
 }
 
 SD_FN bool outOfRange(SD_IN(ForceParams) f, float d) {
@@ -107,7 +108,7 @@ SD_FN float stokesCoefficient(float viscosity, float radius) {
 // CPU's vector update can compute the factor once per step when the rate is
 // the same for every particle: the same operations, so the same bits.
 SD_FN float relaxationFactor(float rate, float dt) {
-    return exp(-rate * dt);
+    return sdExp(-rate * dt);
 }
 // A select instead of an early return for a particle at rest, so the CPU's
 // lane loops vectorise; the discarded side may divide by 0, which is harmless.

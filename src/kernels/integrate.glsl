@@ -103,7 +103,7 @@ SD_FN DragWeights dragWeights(float rate, float h) {
         w.phi1 = 1.0f - x * w.phi2;
         w.decay = 1.0f - x * w.phi1;
     } else {
-        w.decay = exp(-x);
+        w.decay = sdExp(-x);
         w.phi1 = (1.0f - w.decay) / x;
         w.phi2 = (1.0f - w.phi1) / x;
         w.phi3 = (0.5f - w.phi2) / x;

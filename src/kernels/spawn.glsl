@@ -4,6 +4,7 @@
 // size instead of storing them).
 #ifndef SPINDRIFT_KERNELS_SPAWN
 #define SPINDRIFT_KERNELS_SPAWN
+#include "math.glsl"
 #include "random.glsl"
 #include "types.glsl"
 SD_BEGIN
@@ -56,10 +57,10 @@ SD_FN vec3 basisBitangent(vec3 n) {
 
 // Uniform direction on the spherical cap of half-angle `angle` around unit `axis`.
 SD_FN vec3 directionInCone(vec3 axis, float angle, float u0, float u1) {
-    float cosTheta = mix(1.0f, cos(angle), u0);
+    float cosTheta = mix(1.0f, sdCos(angle), u0);
     float sinTheta = sqrt(max(0.0f, 1.0f - cosTheta * cosTheta));
-    float phi = 2.0f * SD_PI * u1;
-    return basisTangent(axis) * (cos(phi) * sinTheta) + basisBitangent(axis) * (sin(phi) * sinTheta) +
+    vec2 around = sdSinCos(2.0f * SD_PI * u1);
+    return basisTangent(axis) * (around.y * sinTheta) + basisBitangent(axis) * (around.x * sinTheta) +
            axis * cosTheta;
 }
 
@@ -67,9 +68,9 @@ SD_FN vec3 directionInCone(vec3 axis, float angle, float u0, float u1) {
 SD_FN vec3 pointInSphere(float r, bool surface, float u0, float u1, float u2) {
     float z = 1.0f - 2.0f * u0;
     float ring = sqrt(max(0.0f, 1.0f - z * z));
-    float phi = 2.0f * SD_PI * u1;
-    float radius = surface ? r : r * pow(u2, 1.0f / 3.0f);
-    return vec3(ring * cos(phi), ring * sin(phi), z) * radius;
+    vec2 around = sdSinCos(2.0f * SD_PI * u1);
+    float radius = surface ? r : r * sdPow(u2, 1.0f / 3.0f);
+    return vec3(ring * around.y, ring * around.x, z) * radius;
 }
 
 // Uniform point in a box, or on its surface with faces chosen by area.
@@ -117,14 +118,15 @@ SD_FN Particle spawnParticle(SD_IN(EmitterParams) e, uint serial) {
         offset = pointInBox(vec3(e.shapeHalfExtents), surface, u0, u1, u2, u3);
     } else if (e.shapeKind == SD_SHAPE_DISK || e.shapeKind == SD_SHAPE_CONE) {
         float r = e.shapeCenter.w * sqrt(u0);
-        float phi = 2.0f * SD_PI * u1;
-        vec3 radial = basisTangent(axis) * cos(phi) + basisBitangent(axis) * sin(phi);
+        vec2 around = sdSinCos(2.0f * SD_PI * u1);
+        vec3 radial = basisTangent(axis) * around.y + basisBitangent(axis) * around.x;
         offset = radial * r;
         if (e.shapeKind == SD_SHAPE_CONE) {
             // A diverging cone: the launch angle grows with the distance from
             // the axis, reaching the spread angle at the rim (walls of the cone).
             float angle = e.shapeCenter.w > 0.0f ? spread * (r / e.shapeCenter.w) : 0.0f;
-            direction = axis * cos(angle) + radial * sin(angle);
+            vec2 launch = sdSinCos(angle);
+            direction = axis * launch.y + radial * launch.x;
         }
     }
     Particle p;

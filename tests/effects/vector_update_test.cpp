@@ -187,7 +187,7 @@ TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
         const std::uint32_t all = (1u << kBatchLanes) - 1u;
         const std::uint32_t left = (1u << kStrike) | (1u << kOverflow);
         const std::uint32_t expected = target == UpdateTarget::Scalar ? 0u : all & ~left;
-        EXPECT_EQ(updateBatch(target, ctx, e, a, 0, dt), expected);
+        EXPECT_EQ(updateBatch(target, ctx, e, batchConstants(ctx, e, dt), a, 0, dt), expected);
         EXPECT_EQ(a.position[kStrike], glm::vec3(0.0f, 1.0f, 0.0f));  // left for the scalar kernel
         EXPECT_EQ(a.age[kStrike], 0.5f);
         EXPECT_EQ(a.velocity[kOverflow].x, 2.0e19f);

@@ -7,6 +7,7 @@
 #include "particles/force_rules.h"
 #include "particles/sprite_rules.h"
 
+#include "kernels/math.glsl"
 #include "kernels/random.glsl"
 #include "kernels/stateless.glsl"
 
@@ -381,10 +382,13 @@ kernels::ColliderParams makeColliderParams(const ColliderDef& d, std::uint32_t d
     c.normal = v4(glm::length(d.normal) > 0.0f ? glm::normalize(d.normal) : glm::vec3(0.0f, 1.0f, 0.0f), 0.0f);
     c.halfExtents = v4(d.halfExtents, 0.0f);
     // Box frame from XYZ Euler angles: R = Rz * Ry * Rx, columns are the axes.
+    // The kernels' sine and cosine (src/kernels/math.glsl), not the C
+    // library's, so the frame has the same bits on every machine.
     glm::vec3 r = glm::radians(d.rotationDegrees);
-    glm::mat3 rx(1, 0, 0, 0, std::cos(r.x), std::sin(r.x), 0, -std::sin(r.x), std::cos(r.x));
-    glm::mat3 ry(std::cos(r.y), 0, -std::sin(r.y), 0, 1, 0, std::sin(r.y), 0, std::cos(r.y));
-    glm::mat3 rz(std::cos(r.z), std::sin(r.z), 0, -std::sin(r.z), std::cos(r.z), 0, 0, 0, 1);
+    const glm::vec2 x = kernels::sdSinCos(r.x), y = kernels::sdSinCos(r.y), z = kernels::sdSinCos(r.z);
+    glm::mat3 rx(1, 0, 0, 0, x.y, x.x, 0, -x.x, x.y);
+    glm::mat3 ry(y.y, 0, -y.x, 0, 1, 0, y.x, 0, y.y);
+    glm::mat3 rz(z.y, z.x, 0, -z.x, z.y, 0, 0, 0, 1);
     glm::mat3 rot = rz * ry * rx;
     c.axisX = v4(rot[0], 0.0f);
     c.axisY = v4(rot[1], 0.0f);

@@ -163,15 +163,13 @@ void uploadSlots(Device& d, GpuEmitter& e, const EmitterState& s) {
 constexpr std::uint32_t kAnyIntegrator = kernels::SD_ANY_INTEGRATOR;
 
 // The specialization constants of effects_update.comp, in constant_id order
-// (the key of GpuWorld::pipelines).
+// (with the pass, the key of GpuWorld::pipelines).
 struct Specialization {
-    Pass pass;
     std::uint32_t flowFields, heightMaps, cubeMaps;  // counts in the world
     std::uint32_t integrator;                        // SD_INTEGRATE_*
     std::uint32_t curlNoise;                         // 1: the emitter selects a curl-noise force
-    std::array<std::uint32_t, kernels::SD_SPEC_COUNT> key() const {
+    std::array<std::uint32_t, kernels::SD_SPEC_COUNT> constants() const {
         std::array<std::uint32_t, kernels::SD_SPEC_COUNT> k{};
-        k[kernels::SD_SPEC_PASS] = static_cast<std::uint32_t>(pass);
         k[kernels::SD_SPEC_FLOW_FIELDS] = flowFields;
         k[kernels::SD_SPEC_HEIGHT_MAPS] = heightMaps;
         k[kernels::SD_SPEC_CUBE_MAPS] = cubeMaps;
@@ -181,10 +179,31 @@ struct Specialization {
     }
 };
 
+namespace {
+
+// The SPIR-V of one pass of effects_update.comp.
+std::span<const std::uint32_t> effectsUpdateModule(Pass pass) {
+    switch (pass) {
+    case Pass::RecycleUpdate:
+        return {shaders::kEffectsUpdatePassRecycleUpdate, shaders::kEffectsUpdatePassRecycleUpdateWords};
+    case Pass::SpawnUpdate:
+        return {shaders::kEffectsUpdatePassSpawnUpdate, shaders::kEffectsUpdatePassSpawnUpdateWords};
+    case Pass::SpawnEmit:
+        return {shaders::kEffectsUpdatePassSpawnEmit, shaders::kEffectsUpdatePassSpawnEmitWords};
+    case Pass::SpawnFinish:
+        return {shaders::kEffectsUpdatePassSpawnFinish, shaders::kEffectsUpdatePassSpawnFinishWords};
+    case Pass::SubEmit:
+        return {shaders::kEffectsUpdatePassSubEmit, shaders::kEffectsUpdatePassSubEmitWords};
+    }
+    throw Error("effects_update: no module for this pass");
+}
+
+}  // namespace
+
 // The pipeline of `pass` for emitter `e` in this world, created on first use.
 // The finish pass touches no particle: it shares one variant.
 VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
-    Specialization spec{pass, 0, 0, 0, 0, 0};
+    Specialization spec{0, 0, 0, 0, 0};
     if (pass != Pass::SpawnFinish) {
         spec.flowFields = static_cast<std::uint32_t>(w.fields.flows.size());
         spec.heightMaps = static_cast<std::uint32_t>(w.fields.heights.size());
@@ -199,13 +218,12 @@ VkPipeline pipelineFor(GpuWorld& w, Pass pass, const EmitterState& e) {
         spec.curlNoise = (e.params.forceMask & w.curlNoiseForces) != 0u ? 1u : 0u;
         spec.integrator = spec.flowFields > 0 || spec.curlNoise != 0u ? e.params.integrator : kAnyIntegrator;
     }
-    auto [it, inserted] = w.pipelines.try_emplace(spec.key(), VK_NULL_HANDLE);
+    const std::array<std::uint32_t, kernels::SD_SPEC_COUNT> constants = spec.constants();
+    auto [it, inserted] = w.pipelines.try_emplace({static_cast<std::uint32_t>(pass), constants}, VK_NULL_HANDLE);
     if (inserted) {
         try {
-            const std::array<std::uint32_t, kernels::SD_SPEC_COUNT> constants = spec.key();
-            it->second = createComputePipeline(*w.device, w.pipelineLayout,
-                                               std::span(shaders::kEffectsUpdate, shaders::kEffectsUpdateWords),
-                                               constants, "effects_update");
+            it->second = createComputePipeline(*w.device, w.pipelineLayout, effectsUpdateModule(pass), constants,
+                                               "effects_update");
         } catch (...) {
             w.pipelines.erase(it);
             throw;

@@ -22,6 +22,7 @@
 #include <memory>
 #include <span>
 #include <string>
+#include <utility>
 #include <vector>
 
 namespace spindrift::gpu {
@@ -115,10 +116,10 @@ struct GpuWorld {
     VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
     VkDescriptorSetLayout listLayout = VK_NULL_HANDLE;  // set 1: spawn-mode lists
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    /// Pipelines of effects_update.comp by specialization (pass, field counts,
-    /// integrator), created the first time a step needs one: llvmpipe compiles
+    /// Pipelines of effects_update.comp by pass (SD_PASS_*, one module each)
+    /// and specialization (field counts, integrator), created the first time a step needs one: llvmpipe compiles
     /// at creation, and only the variants a world runs are worth compiling.
-    std::map<std::array<std::uint32_t, kernels::SD_SPEC_COUNT>, VkPipeline> pipelines;
+    std::map<std::pair<std::uint32_t, std::array<std::uint32_t, kernels::SD_SPEC_COUNT>>, VkPipeline> pipelines;
     /// Bit i: force i is a curl-noise force (the CURL_NOISE specialization
     /// constant of an emitter that selects one).
     std::uint32_t curlNoiseForces = 0;

@@ -6,8 +6,17 @@
 #include <cstdint>
 
 namespace spindrift::gpu::shaders {
-extern const std::uint32_t kEffectsUpdate[];
-extern const std::size_t kEffectsUpdateWords;
+// effects_update.comp, one module per pass (CMakeLists.txt).
+extern const std::uint32_t kEffectsUpdatePassRecycleUpdate[];
+extern const std::size_t kEffectsUpdatePassRecycleUpdateWords;
+extern const std::uint32_t kEffectsUpdatePassSpawnUpdate[];
+extern const std::size_t kEffectsUpdatePassSpawnUpdateWords;
+extern const std::uint32_t kEffectsUpdatePassSpawnEmit[];
+extern const std::size_t kEffectsUpdatePassSpawnEmitWords;
+extern const std::uint32_t kEffectsUpdatePassSpawnFinish[];
+extern const std::size_t kEffectsUpdatePassSpawnFinishWords;
+extern const std::uint32_t kEffectsUpdatePassSubEmit[];
+extern const std::size_t kEffectsUpdatePassSubEmitWords;
 extern const std::uint32_t kBackToFrontSort[];
 extern const std::size_t kBackToFrontSortWords;
 // The renderer (src/render/shaders/).

@@ -33,7 +33,7 @@ SD_CONST uint SD_UPDATE_WORKGROUP = 64u;
 // ribbon's vertices are drawn per instance, 6 (points - 1) of them.
 SD_CONST uint SD_MAX_TRAIL_POINTS = 64u;
 
-// The passes of one emitter's step: the PASS specialization constant.
+// The passes of one emitter's step, each a module of effects_update.comp.
 SD_CONST uint SD_PASS_RECYCLE_UPDATE = 0u;
 SD_CONST uint SD_PASS_SPAWN_UPDATE = 1u;
 SD_CONST uint SD_PASS_SPAWN_EMIT = 2u;
@@ -41,13 +41,12 @@ SD_CONST uint SD_PASS_SPAWN_FINISH = 3u;
 SD_CONST uint SD_PASS_SUB_EMIT = 4u;  // a sub-emitter's births from its parent's requests (sub_emit.glsl)
 
 // Specialization constant ids, in the order the host passes them.
-SD_CONST uint SD_SPEC_PASS = 0u;
-SD_CONST uint SD_SPEC_FLOW_FIELDS = 1u;  // flow fields of the world, 0..SD_MAX_FLOW_FIELDS
-SD_CONST uint SD_SPEC_HEIGHT_MAPS = 2u;
-SD_CONST uint SD_SPEC_CUBE_MAPS = 3u;
-SD_CONST uint SD_SPEC_INTEGRATOR = 4u;   // SD_INTEGRATE_*, or SD_ANY_INTEGRATOR
-SD_CONST uint SD_SPEC_CURL_NOISE = 5u;   // 1: the emitter selects a curl-noise force (else its code is dropped)
-SD_CONST uint SD_SPEC_COUNT = 6u;
+SD_CONST uint SD_SPEC_FLOW_FIELDS = 0u;  // flow fields of the world, 0..SD_MAX_FLOW_FIELDS
+SD_CONST uint SD_SPEC_HEIGHT_MAPS = 1u;
+SD_CONST uint SD_SPEC_CUBE_MAPS = 2u;
+SD_CONST uint SD_SPEC_INTEGRATOR = 3u;   // SD_INTEGRATE_*, or SD_ANY_INTEGRATOR
+SD_CONST uint SD_SPEC_CURL_NOISE = 4u;   // 1: the emitter selects a curl-noise force (else its code is dropped)
+SD_CONST uint SD_SPEC_COUNT = 5u;
 // INTEGRATOR value that reads the emitter's own (EmitterParams::integrator).
 SD_CONST uint SD_ANY_INTEGRATOR = 0xFFFFFFFFu;
 

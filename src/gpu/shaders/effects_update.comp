@@ -3,18 +3,20 @@
 // the shared updateParticle and bornParticle of src/kernels/update.glsl. The
 // physics lives only in src/kernels/*.glsl; this file only binds data to the
 // hooks of context_hooks.glsl, keeps the spawn-mode slot lists and counts
-// events. The pass is a specialization constant, one pipeline each:
-//   0 recycle update: every slot (direct dispatch of the capacity);
-//   1 spawn update: the current alive list (indirect dispatch); the dead go on
+// events. Each pass is a module of its own (glslc -DSD_PASS_<NAME>_MODULE, one per
+// pass, CMakeLists.txt), so a module holds only its pass's functions and a
+// driver parses and optimises no other pass's code when it builds the pipeline
+// (lavapipe built the spawn-finish pass, one thread's bookkeeping, in as long
+// as an update when every module held every pass):
+//   recycle update: every slot (direct dispatch of the capacity);
+//   spawn update: the current alive list (indirect dispatch); the dead go on
 //     the dead stack, survivors on the next alive list;
-//   2 spawn emit: birth k of the step's schedule pops a dead slot, or is clamped;
-//   3 spawn finish: one thread writes the next step's indirect dispatch;
-//   4 sub-emit: a sub-emitter's births from its parent's spawn requests
+//   spawn emit: birth k of the step's schedule pops a dead slot, or is clamped;
+//   spawn finish: one thread writes the next step's indirect dispatch;
+//   sub-emit: a sub-emitter's births from its parent's spawn requests
 //     (sub_emit.glsl), after the emit pass, one thread per birth.
 #include "layout.glsl"
 #include "noise.glsl"
-
-layout(constant_id = SD_SPEC_PASS) const uint PASS = 0u;
 
 layout(local_size_x = SD_UPDATE_WORKGROUP) in;
 
@@ -399,15 +401,19 @@ void main() {
     uint i = gl_GlobalInvocationID.x;
     KernelContext ctx;
     ctx.unused = 0u;
-    if (PASS == SD_PASS_RECYCLE_UPDATE) {
-        recycleUpdate(ctx, i);
-    } else if (PASS == SD_PASS_SPAWN_UPDATE) {
-        spawnUpdate(ctx, i);
-    } else if (PASS == SD_PASS_SPAWN_EMIT) {
-        spawnEmit(ctx, i);
-    } else if (PASS == SD_PASS_SUB_EMIT) {
-        subEmit(ctx, i);
-    } else if (i == 0u) {
+#if defined(SD_PASS_RECYCLE_UPDATE_MODULE)
+    recycleUpdate(ctx, i);
+#elif defined(SD_PASS_SPAWN_UPDATE_MODULE)
+    spawnUpdate(ctx, i);
+#elif defined(SD_PASS_SPAWN_EMIT_MODULE)
+    spawnEmit(ctx, i);
+#elif defined(SD_PASS_SUB_EMIT_MODULE)
+    subEmit(ctx, i);
+#elif defined(SD_PASS_SPAWN_FINISH_MODULE)
+    if (i == 0u) {
         spawnFinish();
     }
+#else
+#error "effects_update.comp is compiled once per pass, with -DSD_PASS_<NAME>_MODULE (CMakeLists.txt)"
+#endif
 }

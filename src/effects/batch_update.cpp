@@ -9,6 +9,7 @@
 #include <spindrift/errors.h>
 
 #include <atomic>
+#include <bit>
 #include <string>
 
 // On x86 three copies: SSE2 (the baseline), SSE4.2, AVX2. Elsewhere only the
@@ -169,15 +170,15 @@ BatchConstants batchConstants(const kernels::KernelContext& ctx, const kernels::
     return out;
 }
 
-std::uint32_t updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
-                          const BatchConstants& constants, ParticleArrays& a, std::size_t first, float dt) {
+BatchResult updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
+                        const BatchConstants& constants, ParticleArrays& a, std::size_t first, float dt) {
     switch (target) {
-    case UpdateTarget::Scalar: return 0u;
+    case UpdateTarget::Scalar: return BatchResult{};
     case UpdateTarget::Sse2: return sse2::updateBatch(ctx, e, constants, a, first, dt);
     case UpdateTarget::Sse4: return sse4::updateBatch(ctx, e, constants, a, first, dt);
     case UpdateTarget::Avx2: return avx2::updateBatch(ctx, e, constants, a, first, dt);
     }
-    return 0u;
+    return BatchResult{};
 }
 
 }  // namespace spindrift

@@ -1,7 +1,7 @@
 // The CPU backend's vector update: the common case of a step (a live particle
-// that is not born, does not die and hits no collider) for kBatchLanes slots at
-// once, with SIMD lanes chosen at run time; everything else stays with the
-// scalar kernel, updateParticle. Bit-identical to the scalar kernel at every
+// that is neither born nor dies, whether it strikes plane colliders or not)
+// for kBatchLanes slots at once, with SIMD lanes chosen at run time;
+// everything else stays with the scalar kernel, updateParticle. Bit-identical to the scalar kernel at every
 // SIMD width (docs/performance.md, "Vectorised update"; tests/effects/
 // vector_update_test.cpp).
 #pragma once
@@ -58,10 +58,22 @@ struct BatchConstants {
 };
 BatchConstants batchConstants(const kernels::KernelContext& ctx, const kernels::EmitterParams& e, float dt);
 
+/// What updateBatch did with a batch of slots (bit l: slot first + l).
+struct BatchResult {
+    /// Lanes updated here, the others left untouched for the scalar kernel.
+    std::uint32_t finished = 0;
+    /// Finished lanes that struck a collider this step: their updates still
+    /// owe the step's counts, events and spawn requests (impacts only: a lane
+    /// that dies of it is left to the scalar kernel).
+    std::uint32_t struck = 0;
+    std::uint32_t hitMask[kBatchLanes] = {};      ///< colliders struck (bit i: collider i), where struck
+    glm::vec3 startVelocity[kBatchLanes] = {};    ///< m/s, at the start of the step, where struck
+};
+
 /// Updates the slots first .. first + kBatchLanes - 1 that take the common case
-/// and returns them as a lane mask (bit l: slot first + l); the other slots are
-/// untouched, for the scalar kernel. Requires batchUpdateEligible.
-std::uint32_t updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
-                          const BatchConstants& constants, ParticleArrays& a, std::size_t first, float dt);
+/// (see BatchResult); the other slots are untouched, for the scalar kernel.
+/// Requires batchUpdateEligible.
+BatchResult updateBatch(UpdateTarget target, const kernels::KernelContext& ctx, const kernels::EmitterParams& e,
+                        const BatchConstants& constants, ParticleArrays& a, std::size_t first, float dt);
 
 }  // namespace spindrift

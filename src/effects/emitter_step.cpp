@@ -99,6 +99,17 @@ void countUpdate(const StepScope& scope, const kernels::Particle& before, const 
     }
 }
 
+// countUpdate for slot i, updated by the vector update in a step in which it
+// struck the colliders of `hitMask` and neither was born nor died: the update
+// the scalar kernel would have returned is the stored particle with that
+// mask. (`before` is read only for deaths, so the particle after serves.)
+void countImpact(const StepScope& scope, const ParticleArrays& a, const kernels::EmitterParams& params,
+                 std::size_t i, std::uint32_t hitMask, glm::vec3 startVelocity, ChunkResult& out) {
+    kernels::ParticleUpdate r = kernels::quietUpdate(loadParticle(a, params, i));
+    r.hitMask = hitMask;
+    countUpdate(scope, r.particle, r, glm::length(startVelocity), out);
+}
+
 // The slot of an update is free again: its particle died or was removed.
 bool slotFreed(const kernels::ParticleUpdate& r) {
     return (r.events & (kernels::SD_EVENT_DIED | kernels::SD_EVENT_NON_FINITE)) != 0u;
@@ -192,15 +203,20 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
             constexpr std::uint32_t kAllLanes = (1u << kBatchLanes) - 1u;
             for (std::size_t first = begin; first < end; first += kBatchLanes) {
                 const std::size_t last = std::min(first + kBatchLanes, end);
-                const std::uint32_t finished =
-                    batches && last - first == kBatchLanes ? updateBatch(target, ctx, params, constants, a, first, dt) : 0u;
-                if (finished == kAllLanes && trailPoints == 0u) {
+                const BatchResult batch = batches && last - first == kBatchLanes
+                                              ? updateBatch(target, ctx, params, constants, a, first, dt)
+                                              : BatchResult{};
+                if (batch.finished == kAllLanes && batch.struck == 0u && trailPoints == 0u) {
                     continue;  // the usual batch: nothing left to do
                 }
                 for (std::size_t i = first; i < last; ++i) {
-                    if ((finished >> (i - first) & 1u) != 0u) {
+                    const std::size_t lane = i - first;
+                    if ((batch.finished >> lane & 1u) != 0u) {
                         recordTrail(a, trailPoints, e.trailHead, i, false);
-                        continue;  // done by the vector update: no events
+                        if ((batch.struck >> lane & 1u) != 0u) {
+                            countImpact(scope, a, params, i, batch.hitMask[lane], batch.startVelocity[lane], out);
+                        }
+                        continue;  // done by the vector update
                     }
                     if (spawnMode && a.age[i] < 0.0f) {
                         continue;  // free slot

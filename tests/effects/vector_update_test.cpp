@@ -45,11 +45,34 @@ void expectSameParticles(const std::vector<ParticleSnapshot>& a, const std::vect
     }
 }
 
+// What a run reports besides its particles: every step's counts and every
+// event, in order. The vector update must leave them as the scalar kernel
+// does, impacts included (it takes striking lanes too).
+struct RunReport {
+    std::vector<std::uint64_t> counts;  // per step: born, died, collisions, hits of each collider
+    std::vector<ParticleEvent> events;
+};
+
+void expectSameReport(const RunReport& a, const RunReport& b) {
+    EXPECT_EQ(a.counts, b.counts);
+    ASSERT_EQ(a.events.size(), b.events.size());
+    for (std::size_t k = 0; k < a.events.size(); ++k) {
+        const ParticleEvent& x = a.events[k];
+        const ParticleEvent& y = b.events[k];
+        EXPECT_TRUE(x.kind == y.kind && x.step == y.step && x.emitter.index == y.emitter.index &&
+                    x.collider.index == y.collider.index && x.birth == y.birth &&
+                    std::memcmp(&x.position, &y.position, sizeof(glm::vec3)) == 0 &&
+                    std::memcmp(&x.speed, &y.speed, sizeof(float)) == 0)
+            << "event " << k;
+    }
+}
+
 // Everything the vector update takes: every force kind but flow fields (with
 // each literal falloff and a general one, local damping and un-damping), two
 // planes, both Euler integrators, both lifecycles, over-life curves of 1 to 3
-// keys, births, deaths and hits in every step.
-std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t& live) {
+// keys, births, deaths and hits in every step, impacts that kill or take life
+// in both lifecycles, and a sub-emitter born from one emitter's collisions.
+std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t& live, RunReport& report) {
     test::ScopedWorld w(threads, 5);
     createForce(w.id, test::gravity({0.0f, -9.81f, 0.0f}));
     ForceDef f;
@@ -88,7 +111,7 @@ std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t
     createCollider(w.id, wall);
     std::vector<EmitterId> emitters;
     const Integrator integrators[] = {Integrator::ExplicitEuler, Integrator::SemiImplicitEuler};
-    for (int k = 0; k < 4; ++k) {
+    for (int k = 0; k < 6; ++k) {
         EmitterDef e;
         e.lifecycle = k % 2 == 0 ? Lifecycle::Spawn : Lifecycle::Recycle;
         e.capacity = 6000;
@@ -99,9 +122,9 @@ std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t
         e.shape.center = {0.0f, 2.0f, 0.0f};
         e.shape.radius = 0.5f;
         e.shape.spreadAngle = 1.5f;
-        e.integrator = integrators[k / 2];
-        e.collision.killOnCollision = k == 3;
-        e.collision.lifeLossOnCollision = k == 2 ? 0.3f : 0.0f;
+        e.integrator = integrators[(k / 2) % 2];
+        e.collision.killOnCollision = k == 3 || k == 4;
+        e.collision.lifeLossOnCollision = k == 2 || k == 5 ? 0.3f : 0.0f;
         e.colorOverLife.keys = {{0.0f, glm::vec4(1.0f)}, {0.4f, glm::vec4(0.5f, 0.2f, 0.1f, 0.7f)},
                                 {1.0f, glm::vec4(0.0f)}};
         if (k != 1) {
@@ -109,9 +132,26 @@ std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t
         }
         emitters.push_back(createEmitter(w.id, e));
     }
+    EmitterDef sparks;  // two children at each collision of the first emitter
+    sparks.lifecycle = Lifecycle::Spawn;
+    sparks.capacity = 20000;
+    sparks.rate = 0.0f;
+    sparks.lifetime = {0.2f, 0.4f};
+    sparks.speed = {0.5f, 1.0f};
+    sparks.spawnOn.parent = emitters[0];
+    sparks.spawnOn.event = SpawnEvent::Collision;
+    sparks.spawnOn.count = 2;
+    sparks.spawnOn.inheritVelocity = 0.5f;
+    emitters.push_back(createEmitter(w.id, sparks));
+    report = RunReport{};
     for (int i = 0; i < 50; ++i) {
-        stepWorld(w.id, 1.0f / 60.0f);
+        const StepStats s = stepWorld(w.id, 1.0f / 60.0f);
+        report.counts.insert(report.counts.end(), {s.born, s.died, s.collisions});
+        for (const ColliderStepStats& c : s.colliderHits) {
+            report.counts.push_back(c.hits);
+        }
     }
+    report.events = takeEvents(w.id).events;
     std::vector<ParticleSnapshot> out;
     live = 0;
     for (EmitterId e : emitters) {
@@ -124,27 +164,39 @@ std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t
 TEST(VectorUpdate, EveryTargetMatchesTheScalarKernel) {
     std::size_t live = 0;
     std::vector<ParticleSnapshot> scalar;
+    RunReport scalarReport;
     {
         ScopedTarget t(UpdateTarget::Scalar);
-        scalar = runVectorisable(1, live);
+        scalar = runVectorisable(1, live, scalarReport);
     }
-    EXPECT_EQ(live, 4u);
+    EXPECT_EQ(live, 7u);
+    // Not vacuous: the run has impacts, their events and their children.
+    std::size_t collisions = 0;
+    for (const ParticleEvent& ev : scalarReport.events) {
+        collisions += ev.kind == ParticleEventKind::Collision ? 1 : 0;
+    }
+    EXPECT_GT(collisions, 100u);
     ASSERT_GE(supportedUpdateTargets().size(), 2u);  // scalar and the x86-64 baseline
     for (UpdateTarget target : supportedUpdateTargets()) {
         SCOPED_TRACE(std::string(updateTargetName(target)));
         ScopedTarget t(target);
-        expectSameParticles(scalar, runVectorisable(target == UpdateTarget::Sse2 ? 2u : 1u, live));
+        RunReport report;
+        expectSameParticles(scalar, runVectorisable(target == UpdateTarget::Sse2 ? 2u : 1u, live, report));
+        expectSameReport(scalarReport, report);
     }
 }
 
 // Not vacuous: a batch of quiet particles (alive, not dying, above the only
 // plane) is taken by the vector update at every target, and so is a lane
 // resting on the plane (pushed out at 0.01 m/s, under the plane's rest speed
-// of 0.1 m/s: no impact), with the scalar kernel's exact result; a lane
-// striking the plane at 100 m/s (an impact: events, kills) and a lane whose
-// speed squared overflows (the scalar kernel removes it) are left to the
-// scalar kernel; the scalar target takes none.
-TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
+// of 0.1 m/s: no impact) and a lane striking it at 100 m/s (an impact,
+// reported as struck with its hit mask and start velocity), each with the
+// scalar kernel's exact result; a lane whose speed squared overflows (the
+// scalar kernel removes it) is left to the scalar kernel, and so is the
+// striking lane when the impact kills a spawn-mode particle (it dies this
+// step), but not a recycle-mode one (re-born next step); the scalar target
+// takes none.
+TEST(VectorUpdate, TakesQuietAndStrikingLanesAndLeavesTheRest) {
     kernels::ColliderParams plane{};
     plane.kind = kernels::SD_COLLIDER_PLANE;
     plane.normal = glm::vec4(0.0f, 1.0f, 0.0f, 0.0f);
@@ -152,49 +204,75 @@ TEST(VectorUpdate, TakesQuietLanesAndLeavesTheRest) {
     plane.resilience = 0.5f;
     plane.friction = 0.2f;
     const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr, 0.0f};
-    kernels::EmitterParams e{};
-    e.mass = 1.0f;
-    e.flags = kernels::SD_EMITTER_COLLISIONS;
-    e.colliderMask = 1u;
-    e.integrator = kernels::SD_INTEGRATE_SEMI_IMPLICIT_EULER;
-    ASSERT_TRUE(batchUpdateEligible(ctx, e));
     constexpr std::size_t kStrike = 3, kResting = 5, kOverflow = 6;
     const float dt = 0.1f;
-    for (UpdateTarget target : supportedUpdateTargets()) {
-        SCOPED_TRACE(std::string(updateTargetName(target)));
-        ParticleArrays a;
-        a.resize(kBatchLanes);
-        for (std::size_t i = 0; i < kBatchLanes; ++i) {
-            a.position[i] = glm::vec3(0.0f, 1.0f, 0.0f);
-            a.velocity[i] = glm::vec3(0.0f);
-            a.age[i] = 0.5f;
-            a.lifetime[i] = 2.0f;
-        }
-        a.velocity[kStrike] = glm::vec3(0.0f, -100.0f, 0.0f);
-        a.position[kResting] = glm::vec3(0.3f, 0.0005f, 0.0f);
-        a.velocity[kResting] = glm::vec3(0.2f, -0.01f, 0.0f);
-        a.velocity[kOverflow] = glm::vec3(2.0e19f, 0.0f, 0.0f);  // |v|^2 = 4e38 > FLT_MAX
-        kernels::Particle resting{};
-        resting.position = a.position[kResting];
-        resting.velocity = a.velocity[kResting];
-        resting.age = a.age[kResting];
-        resting.lifetime = a.lifetime[kResting];
-        resting.mass = e.mass;
-        resting.alive = 1u;
-        const kernels::ParticleUpdate scalar = kernels::updateParticle(ctx, e, resting, dt);
-        ASSERT_EQ(kernels::eventCountOf(scalar), 0u);  // no impact, as the test needs
-        ASSERT_NE(scalar.particle.position, glm::vec3(0.32f, -0.0005f, 0.0f));  // pushed out
-        const std::uint32_t all = (1u << kBatchLanes) - 1u;
-        const std::uint32_t left = (1u << kStrike) | (1u << kOverflow);
-        const std::uint32_t expected = target == UpdateTarget::Scalar ? 0u : all & ~left;
-        EXPECT_EQ(updateBatch(target, ctx, e, batchConstants(ctx, e, dt), a, 0, dt), expected);
-        EXPECT_EQ(a.position[kStrike], glm::vec3(0.0f, 1.0f, 0.0f));  // left for the scalar kernel
-        EXPECT_EQ(a.age[kStrike], 0.5f);
-        EXPECT_EQ(a.velocity[kOverflow].x, 2.0e19f);
-        if (target != UpdateTarget::Scalar) {
-            EXPECT_EQ(a.age[0], 0.5f + dt);
-            EXPECT_EQ(std::memcmp(&a.position[kResting], &scalar.particle.position, sizeof(glm::vec3)), 0);
-            EXPECT_EQ(std::memcmp(&a.velocity[kResting], &scalar.particle.velocity, sizeof(glm::vec3)), 0);
+    const std::uint32_t all = (1u << kBatchLanes) - 1u;
+    const std::uint32_t kills = kernels::SD_EMITTER_KILL_ON_COLLISION;
+    const std::uint32_t recycle = kernels::SD_EMITTER_RECYCLE;
+    for (std::uint32_t flags : {0u, kills, kills | recycle}) {
+        SCOPED_TRACE(flags);
+        kernels::EmitterParams e{};
+        e.mass = 1.0f;
+        e.flags = kernels::SD_EMITTER_COLLISIONS | flags;
+        e.colliderMask = 1u;
+        e.lifeLossOnCollision = 0.25f;
+        e.integrator = kernels::SD_INTEGRATE_SEMI_IMPLICIT_EULER;
+        ASSERT_TRUE(batchUpdateEligible(ctx, e));
+        const bool strikeLeft = flags == kills;
+        for (UpdateTarget target : supportedUpdateTargets()) {
+            SCOPED_TRACE(std::string(updateTargetName(target)));
+            ParticleArrays a;
+            a.resize(kBatchLanes);
+            for (std::size_t i = 0; i < kBatchLanes; ++i) {
+                a.position[i] = glm::vec3(0.0f, 1.0f, 0.0f);
+                a.velocity[i] = glm::vec3(0.0f);
+                a.age[i] = 0.5f;
+                a.lifetime[i] = 2.0f;
+            }
+            a.velocity[kStrike] = glm::vec3(0.0f, -100.0f, 0.0f);
+            a.position[kResting] = glm::vec3(0.3f, 0.0005f, 0.0f);
+            a.velocity[kResting] = glm::vec3(0.2f, -0.01f, 0.0f);
+            a.velocity[kOverflow] = glm::vec3(2.0e19f, 0.0f, 0.0f);  // |v|^2 = 4e38 > FLT_MAX
+            auto scalarUpdate = [&](std::size_t i) {
+                kernels::Particle p{};
+                p.position = a.position[i];
+                p.velocity = a.velocity[i];
+                p.age = a.age[i];
+                p.lifetime = a.lifetime[i];
+                p.mass = e.mass;
+                p.alive = 1u;
+                return kernels::updateParticle(ctx, e, p, dt);
+            };
+            const kernels::ParticleUpdate resting = scalarUpdate(kResting);
+            const kernels::ParticleUpdate strike = scalarUpdate(kStrike);
+            ASSERT_EQ(kernels::eventCountOf(resting), 0u);  // no impact, as the test needs
+            ASSERT_NE(resting.particle.position, glm::vec3(0.32f, -0.0005f, 0.0f));  // pushed out
+            ASSERT_EQ(strike.hitMask, 1u);                                            // an impact
+            const std::uint32_t left = (1u << kOverflow) | (strikeLeft ? 1u << kStrike : 0u);
+            const glm::vec3 strikeStart = a.velocity[kStrike];
+            const BatchResult r = updateBatch(target, ctx, e, batchConstants(ctx, e, dt), a, 0, dt);
+            EXPECT_EQ(r.finished, target == UpdateTarget::Scalar ? 0u : all & ~left);
+            EXPECT_EQ(a.velocity[kOverflow].x, 2.0e19f);  // left for the scalar kernel
+            if (target == UpdateTarget::Scalar || strikeLeft) {
+                EXPECT_EQ(r.struck, 0u);
+                EXPECT_EQ(a.position[kStrike], glm::vec3(0.0f, 1.0f, 0.0f));
+                EXPECT_EQ(a.age[kStrike], 0.5f);
+            } else {
+                EXPECT_EQ(r.struck, 1u << kStrike);
+                EXPECT_EQ(r.hitMask[kStrike], 1u);
+                EXPECT_EQ(r.startVelocity[kStrike], strikeStart);
+                EXPECT_EQ(std::memcmp(&a.position[kStrike], &strike.particle.position, sizeof(glm::vec3)), 0);
+                EXPECT_EQ(std::memcmp(&a.velocity[kStrike], &strike.particle.velocity, sizeof(glm::vec3)), 0);
+                EXPECT_EQ(std::memcmp(&a.age[kStrike], &strike.particle.age, sizeof(float)), 0);
+                // Independent of the kernel: a kill ends the life, else a
+                // quarter of the 1.4 s left (age 0.6 of 2) is lost.
+                EXPECT_FLOAT_EQ(a.age[kStrike], (flags & kills) != 0u ? 2.0f : 0.6f + 0.25f * 1.4f);
+            }
+            if (target != UpdateTarget::Scalar) {
+                EXPECT_EQ(a.age[0], 0.5f + dt);
+                EXPECT_EQ(std::memcmp(&a.position[kResting], &resting.particle.position, sizeof(glm::vec3)), 0);
+                EXPECT_EQ(std::memcmp(&a.velocity[kResting], &resting.particle.velocity, sizeof(glm::vec3)), 0);
+            }
         }
     }
 }

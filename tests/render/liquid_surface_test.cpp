@@ -262,5 +262,61 @@ TEST_F(LiquidSurfaceRender, DepthTintHasNoSeamWhereTheSurfaceLeavesTheFrame) {
     }
 }
 
+
+// The depth tint under a pocket of air: a block of water 0.6 m deep with a
+// 0.2 m square pocket 0.35 m above the floor. On a row 0.2 m under the
+// pocket (within the tint's 0.5 m reach), across the pocket's left edge, no
+// two neighbouring pixels differ by more than 4 codes: the water above a
+// point changes by the pocket's 0.15 m across the edge (0.3 of the reach)
+// and should be spread over the pocket's neighbourhood, not drawn as a seam.
+// The tint taken from the first air going up, averaged over three columns,
+// jumped 0.5 of the reach at the edge: this test against that shader saw a
+// step of 6 codes between two pixels; the water above, averaged over five
+// columns, gives 3.
+TEST_F(LiquidSurfaceRender, DepthTintHasNoSeamUnderAPocketOfAir) {
+    FluidWorld world;
+    FluidDef def;
+    def.spacing = 0.025f;
+    def.blocks.push_back(FluidBlockDef{{0.0f, 0.0f, 0.0f}, {1.0f, 0.35f, 0.0f}, glm::vec3(0.0f)});
+    def.blocks.push_back(FluidBlockDef{{0.0f, 0.35f, 0.0f}, {0.4f, 0.6f, 0.0f}, glm::vec3(0.0f)});
+    def.blocks.push_back(FluidBlockDef{{0.6f, 0.35f, 0.0f}, {1.0f, 0.6f, 0.0f}, glm::vec3(0.0f)});
+    def.blocks.push_back(FluidBlockDef{{0.4f, 0.55f, 0.0f}, {0.6f, 0.6f, 0.0f}, glm::vec3(0.0f)});
+    createFluid(world.id, def);
+    constexpr std::uint32_t kW = 320, kH = 180;
+    constexpr float kHeight = 0.8f;  // m, seen by the orthographic camera
+    RenderDef r = orthoView(kW, kH, kHeight, RestingTank::kBackground);
+    r.camera.eye = {0.5f, 0.3f, 4.0f};
+    r.camera.target = {0.5f, 0.3f, 0.0f};
+    r.fluid.refraction = false;  // the tint alone
+    ScopedRenderer renderer(world.id, r);
+    const Frame f = renderFrame(renderer.id);
+    dumpFrame(f, "tint_under_a_pocket");
+    const float pixelsPerMetre = float(kH) / kHeight;
+    auto column = [&](float x) { return std::uint32_t(0.5f * float(kW) + (x - 0.5f) * pixelsPerMetre); };
+    const auto y = std::uint32_t(0.5f * float(kH) - (0.15f - 0.3f) * pixelsPerMetre);
+    // The pocket is drawn: air (the background) in its middle.
+    const auto pocketRow = std::uint32_t(0.5f * float(kH) - (0.45f - 0.3f) * pixelsPerMetre);
+    int offBackground = 0;
+    for (int c = 0; c < 3; ++c) {
+        offBackground = std::max(offBackground, std::abs(pixel(f, column(0.5f), pocketRow)[c] -
+                                                          srgbByte(RestingTank::kBackground[c])));
+    }
+    ASSERT_LE(offBackground, 40) << "no pocket of air drawn";
+    int largest = 0;
+    for (std::uint32_t x = column(0.25f); x < column(0.55f); ++x) {
+        for (int c = 0; c < 3; ++c) {
+            largest = std::max(largest, std::abs(int(pixel(f, x + 1, y)[c]) - int(pixel(f, x, y)[c])));
+        }
+    }
+    EXPECT_LE(largest, 4) << "largest step between neighbouring pixels on row " << y << " under the pocket's edge";
+    // And the tint sees the pocket: the water under it is lighter than the
+    // water under the full 0.6 m (0.3 of the reach less water above).
+    int lighter = 0;
+    for (int c = 0; c < 3; ++c) {
+        lighter = std::max(lighter, int(pixel(f, column(0.5f), y)[c]) - int(pixel(f, column(0.15f), y)[c]));
+    }
+    EXPECT_GE(lighter, 10) << "the water under the pocket is not lighter";
+}
+
 }  // namespace
 }  // namespace spindrift::test

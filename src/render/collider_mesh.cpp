@@ -51,15 +51,6 @@ void quad(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, g
     triangle(out, a, c, d, colour, inside);
 }
 
-// An open surface (terrain): both sides, each wound toward its viewer.
-void twoSidedQuad(std::vector<MeshVertex>& out, glm::vec3 a, glm::vec3 b, glm::vec3 c, glm::vec3 d,
-                  glm::vec3 colour) {
-    const glm::vec3 n = glm::cross(b - a, c - a);
-    const glm::vec3 centre = (a + b + c + d) * 0.25f;
-    quad(out, a, b, c, d, colour, centre - n);
-    quad(out, a, b, c, d, colour, centre + n);
-}
-
 // Two unit vectors perpendicular to n and to each other.
 glm::mat3 basisAround(glm::vec3 n) {
     glm::vec3 helper = std::abs(n.y) < 0.9f ? glm::vec3(0.0f, 1.0f, 0.0f) : glm::vec3(1.0f, 0.0f, 0.0f);
@@ -91,6 +82,10 @@ void appendSphere(std::vector<MeshVertex>& out, glm::vec3 centre, float r, glm::
     }
 }
 
+// A height map's surface, both sides (it is open), each wound toward its
+// viewer, with smooth normals: the surface's gradient by differences across
+// each grid point (one-sided at the edges). Face normals drew each quad as a
+// facet of its own and the hills as a quilt.
 void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& c, const HeightMap& map,
                    glm::vec3 colour) {
     if (map.nx < 2 || map.nz < 2) {
@@ -98,17 +93,34 @@ void appendTerrain(std::vector<MeshVertex>& out, const kernels::ColliderParams& 
     }
     // Every other vertex of large maps: the picture needs shape, not detail.
     const std::uint32_t stride = std::max(1u, std::max(map.nx, map.nz) / 128u);
-    auto vertex = [&](std::uint32_t i, std::uint32_t j) {
+    auto height = [&](std::uint32_t i, std::uint32_t j) { return map.height[i + std::size_t{map.nx} * j]; };
+    auto x = [&](std::uint32_t i) { return c.position.x + c.grid.x * float(i) / float(map.nx - 1); };
+    auto z = [&](std::uint32_t j) { return c.position.z + c.grid.y * float(j) / float(map.nz - 1); };
+    auto vertex = [&](std::uint32_t i, std::uint32_t j, float side) {
         i = std::min(i, map.nx - 1);
         j = std::min(j, map.nz - 1);
-        float x = c.position.x + c.grid.x * float(i) / float(map.nx - 1);
-        float z = c.position.z + c.grid.y * float(j) / float(map.nz - 1);
-        return glm::vec3(x, c.position.y + map.height[i + std::size_t{map.nx} * j], z);
+        const std::uint32_t i0 = i >= stride ? i - stride : 0u, i1 = std::min(i + stride, map.nx - 1);
+        const std::uint32_t j0 = j >= stride ? j - stride : 0u, j1 = std::min(j + stride, map.nz - 1);
+        const float slopeX = (height(i1, j) - height(i0, j)) / (x(i1) - x(i0));
+        const float slopeZ = (height(i, j1) - height(i, j0)) / (z(j1) - z(j0));
+        const glm::vec3 n = glm::normalize(glm::vec3(-slopeX, 1.0f, -slopeZ));
+        return MeshVertex{glm::vec3(x(i), c.position.y + height(i, j), z(j)), side * n, colour};
     };
     for (std::uint32_t j = 0; j + 1 < map.nz; j += stride) {
         for (std::uint32_t i = 0; i + 1 < map.nx; i += stride) {
-            twoSidedQuad(out, vertex(i, j), vertex(i, j + stride), vertex(i + stride, j + stride),
-                         vertex(i + stride, j), colour);
+            // Corners a (i, j), b (i, j+), c (i+, j+), d (i+, j): a b c and
+            // a c d face up (counter-clockwise seen from above, as triangle()
+            // winds them), a c b and a d c down.
+            const std::uint32_t i1 = i + stride, j1 = j + stride;
+            for (float side : {1.0f, -1.0f}) {
+                const MeshVertex a = vertex(i, j, side), b = vertex(i, j1, side), cc = vertex(i1, j1, side),
+                                 d = vertex(i1, j, side);
+                if (side > 0.0f) {
+                    out.insert(out.end(), {a, b, cc, a, cc, d});
+                } else {
+                    out.insert(out.end(), {a, cc, b, a, d, cc});
+                }
+            }
         }
     }
 }

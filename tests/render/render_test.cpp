@@ -370,6 +370,47 @@ TEST_P(RenderTest, BodyAndColliderColoursAreShadedBySunAndAmbient) {
     destroyWorld(world);
 }
 
+
+// A slope seen from above by a perspective camera is lit from above even
+// where it turns away from the view's centre line: terrain rising 0.1 m per
+// metre toward a camera that looks straight ahead (normal (0, 1, -0.1), at a
+// positive angle to the view direction, yet facing the eye from below it),
+// under a sun straight up. Expected, from surfaceLight's closed form with
+// the default white sky and sun: colour x (0.35 + 0.15 n.y + 0.65 n.y). Turning the
+// normal toward the camera by the view's centre line instead of the pixel's
+// ray flipped it downward, to colour x (0.35 - 0.15 n.y): the dark jagged
+// patches of the rain scene's hills.
+TEST_P(RenderTest, TerrainSlopeIsLitFromAboveAtTheEdgeOfAPerspectiveView) {
+    BackendWorld world(GetParam());
+    ColliderDef hills;
+    hills.kind = ColliderKind::Terrain;
+    hills.position = {-10.0f, -1.0f, -10.0f};
+    hills.terrainNx = 2;
+    hills.terrainNz = 2;
+    hills.terrainSizeX = 20.0f;
+    hills.terrainSizeZ = 20.0f;
+    hills.heights = {0.0f, 0.0f, 2.0f, 2.0f};  // z = -10: 0 m, z = +10: 2 m
+    hills.colour = glm::vec3(0.5f);
+    createCollider(world.id, hills);
+    RenderDef def = orthoView(64, 64, 2.0f);
+    def.camera.orthographic = false;
+    def.camera.eye = {0.0f, 1.0f, 3.0f};
+    def.camera.target = {0.0f, 1.0f, 0.0f};
+    def.sunDirection = {0.0f, 1.0f, 0.0f};
+    ScopedRenderer r(world.id, def);
+    Frame f = renderFrame(r.id);
+    dumpFrame(f, "terrain_slope");
+    const double ny = 1.0 / std::sqrt(1.0 + 0.1 * 0.1);
+    const double factor = 0.35 + 0.15 * ny + 0.65 * ny;
+    // The bottom rows look down onto the slope (about 20 degrees below the
+    // horizon at the bottom of a 45 degree view), the middle row at the horizon.
+    for (std::uint32_t y : {50u, 56u, 62u}) {
+        for (int c = 0; c < 3; ++c) {
+            EXPECT_NEAR(pixel(f, 32, y)[c], srgbByte(0.5 * factor), kCodeTolerance) << "row " << y << ", channel " << c;
+        }
+    }
+}
+
 INSTANTIATE_TEST_SUITE_P(Backends, RenderTest, ::testing::Values(Backend::Cpu, Backend::Vulkan),
                          [](const auto& info) { return info.param == Backend::Cpu ? "cpu" : "vulkan"; });
 

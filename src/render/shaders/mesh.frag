@@ -16,8 +16,17 @@ layout(location = 0) out vec4 colour;
 
 void main() {
     vec3 n = normalize(worldNormal);
-    if (dot(n, frame.forward.xyz) > 0.0) {
-        n = -n;  // the side facing the camera
+    // The side facing the camera: the normal is turned to the side of the
+    // triangle's own plane (from the position's screen derivatives) that
+    // faces this fragment's view ray. Testing against the view's centre line
+    // lit slopes at the edge of a perspective view from behind, in dark
+    // jagged patches; testing the smooth normal itself darkened the crests,
+    // where a front-facing triangle's smooth normal turns away from the eye.
+    vec3 toViewer = frame.eye.w > 0.5 ? -frame.forward.xyz : frame.eye.xyz - worldPosition;
+    vec3 face = cross(dFdx(worldPosition), dFdy(worldPosition));
+    face = dot(face, toViewer) < 0.0 ? -face : face;
+    if (dot(n, face) < 0.0) {
+        n = -n;
     }
     vec3 albedo = baseColour;
     if (layer >= 0.0) {

@@ -1,9 +1,9 @@
 // The CPU backend's vector update: the common case of a step (a live particle
 // that is neither born nor dies, whether it strikes plane colliders or not)
 // for kBatchLanes slots at once, with SIMD lanes chosen at run time;
-// everything else stays with the scalar kernel, updateParticle. Bit-identical to the scalar kernel at every
-// SIMD width (docs/performance.md, "Vectorised update"; tests/effects/
-// vector_update_test.cpp).
+// everything else stays with the scalar kernel, updateParticle. Bit-identical
+// to the scalar kernel at every SIMD width (docs/performance.md, "Vectorised
+// update"; tests/effects/vector_update_test.cpp).
 #pragma once
 
 #include "kernels/layout.glsl"

@@ -117,8 +117,9 @@ struct GpuWorld {
     VkDescriptorSetLayout listLayout = VK_NULL_HANDLE;  // set 1: spawn-mode lists
     VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
     /// Pipelines of effects_update.comp by pass (SD_PASS_*, one module each)
-    /// and specialization (field counts, integrator), created the first time a step needs one: llvmpipe compiles
-    /// at creation, and only the variants a world runs are worth compiling.
+    /// and specialization (field counts, integrator), created the first time
+    /// a step needs one: llvmpipe compiles at creation, and only the variants
+    /// a world runs are worth compiling.
     std::map<std::pair<std::uint32_t, std::array<std::uint32_t, kernels::SD_SPEC_COUNT>>, VkPipeline> pipelines;
     /// Bit i: force i is a curl-noise force (the CURL_NOISE specialization
     /// constant of an emitter that selects one).

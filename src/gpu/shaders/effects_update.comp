@@ -3,11 +3,11 @@
 // the shared updateParticle and bornParticle of src/kernels/update.glsl. The
 // physics lives only in src/kernels/*.glsl; this file only binds data to the
 // hooks of context_hooks.glsl, keeps the spawn-mode slot lists and counts
-// events. Each pass is a module of its own (glslc -DSD_PASS_<NAME>_MODULE, one per
-// pass, CMakeLists.txt), so a module holds only its pass's functions and a
-// driver parses and optimises no other pass's code when it builds the pipeline
+// events. Each pass is a module of its own (glslc -DSD_PASS_<NAME>_MODULE,
+// CMakeLists.txt), so a module holds only its pass's functions and a driver
+// parses and optimises no other pass's code when it builds the pipeline
 // (lavapipe built the spawn-finish pass, one thread's bookkeeping, in as long
-// as an update when every module held every pass):
+// as an update when one module held every pass):
 //   recycle update: every slot (direct dispatch of the capacity);
 //   spawn update: the current alive list (indirect dispatch); the dead go on
 //     the dead stack, survivors on the next alive list;

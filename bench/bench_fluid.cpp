@@ -34,7 +34,9 @@
 // (mean over the timed steps), max_mean_density_error (largest per-step mean
 // of max(rho / rho0 - 1, 0) over all 360 steps), neighbour_overflows (total,
 // all steps), max_speed (m/s, over all steps), number_density_median and
-// number_density_p95 (measureFluidNumberDensity at t = 6 s), particles.
+// number_density_p95 (measureFluidNumberDensity at t = 6 s), particles, and
+// the passes' own wall times per timed step (FluidStepStats): grid_ms,
+// contacts_ms, setup_ms, solve_ms, integrate_ms.
 #include <spindrift/world.h>
 
 #include "bench_util.h"
@@ -164,6 +166,7 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
         const FluidId fluid = createFluid(world, def);
         std::vector<double> wallMs, cpu;
         double substeps = 0.0, maxMeanError = 0.0, maxSpeed = 0.0;
+        double gridMs = 0.0, contactsMs = 0.0, setupMs = 0.0, solveMs = 0.0, integrateMs = 0.0;
         std::uint64_t overflows = 0;
         for (int step = 0; step < kTotalSteps; ++step) {
             const double c0 = cpuMs();
@@ -176,6 +179,11 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
                 wallMs.push_back(std::chrono::duration<double, std::milli>(t1 - t0).count());
                 cpu.push_back(c1 - c0);
                 substeps += f.substeps;
+                gridMs += f.gridMs;
+                contactsMs += f.contactsMs;
+                setupMs += f.setupMs;
+                solveMs += f.solveMs;
+                integrateMs += f.integrateMs;
             }
             maxMeanError = std::max(maxMeanError, f.meanDensityError);
             maxSpeed = std::max(maxSpeed, f.maxSpeed);
@@ -190,7 +198,13 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
         state.counters["median_ms_per_step"] = median(wallMs);
         state.counters["cpu_ms_per_step"] = mean(cpu);
         state.counters["median_cpu_ms_per_step"] = median(cpu);
-        state.counters["substeps"] = substeps / static_cast<double>(wallMs.size());
+        const double timedSteps = static_cast<double>(wallMs.size());
+        state.counters["substeps"] = substeps / timedSteps;
+        state.counters["grid_ms"] = gridMs / timedSteps;
+        state.counters["contacts_ms"] = contactsMs / timedSteps;
+        state.counters["setup_ms"] = setupMs / timedSteps;
+        state.counters["solve_ms"] = solveMs / timedSteps;
+        state.counters["integrate_ms"] = integrateMs / timedSteps;
         state.counters["max_mean_density_error"] = maxMeanError;
         state.counters["neighbour_overflows"] = static_cast<double>(overflows);
         state.counters["max_speed"] = maxSpeed;

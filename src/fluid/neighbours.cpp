@@ -100,11 +100,12 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
         ChunkStats s;
         std::vector<Neighbour<D>>& out = lists[chunk];
         out.clear();  // keeps its capacity from the last step
+        std::size_t used = 0;  // out[0, used) is written; out only grows until the chunk ends
         std::vector<Candidate<D>> near;
         for (std::size_t i = begin; i < end; ++i) {
             const Vec<D> xi = p.position[i];
             const Vec<D> vi = p.velocity[i];
-            c.first[i] = static_cast<std::uint32_t>(out.size());
+            c.first[i] = static_cast<std::uint32_t>(used);
             // Phase 1: the particles of the 3^D sub-cells around i that lie
             // within h, gathered with a store per candidate and no branch on
             // the distance (about a third pass in 2D, at random, so a branch
@@ -150,6 +151,10 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             const float lambdaI = p.pressure[i] * warmFraction;
             Vec<D> warm(0.0f);
             std::uint32_t count = 0;
+            // Written through a pointer, not push_back: the vector's size
+            // stored per pair kept the loop's sums in memory (measured).
+            if (out.size() < used + nearCount) out.resize(std::max(2 * out.size(), used + nearCount));
+            Neighbour<D>* dst = out.data() + used;
             for (std::size_t k = 0; k < nearCount; ++k) {
                 const Candidate<D>& cand = near[k];
                 const float r = std::sqrt(cand.r2);
@@ -165,7 +170,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                 // Closing speed of the pair (m/s): picks the next step's
                 // substeps (fluid_step.cpp).
                 fastest = std::max(fastest, glm::dot(vi - p.velocity[cand.index], cand.offset) * invR);
-                out.push_back(Neighbour<D>{gj, cand.index});
+                dst[count] = Neighbour<D>{gj, cand.index};
                 warm -= gj * (lambdaI + p.pressure[cand.index] * warmFraction);
                 mass += w * w;
                 gSum += gj;
@@ -173,6 +178,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             }
             s.approach[approachBin(fastest)] += 1;
             c.count[i] = count;
+            used += count;
             // The colliders' ghosts (wall_density.cpp): motionless
             // neighbours, so they add to the density and to the particle's
             // own Jacobian entry, -(sum g + wall).
@@ -198,6 +204,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             s.maxError = std::max<double>(s.maxError, relative - 1.0f);
             s.neighbourSum += count;
         }
+        out.resize(used);
         chunks[chunk] = s;
     });
 

@@ -2,6 +2,7 @@
 // object arrays are read. See docs/scene-format.md for the format.
 #include "fluid/fluid_state.h"
 #include "render/render_rules.h"
+#include "scene/default_camera.h"
 #include "scene/heightmap_png.h"
 #include "scene/limits.h"
 #include "scene/parse_internal.h"
@@ -253,6 +254,8 @@ SceneDef parseScene(std::string_view text, const std::string& sourceName,
             scene::validateAt(fluids[i], [&] { fluid::checkBlocksClear(scene.fluids[i], scene.colliders); });
         }
     }
+    // Without [camera], a 2D fluid scene is framed square-on (default_camera.h).
+    if (!root.subTable("camera")) scene.render.camera = scene::defaultCamera(scene);
     return scene;
 }
 

@@ -4,6 +4,7 @@
 #include <spindrift/scene.h>
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace {

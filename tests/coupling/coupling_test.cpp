@@ -18,14 +18,15 @@ void run(WorldId world, int steps) {
     for (int i = 0; i < steps; ++i) stepWorld(world, kDt);
 }
 
-/// Water level (m): mean over particle columns (bins one spacing wide) outside
-/// [skipLo, skipHi] of the top particle's centre plus half a spacing (the
-/// lattice's particles are half a spacing below the surface they stand for).
-float waterLevel(const FluidSnapshot& s, float spacing, float width, float skipLo, float skipHi) {
-    const int bins = static_cast<int>(width / spacing);
+/// Water level (m): mean over particle columns (bins one spacing wide) of [lo,
+/// hi] outside [skipLo, skipHi] of the top particle's centre plus half a
+/// spacing (the lattice's particles are half a spacing below the surface they
+/// stand for).
+float waterLevel(const FluidSnapshot& s, float spacing, float lo, float hi, float skipLo, float skipHi) {
+    const int bins = static_cast<int>((hi - lo) / spacing);
     std::vector<float> top(static_cast<std::size_t>(bins), -1.0f);
     for (const glm::vec3& x : s.position) {
-        const int b = static_cast<int>(x.x / spacing);
+        const int b = static_cast<int>(std::floor((x.x - lo) / spacing));
         if (b < 0 || b >= bins || (x.x > skipLo && x.x < skipHi)) continue;
         top[static_cast<std::size_t>(b)] = std::max(top[static_cast<std::size_t>(b)], x.y);
     }
@@ -62,7 +63,7 @@ TEST(CouplingBuoyancy, HalfDenseBoxFloatsHalfSubmerged) {
     for (int i = 0; i < kSamples; ++i) {
         stepWorld(w.id, kDt);
         const BodySnapshot b = test::findBody(w.id, box);
-        const float level = waterLevel(readFluid(w.id, water), kSpacing, kWidth, b.position.x - 0.13f,
+        const float level = waterLevel(readFluid(w.id, water), kSpacing, 0.0f, kWidth, b.position.x - 0.13f,
                                        b.position.x + 0.13f);
         fraction += (level - (b.position.y - 0.1f)) / 0.2f / kSamples;
     }
@@ -112,13 +113,60 @@ TEST_P(FloatingBox, StopsBobbing) {
         fastest = std::max(fastest, std::abs(test::findBody(w.id, box).linearVelocity.y));
     }
     const BodySnapshot b = test::findBody(w.id, box);
-    const float level = waterLevel(readFluid(w.id, water), 0.02f, kWidth, b.position.x - 0.25f, b.position.x + 0.25f);
+    const float level = waterLevel(readFluid(w.id, water), 0.02f, 0.0f, kWidth, b.position.x - 0.25f,
+                                   b.position.x + 0.25f);
     RecordProperty("submerged_fraction", std::to_string((level - (b.position.y - 0.1f)) / 0.2f));
     RecordProperty("fastest", std::to_string(fastest));
     EXPECT_LT(fastest, 0.01f) << "density ratio " << ratio;
 }
 
 INSTANTIATE_TEST_SUITE_P(CouplingBuoyancy, FloatingBox, ::testing::Values(0.25f, 0.5f, 0.75f));
+
+// Issue 12, item 5's depth, with sleeping off: a box 40 particles wide (0.8 x
+// 0.4 m at 2 cm) dropped onto a 2.4 m tank 0.5 m deep floats, on average over
+// 3 to 6 s, with the fraction of its height under the waterline beside it
+// that Archimedes gives: its density ratio. Tolerance 0.03 (the issue's):
+// the waterline is read from the top particles, to about half a spacing
+// (0.025 of the height) on a moving surface, and the drop's waves still rock
+// the box, which the average takes out. With the default sleeping the box
+// ends where the water around it fell asleep instead (0.28 / 0.49 / 0.98 on
+// a 3.2 m tank; docs/fluid.md, "Floating bodies"), which is why this test
+// turns it off: it measures the coupling's buoyancy, not the sleep.
+class SubmergedFraction : public ::testing::TestWithParam<float> {};
+
+TEST_P(SubmergedFraction, IsTheDensityRatioOnAverage) {
+    const float ratio = GetParam();
+    test::BodyTestWorld w;
+    constexpr float kSpacing = 0.02f, kWidth = 2.4f, kDepth = 0.5f;
+    constexpr glm::vec2 kHalf{0.4f, 0.2f};
+    test::staticTank(w.id, kWidth, 1.2f);
+    FluidDef def = test::waterBlock(kSpacing, {0.0f, 0.0f}, {kWidth, kDepth});
+    def.sleepSpeed = 0.0f;
+    const FluidId water = createFluid(w.id, def);
+    const BodyId box =
+        createBody(w.id, test::crate("float", {0.5f * kWidth, kDepth + kHalf.y + 0.01f}, kHalf, ratio * 1000.0f));
+    run(w.id, 180);
+    double sum = 0.0;
+    int samples = 0;
+    for (int i = 0; i < 180; ++i) {
+        stepWorld(w.id, kDt);
+        if (i % 2 != 0) continue;
+        const BodySnapshot b = test::findBody(w.id, box);
+        const FluidSnapshot s = readFluid(w.id, water);
+        // The waterline 0.05 to 0.3 m beside the box, both sides: the tank's
+        // slosh tilts the surface, and the box floats in the water at its side.
+        const float x = b.position.x;
+        const float beside = 0.5f * (waterLevel(s, kSpacing, x - 0.7f, x - 0.45f, 0.0f, 0.0f) +
+                                     waterLevel(s, kSpacing, x + 0.45f, x + 0.7f, 0.0f, 0.0f));
+        sum += (beside - (b.position.y - kHalf.y * std::cos(b.angle))) / (2.0f * kHalf.y);
+        samples += 1;
+    }
+    const double fraction = sum / samples;
+    RecordProperty("submerged_fraction", std::to_string(fraction));
+    EXPECT_NEAR(fraction, ratio, 0.03) << "density ratio " << ratio;
+}
+
+INSTANTIATE_TEST_SUITE_P(CouplingBuoyancy, SubmergedFraction, ::testing::Values(0.25f, 0.5f, 0.75f));
 
 // (b) A jet's momentum pushes a crate along the floor, in the jet's direction.
 TEST(CouplingJet, PushesACrateAlongTheFloor) {

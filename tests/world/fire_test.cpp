@@ -54,6 +54,21 @@ TEST(FluidStrikes, OneDropStrikesOnceAtFreeFallSpeed) {
     EXPECT_NEAR(e.position.y, 0.01f, 0.01f + 4.5f * dt);
 }
 
+/// A 2D fluid jet at 3 m/s from (0.2, 0.3) toward the post of the tests below
+/// (x 0.9 to 1.1): `rate` particles/s through a nozzle of `radius` (m).
+void aimJetAtThePost(WorldId world, float rate, float radius) {
+    FluidDef fluid;
+    fluid.spacing = 0.02f;
+    FluidJetDef jet;
+    jet.position = {0.2f, 0.3f, 0.0f};
+    jet.direction = {1.0f, 0.0f, 0.0f};
+    jet.speed = 3.0f;
+    jet.rate = rate;
+    jet.radius = radius;
+    fluid.jets = {jet};
+    createFluid(world, fluid);
+}
+
 // A jet on a burning post: each strike takes dousePerStrike; the flames'
 // rate is the emitter's own times the strength; steam is born at the
 // strikes' mean position at steamPerStrike per strike.
@@ -69,16 +84,7 @@ TEST(Fires, StrikesDouseTheFireAndMakeSteam) {
     steam.name = "steam";
     const EmitterId flamesId = createEmitter(w.id, flames);
     const EmitterId steamId = createEmitter(w.id, steam);
-    FluidDef fluid;
-    fluid.spacing = 0.02f;
-    FluidJetDef jet;
-    jet.position = {0.2f, 0.3f, 0.0f};
-    jet.direction = {1.0f, 0.0f, 0.0f};
-    jet.speed = 3.0f;
-    jet.rate = 300.0f;
-    jet.radius = 0.03f;
-    fluid.jets = {jet};
-    createFluid(w.id, fluid);
+    aimJetAtThePost(w.id, 300.0f, 0.03f);
     FireDef fire;
     fire.name = "post";
     fire.body = post;
@@ -124,16 +130,7 @@ TEST(Fires, StrikesDouseTheFireAndMakeSteam) {
 TEST(Fires, GoesOutAtTheStrikeItsDouseAllowsFor) {
     OwnedWorld w;
     const BodyId post = staticSlab(w.id, {1.0f, 0.3f}, {0.1f, 0.3f});
-    FluidDef fluid;
-    fluid.spacing = 0.02f;
-    FluidJetDef jet;
-    jet.position = {0.2f, 0.3f, 0.0f};
-    jet.direction = {1.0f, 0.0f, 0.0f};
-    jet.speed = 3.0f;
-    jet.rate = 60.0f;  // a particle a step: 500 steps of 0.002 in float left 5.8e-6
-    jet.radius = 0.01f;
-    fluid.jets = {jet};
-    createFluid(w.id, fluid);
+    aimJetAtThePost(w.id, 60.0f, 0.01f);  // a particle a step: 500 steps of 0.002 in float left 5.8e-6
     FireDef fire;
     fire.name = "post";
     fire.body = post;

@@ -62,7 +62,6 @@ FireId createFire(WorldId id, const FireDef& def) {
     const BodySnapshot& body = bodyOf(bodies, def.body);
     FireState f;
     f.def = def;
-    f.strength = def.strength;
     auto place = [&](EmitterId e, float& rate, glm::vec2& offset, float& z) {
         if (e.index == 0) return;
         const EmitterDef& ed = w.emitters[e.index - 1]->def;
@@ -74,14 +73,29 @@ FireId createFire(WorldId id, const FireDef& def) {
     place(def.smoke, f.smokeRate, f.smokeOffset, f.smokeZ);
     w.fires.push_back(f);
     const FireId fire{static_cast<std::uint32_t>(w.fires.size())};
-    if (def.flames.index != 0) setEmitterRate(id, def.flames, f.flamesRate * f.strength);
-    if (def.smoke.index != 0) setEmitterRate(id, def.smoke, f.smokeRate * f.strength);
+    if (def.flames.index != 0) setEmitterRate(id, def.flames, f.flamesRate * def.strength);
+    if (def.smoke.index != 0) setEmitterRate(id, def.smoke, f.smokeRate * def.strength);
     if (def.steam.index != 0) setEmitterRate(id, def.steam, 0.0f);
     return fire;
 }
 
+namespace {
+
+/// What is left of a fire's strength after its strikes, in [0, def.strength].
+float strengthLeft(const FireState& f) {
+    // From the count, not taken off step by step: 500 strikes of 0.002 took
+    // a fire of strength 1 down to 6.5e-7 in float steps, not 0, and it
+    // burned on though its scene says 500 put it out. What is left under a
+    // millionth of full strength is rounding: out.
+    const double left = static_cast<double>(f.def.strength) -
+                        static_cast<double>(f.def.dousePerStrike) * static_cast<double>(f.strikes);
+    return left > 1e-6 ? static_cast<float>(left) : 0.0f;
+}
+
+}  // namespace
+
 std::uint32_t fireCount(WorldId id) { return static_cast<std::uint32_t>(worldFromId(id).fires.size()); }
-float fireStrength(WorldId id, FireId fire) { return fireFromId(worldFromId(id), fire).strength; }
+float fireStrength(WorldId id, FireId fire) { return strengthLeft(fireFromId(worldFromId(id), fire)); }
 std::uint64_t fireStrikes(WorldId id, FireId fire) { return fireFromId(worldFromId(id), fire).strikes; }
 
 void updateFires(World& w, WorldId id, std::size_t firstEvent, float dt) {
@@ -100,20 +114,14 @@ void updateFires(World& w, WorldId id, std::size_t firstEvent, float dt) {
             }
         }
         f.strikes += strikes;
-        // From the count, not taken off step by step: 500 strikes of 0.002
-        // took a fire of strength 1 down to 6.5e-7 in float steps, not 0, and
-        // it burned on though its scene says 500 put it out. What is left
-        // under a millionth of full strength is rounding: out.
-        const double left = static_cast<double>(f.def.strength) -
-                            static_cast<double>(f.def.dousePerStrike) * static_cast<double>(f.strikes);
-        f.strength = left > 1e-6 ? static_cast<float>(left) : 0.0f;
+        const float strength = strengthLeft(f);
         const BodySnapshot& body = bodyOf(bodies, f.def.body);
         if (f.def.flames.index != 0) {
-            setEmitterRate(id, f.def.flames, f.flamesRate * f.strength);
+            setEmitterRate(id, f.def.flames, f.flamesRate * strength);
             carry(id, f.def.flames, body, f.flamesOffset, f.flamesZ);
         }
         if (f.def.smoke.index != 0) {
-            setEmitterRate(id, f.def.smoke, f.smokeRate * f.strength);
+            setEmitterRate(id, f.def.smoke, f.smokeRate * strength);
             carry(id, f.def.smoke, body, f.smokeOffset, f.smokeZ);
         }
         if (f.def.steam.index != 0) {

@@ -15,7 +15,6 @@ struct World;
 
 struct FireState {
     FireDef def;
-    float strength = 1.0f;
     std::uint64_t strikes = 0;
     float flamesRate = 0.0f, smokeRate = 0.0f;  // the emitters' rates at creation (particles/s)
     // Flame and smoke shape centres in the body's frame at creation (m).

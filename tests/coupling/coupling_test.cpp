@@ -19,10 +19,11 @@ void run(WorldId world, int steps) {
 }
 
 /// Water level (m): mean over particle columns (bins one spacing wide) of [lo,
-/// hi] outside [skipLo, skipHi] of the top particle's centre plus half a
-/// spacing (the lattice's particles are half a spacing below the surface they
-/// stand for).
-float waterLevel(const FluidSnapshot& s, float spacing, float lo, float hi, float skipLo, float skipHi) {
+/// hi] outside (skipLo, skipHi) (by default none) of the top particle's centre
+/// plus half a spacing (the lattice's particles are half a spacing below the
+/// surface they stand for).
+float waterLevel(const FluidSnapshot& s, float spacing, float lo, float hi, float skipLo = 0.0f,
+                 float skipHi = 0.0f) {
     const int bins = static_cast<int>((hi - lo) / spacing);
     std::vector<float> top(static_cast<std::size_t>(bins), -1.0f);
     for (const glm::vec3& x : s.position) {
@@ -156,8 +157,8 @@ TEST_P(SubmergedFraction, IsTheDensityRatioOnAverage) {
         // The waterline 0.05 to 0.3 m beside the box, both sides: the tank's
         // slosh tilts the surface, and the box floats in the water at its side.
         const float x = b.position.x;
-        const float beside = 0.5f * (waterLevel(s, kSpacing, x - 0.7f, x - 0.45f, 0.0f, 0.0f) +
-                                     waterLevel(s, kSpacing, x + 0.45f, x + 0.7f, 0.0f, 0.0f));
+        const float beside = 0.5f * (waterLevel(s, kSpacing, x - 0.7f, x - 0.45f) +
+                                     waterLevel(s, kSpacing, x + 0.45f, x + 0.7f));
         sum += (beside - (b.position.y - kHalf.y * std::cos(b.angle))) / (2.0f * kHalf.y);
         samples += 1;
     }

@@ -125,12 +125,12 @@ TEST(Fires, StrikesDouseTheFireAndMakeSteam) {
 }
 
 // A fire of strength 1 dousing 0.002 per strike goes out at its 500th strike,
-// not one later: taken off step by step in float, 500 strikes left 6.5e-7 and
-// the showcase's bonfire burned on.
+// not one later: taken off step by step in float, 500 strikes left 6.5e-7 (five
+// a step) and the showcase's bonfire burned on, or 5.8e-6 (one a step, here).
 TEST(Fires, GoesOutAtTheStrikeItsDouseAllowsFor) {
     OwnedWorld w;
     const BodyId post = staticSlab(w.id, {1.0f, 0.3f}, {0.1f, 0.3f});
-    aimJetAtThePost(w.id, 60.0f, 0.01f);  // a particle a step: 500 steps of 0.002 in float left 5.8e-6
+    aimJetAtThePost(w.id, 60.0f, 0.01f);  // a particle a step
     FireDef fire;
     fire.name = "post";
     fire.body = post;

@@ -290,53 +290,70 @@ bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1) {
     return true;
 }
 
-}  // namespace
-
-glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1) {
-    // Segments and polygon edges first, against the path: each pass stops it
-    // before the crossings it finds; a few passes settle a corner of joined
-    // segments (the end moved off one line may sit across the other). The
-    // cell lists the shapes within binnedReach of x0; a longer path (the
-    // solver can throw a particle at a corner far faster than the step began
-    // with) may cross any segment or end in any shape, so it tests them all.
-    // A polygon thinner than a path is crossed whole, with both ends outside
-    // it: a tank of 10 cm static boxes let a block launched at 100 m/s out
-    // from its second step. Its edges stop only a path that starts on their
-    // outer side (a particle found inside is pushed out below).
-    const bool longPath = glm::distance(x0, x1) > binnedReach;
-    const std::uint32_t first = longPath ? 0u : s.cellStart[cell];
-    const std::uint32_t last = longPath ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
+/// The path from -> to stopped before the edges and segments of still shapes
+/// it crosses. The cell lists the shapes within binnedReach of origin; a path
+/// that leaves that disc (the solver can throw a particle at a corner far
+/// faster than the step began with) may cross any of them, so it tests them
+/// all. A polygon thinner than a path is crossed whole, with both ends outside
+/// it: a tank of 10 cm static boxes let a block launched at 100 m/s out from
+/// its second step. Its edges stop only a path that starts on their outer
+/// side (a particle found inside is pushed out by pushOutOfBodies). Each pass
+/// stops the path before the crossings it finds; a few passes settle a corner
+/// of joined segments (the end moved off one line may sit across the other).
+glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 origin,
+                               glm::vec2 from, glm::vec2 to) {
+    const bool everyShape = glm::distance(origin, from) > binnedReach || glm::distance(origin, to) > binnedReach;
+    const std::uint32_t first = everyShape ? 0u : s.cellStart[cell];
+    const std::uint32_t last = everyShape ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
     for (int pass = 0; pass < 3; ++pass) {
         bool crossed = false;
         for (std::uint32_t k = first; k < last; ++k) {
-            const kernels::FluidBodyShape& shape = s.shapes[longPath ? k : s.cellShapes[k]];
+            const kernels::FluidBodyShape& shape = s.shapes[everyShape ? k : s.cellShapes[k]];
             if (shape.kind == kernels::SD_BODY_SHAPE_CIRCLE) continue;
-            // Still shapes only: x0 is where the particle was against the
+            // Still shapes only: from is where the particle was against the
             // shape's pose at the start of the substep, and a moving one is
             // at its end pose here (the contacts keep those out).
             const StepBody& b = s.bodies[shape.body];
             if (b.velocity != glm::vec2(0.0f) || b.angularVelocity != 0.0f) continue;
             if (shape.kind == kernels::SD_BODY_SHAPE_SEGMENT) {
                 const glm::vec4 g = shape.geometry;
-                crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), x0, x1) || crossed;
+                crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), from, to) || crossed;
                 continue;
             }
             for (std::uint32_t e = 0; e < shape.polygon.count; ++e) {
                 const glm::vec2 a(shape.polygon.vertices[e]);
                 const glm::vec2 c(shape.polygon.vertices[(e + 1) % shape.polygon.count]);
-                if (cross(c - a, x0 - a) < 0.0f) {  // counter-clockwise: outside is to the right
-                    crossed = stopBeforeSegment(a, c, x0, x1) || crossed;
+                if (cross(c - a, from - a) < 0.0f) {  // counter-clockwise: outside is to the right
+                    crossed = stopBeforeSegment(a, c, from, to) || crossed;
                 }
             }
         }
         if (!crossed) break;
     }
+    return to;
+}
+
+}  // namespace
+
+glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1) {
+    // Segments and polygon edges first, against the path.
+    x1 = stopBeforeStillEdges(s, cell, binnedReach, x0, x0, x1);
+    // An end point inside a shape goes out through its nearest surface.
+    const glm::vec2 stopped = x1;
+    const bool everyShape = glm::distance(x0, x1) > binnedReach;
+    const std::uint32_t first = everyShape ? 0u : s.cellStart[cell];
+    const std::uint32_t last = everyShape ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
     for (std::uint32_t k = first; k < last; ++k) {
         const kernels::FluidSurface surface =
-            kernels::fluidBodyShapeSurface(s.shapes[longPath ? k : s.cellShapes[k]], glm::vec3(x1, 0.0f));
+            kernels::fluidBodyShapeSurface(s.shapes[everyShape ? k : s.cellShapes[k]], glm::vec3(x1, 0.0f));
         if (surface.distance < 0.0f) x1 += glm::vec2(surface.normal) * (kSkin - surface.distance);
     }
-    return x1;
+    // That push may not cross a still wall either: a particle wedged
+    // between a crate and a tank's wall of edges was pushed out of the crate
+    // through the wall (launches into a tank with two crates: 12 of 48 into
+    // edge tanks let particles out). Left inside the crate instead, it is
+    // pushed out by the contacts' pseudo velocity once there is room.
+    return stopBeforeStillEdges(s, cell, binnedReach, x0, stopped, x1);
 }
 
 }  // namespace spindrift::fluid

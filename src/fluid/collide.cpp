@@ -200,6 +200,20 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 removeLater(chunk, i);
                 continue;
             }
+            if constexpr (D == 2) {
+                // Rigid bodies (already at their end-of-substep poses): an end
+                // point inside goes out through the nearest surface, a path
+                // across an edge or chain segment stops before it. Position
+                // only, so momentum stays with the contact impulses. Before
+                // the colliders' tests, which then also stop a push out of a
+                // crate that would cross them (world colliders do not stop
+                // bodies).
+                if (f.bodies != nullptr) {
+                    const glm::vec2 x =
+                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1));
+                    x1 = glm::vec3(x, 0.0f);
+                }
+            }
             // Path tests (as the effects' collisions): a path that crosses a
             // plane, sphere or box ends at the contact, moving no further in.
             for (const kernels::ColliderParams& c : world.colliders) {
@@ -219,17 +233,6 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 if (s.distance < 0.0f) {
                     x1 += s.normal * (kSkin - s.distance);
                     v -= s.normal * std::min(glm::dot(v, s.normal), 0.0f);
-                }
-            }
-            if constexpr (D == 2) {
-                // Rigid bodies (already at their end-of-substep poses): an end
-                // point inside goes out through the nearest surface, a path
-                // across an edge or chain segment stops before it. Position
-                // only, so momentum stays with the contact impulses.
-                if (f.bodies != nullptr) {
-                    const glm::vec2 x =
-                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1));
-                    x1 = glm::vec3(x, 0.0f);
                 }
             }
             if (!finite(x1) || !finiteSpeed(v)) {

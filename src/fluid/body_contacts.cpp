@@ -273,7 +273,9 @@ namespace {
 /// segment and, at a corner where two segments join, of the other one too
 /// (the crossing point is then the shared vertex, and backing along the path
 /// goes back inside). A path that starts on the line has no side: left alone.
-bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1) {
+/// A stopped particle also stops moving into the segment, as at a collider
+/// (collide.cpp): its velocity v keeps no part toward the line.
+bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1, glm::vec2& v) {
     const glm::vec2 edge = b - a;
     const float len2 = glm::dot(edge, edge);
     const float s0 = cross(edge, x0 - a), s1 = cross(edge, x1 - a);
@@ -287,6 +289,7 @@ bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1) {
     const glm::vec2 side = glm::vec2(-edge.y, edge.x) * ((s0 > 0.0f ? 1.0f : -1.0f) / std::sqrt(len2));
     const float length = glm::length(path);
     x1 = p + side * kSkin - (length > 0.0f ? path / length : glm::vec2(0.0f)) * kSkin;
+    v -= side * std::min(glm::dot(v, side), 0.0f);
     return true;
 }
 
@@ -301,7 +304,7 @@ bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1) {
 /// stops the path before the crossings it finds; a few passes settle a corner
 /// of joined segments (the end moved off one line may sit across the other).
 glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 origin,
-                               glm::vec2 from, glm::vec2 to) {
+                               glm::vec2 from, glm::vec2 to, glm::vec2& v) {
     const bool everyShape = glm::distance(origin, from) > binnedReach || glm::distance(origin, to) > binnedReach;
     const std::uint32_t first = everyShape ? 0u : s.cellStart[cell];
     const std::uint32_t last = everyShape ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
@@ -317,14 +320,14 @@ glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float
             if (b.velocity != glm::vec2(0.0f) || b.angularVelocity != 0.0f) continue;
             if (shape.kind == kernels::SD_BODY_SHAPE_SEGMENT) {
                 const glm::vec4 g = shape.geometry;
-                crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), from, to) || crossed;
+                crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), from, to, v) || crossed;
                 continue;
             }
             for (std::uint32_t e = 0; e < shape.polygon.count; ++e) {
                 const glm::vec2 a(shape.polygon.vertices[e]);
                 const glm::vec2 c(shape.polygon.vertices[(e + 1) % shape.polygon.count]);
                 if (cross(c - a, from - a) < 0.0f) {  // counter-clockwise: outside is to the right
-                    crossed = stopBeforeSegment(a, c, from, to) || crossed;
+                    crossed = stopBeforeSegment(a, c, from, to, v) || crossed;
                 }
             }
         }
@@ -335,9 +338,10 @@ glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float
 
 }  // namespace
 
-glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1) {
+glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1,
+                          glm::vec2& v) {
     // Segments and polygon edges first, against the path.
-    x1 = stopBeforeStillEdges(s, cell, binnedReach, x0, x0, x1);
+    x1 = stopBeforeStillEdges(s, cell, binnedReach, x0, x0, x1, v);
     // An end point inside a shape goes out through its nearest surface.
     const glm::vec2 stopped = x1;
     const bool everyShape = glm::distance(x0, x1) > binnedReach;
@@ -350,10 +354,11 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
     }
     // That push may not cross a still wall either: a particle wedged
     // between a crate and a tank's wall of edges was pushed out of the crate
-    // through the wall (launches into a tank with two crates: 12 of 48 into
-    // edge tanks let particles out). Left inside the crate instead, it is
-    // pushed out by the contacts' pseudo velocity once there is room.
-    return stopBeforeStillEdges(s, cell, binnedReach, x0, stopped, x1);
+    // through the wall (launches into tanks with two crates: 10 of 24 into
+    // a tank of edges let particles out, 8 of 24 into boxes). Left inside the
+    // crate instead, it is pushed out by the contacts' pseudo velocity once
+    // there is room.
+    return x1 == stopped ? x1 : stopBeforeStillEdges(s, cell, binnedReach, x0, stopped, x1, v);
 }
 
 }  // namespace spindrift::fluid

@@ -100,11 +100,14 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const G
 void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float dt);
 /// Moves the local poses on by dt with their velocities and updates the shapes.
 void advanceBodies(FluidBodyStep& s, float dt);
-/// Puts an end point x1 that lies inside a body shape back on its surface,
-/// and ends a path x0 -> x1 that crosses a still segment (edges and chains
-/// have no inside to test) on x0's side of it. binnedReach (m): the distance
-/// from x0 within which the cell's shapes are all the shapes there are.
-glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1);
+/// Ends a path x0 -> x1 that crosses an edge of a still shape (edges and
+/// chains have no inside to test) on x0's side of it, with no velocity v
+/// left toward it; then puts an end point that lies inside a body shape back
+/// on its surface, unless that crosses a still edge. binnedReach (m): the
+/// distance from x0 within which the cell's shapes are all the shapes there
+/// are.
+glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 x0, glm::vec2 x1,
+                          glm::vec2& v);
 /// Grid cell (2h wide) of a point, clamped into the grid.
 std::uint32_t cellOf(const Grid<2>& grid, glm::vec2 x);
 

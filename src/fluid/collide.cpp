@@ -203,15 +203,18 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             if constexpr (D == 2) {
                 // Rigid bodies (already at their end-of-substep poses): an end
                 // point inside goes out through the nearest surface, a path
-                // across an edge or chain segment stops before it. Position
+                // across a still edge stops before it, as at a collider, with
+                // no velocity left into it. A moving body's push is position
                 // only, so momentum stays with the contact impulses. Before
                 // the colliders' tests, which then also stop a push out of a
                 // crate that would cross them (world colliders do not stop
                 // bodies).
                 if (f.bodies != nullptr) {
+                    glm::vec2 v2(v);
                     const glm::vec2 x =
-                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1));
+                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1), v2);
                     x1 = glm::vec3(x, 0.0f);
+                    v = glm::vec3(v2, 0.0f);
                 }
             }
             // Path tests (as the effects' collisions): a path that crosses a

@@ -76,6 +76,11 @@ struct FluidPolygonDef {
 /// them (src/fluid/fluid_rules.h).
 inline constexpr std::uint32_t kFluidMinIterations = 1;
 inline constexpr std::uint32_t kFluidMaxIterations = 16;
+/// Least velocity steering (FluidDef::baumgarte). Below about this the
+/// density drifts uncorrected and a crushed splash blows up: launches into a
+/// tank gained up to 1e33 times their energy at 0, and once at 0.002 (none
+/// of 144 at 0.005, 0.01 or the default; docs/fluid.md).
+inline constexpr float kFluidMinBaumgarte = 0.01f;
 /// Substeps per world step when given (0: automatic).
 inline constexpr std::uint32_t kFluidMaxSubsteps = 16;
 /// Neighbours kept per particle (FluidDef::maxNeighbours).
@@ -97,7 +102,7 @@ struct FluidDef {
     /// Solver iterations per step, kFluidMinIterations (1) to kFluidMaxIterations (16).
     std::uint32_t iterations = 4;
     /// Velocity steering toward the rest density (slide 34): the bias is
-    /// (rho0 - rho) x baumgarte x h / dt, in [0, 1].
+    /// (rho0 - rho) x baumgarte x h / dt, in [kFluidMinBaumgarte (0.01), 1].
     float baumgarte = 0.05f;
     /// Fraction of the previous step's pressure applied before iterating
     /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
@@ -212,7 +217,7 @@ SPINDRIFT_API std::uint32_t pourFluid(WorldId world, FluidId fluid, glm::vec3 ce
 
 /// Changes a fluid's solver settings from the next step on (the viewer's
 /// panel): iterations (kFluidMinIterations to kFluidMaxIterations) and
-/// baumgarte (in [0, 1]) as in FluidDef.
+/// baumgarte (in [kFluidMinBaumgarte, 1]) as in FluidDef.
 /// Throws Error, changing nothing, for values FluidDef rejects.
 SPINDRIFT_API void setFluidSolver(WorldId world, FluidId fluid, std::uint32_t iterations, float baumgarte);
 

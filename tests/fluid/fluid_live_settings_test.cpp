@@ -47,6 +47,7 @@ TEST(FluidLiveSettings, RejectedValuesChangeNothing) {
     const FluidId f = createFluid(w, block(4, 0.05f));
     EXPECT_THROW(setFluidSolver(w, f, 0, 0.05f), Error);
     EXPECT_THROW(setFluidSolver(w, f, 4, 1.5f), Error);
+    EXPECT_THROW(setFluidSolver(w, f, 4, 0.0f), Error);  // below kFluidMinBaumgarte
     EXPECT_EQ(fluidDef(w, f).iterations, 4u);
     EXPECT_FLOAT_EQ(fluidDef(w, f).baumgarte, 0.05f);
     destroyWorld(w);

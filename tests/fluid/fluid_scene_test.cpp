@@ -85,6 +85,16 @@ TEST(FluidScene, ErrorsPointAtTheLine) {
     } catch (const SceneError& e) {
         EXPECT_EQ(e.line(), 3);
     }
+    // Below kFluidMinBaumgarte a crushed splash can blow up (docs/fluid.md):
+    // refused at its line, with the range.
+    try {
+        parseScene("[[fluid]]\nname = \"w\"\nbaumgarte = 0\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n",
+                   "bad.toml");
+        FAIL() << "expected a SceneError";
+    } catch (const SceneError& e) {
+        EXPECT_EQ(e.line(), 3);
+        EXPECT_NE(std::string(e.what()).find("0.01"), std::string::npos) << e.what();
+    }
     // A polygon that is not convex: reported at the fluid's table.
     EXPECT_THROW(parseScene("[[fluid]]\nname = \"w\"\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n"
                             "[[fluid.polygon]]\nvertices = [[0, 0], [1, 0], [0.2, 0.2], [0, 1]]\n",

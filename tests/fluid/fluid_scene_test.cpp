@@ -12,6 +12,7 @@
 #include <sstream>
 #include <string>
 #include <string_view>
+#include <utility>
 
 namespace spindrift_test {  // tests/io/json_check.cpp
 std::optional<std::string> jsonQuery(std::string_view text, std::string_view path);
@@ -69,32 +70,28 @@ vertices = [[2.0, 0.0], [3.0, 0.0], [2.5, 0.5]]  # beside the block, not under i
     EXPECT_EQ(f.polygons[0].vertices.size(), 3u);
 }
 
+/// The line and message of the SceneError that a fluid with `key` (one
+/// line, the file's third) and a block gives.
+std::pair<int, std::string> errorAtKey(const std::string& key) {
+    try {
+        parseScene("[[fluid]]\nname = \"w\"\n" + key + "\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n",
+                   "bad.toml");
+    } catch (const SceneError& e) {
+        return {e.line(), e.what()};
+    }
+    return {0, "no SceneError"};
+}
+
 TEST(FluidScene, ErrorsPointAtTheLine) {
-    try {
-        parseScene("[[fluid]]\nname = \"w\"\niterations = 40\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n",
-                   "bad.toml");
-        FAIL() << "expected a SceneError";
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.line(), 3);
-        EXPECT_NE(std::string(e.what()).find("bad.toml:3:"), std::string::npos) << e.what();
-    }
-    try {
-        parseScene("[[fluid]]\nname = \"w\"\nsolver = \"fast\"\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n",
-                   "bad.toml");
-        FAIL() << "expected a SceneError";
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.line(), 3);
-    }
+    const auto iterations = errorAtKey("iterations = 40");
+    EXPECT_EQ(iterations.first, 3) << iterations.second;
+    EXPECT_NE(iterations.second.find("bad.toml:3:"), std::string::npos) << iterations.second;
+    EXPECT_EQ(errorAtKey("solver = \"fast\"").first, 3);
     // Below kFluidMinBaumgarte a crushed splash can blow up (docs/fluid.md):
     // refused at its line, with the range.
-    try {
-        parseScene("[[fluid]]\nname = \"w\"\nbaumgarte = 0\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n",
-                   "bad.toml");
-        FAIL() << "expected a SceneError";
-    } catch (const SceneError& e) {
-        EXPECT_EQ(e.line(), 3);
-        EXPECT_NE(std::string(e.what()).find("0.01"), std::string::npos) << e.what();
-    }
+    const auto baumgarte = errorAtKey("baumgarte = 0");
+    EXPECT_EQ(baumgarte.first, 3) << baumgarte.second;
+    EXPECT_NE(baumgarte.second.find("[0.01, 1]"), std::string::npos) << baumgarte.second;
     // A polygon that is not convex: reported at the fluid's table.
     EXPECT_THROW(parseScene("[[fluid]]\nname = \"w\"\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n"
                             "[[fluid.polygon]]\nvertices = [[0, 0], [1, 0], [0.2, 0.2], [0, 1]]\n",

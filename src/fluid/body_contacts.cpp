@@ -303,25 +303,31 @@ bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1, gl
 /// side (a particle found inside is pushed out by pushOutOfBodies). Each pass
 /// stops the path before the crossings it finds; a few passes settle a corner
 /// of joined segments (the end moved off one line may sit across the other).
+/// Calls fn for each shape the cell lists (those within binnedReach of its
+/// particles), or for every shape when `everyShape`.
+template <class Fn>
+void forShapesNear(const FluidBodyStep& s, std::uint32_t cell, bool everyShape, Fn&& fn) {
+    const std::uint32_t first = everyShape ? 0u : s.cellStart[cell];
+    const std::uint32_t last = everyShape ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
+    for (std::uint32_t k = first; k < last; ++k) fn(s.shapes[everyShape ? k : s.cellShapes[k]]);
+}
+
 glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float binnedReach, glm::vec2 origin,
                                glm::vec2 from, glm::vec2 to, glm::vec2& v) {
     const bool everyShape = glm::distance(origin, from) > binnedReach || glm::distance(origin, to) > binnedReach;
-    const std::uint32_t first = everyShape ? 0u : s.cellStart[cell];
-    const std::uint32_t last = everyShape ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
     for (int pass = 0; pass < 3; ++pass) {
         bool crossed = false;
-        for (std::uint32_t k = first; k < last; ++k) {
-            const kernels::FluidBodyShape& shape = s.shapes[everyShape ? k : s.cellShapes[k]];
-            if (shape.kind == kernels::SD_BODY_SHAPE_CIRCLE) continue;
+        forShapesNear(s, cell, everyShape, [&](const kernels::FluidBodyShape& shape) {
+            if (shape.kind == kernels::SD_BODY_SHAPE_CIRCLE) return;
             // Still shapes only: from is where the particle was against the
             // shape's pose at the start of the substep, and a moving one is
             // at its end pose here (the contacts keep those out).
             const StepBody& b = s.bodies[shape.body];
-            if (b.velocity != glm::vec2(0.0f) || b.angularVelocity != 0.0f) continue;
+            if (b.velocity != glm::vec2(0.0f) || b.angularVelocity != 0.0f) return;
             if (shape.kind == kernels::SD_BODY_SHAPE_SEGMENT) {
                 const glm::vec4 g = shape.geometry;
                 crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), from, to, v) || crossed;
-                continue;
+                return;
             }
             for (std::uint32_t e = 0; e < shape.polygon.count; ++e) {
                 const glm::vec2 a(shape.polygon.vertices[e]);
@@ -330,7 +336,7 @@ glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float
                     crossed = stopBeforeSegment(a, c, from, to, v) || crossed;
                 }
             }
-        }
+        });
         if (!crossed) break;
     }
     return to;
@@ -344,14 +350,10 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
     x1 = stopBeforeStillEdges(s, cell, binnedReach, x0, x0, x1, v);
     // An end point inside a shape goes out through its nearest surface.
     const glm::vec2 stopped = x1;
-    const bool everyShape = glm::distance(x0, x1) > binnedReach;
-    const std::uint32_t first = everyShape ? 0u : s.cellStart[cell];
-    const std::uint32_t last = everyShape ? static_cast<std::uint32_t>(s.shapes.size()) : s.cellStart[cell + 1];
-    for (std::uint32_t k = first; k < last; ++k) {
-        const kernels::FluidSurface surface =
-            kernels::fluidBodyShapeSurface(s.shapes[everyShape ? k : s.cellShapes[k]], glm::vec3(x1, 0.0f));
+    forShapesNear(s, cell, glm::distance(x0, x1) > binnedReach, [&](const kernels::FluidBodyShape& shape) {
+        const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(shape, glm::vec3(x1, 0.0f));
         if (surface.distance < 0.0f) x1 += glm::vec2(surface.normal) * (kSkin - surface.distance);
-    }
+    });
     // That push may not cross a still wall either: a particle wedged
     // between a crate and a tank's wall of edges was pushed out of the crate
     // through the wall (launches into tanks with two crates: 10 of 24 into

@@ -42,81 +42,6 @@ void boxTank(WorldId world) {
     createBody(world, def);
 }
 
-struct Launch {
-    float spacing;  // m
-    float speed;    // m/s
-    glm::vec2 aim;  // toward a corner or a wall near one
-    int steps;
-};
-
-/// Launches a block at a corner of the tank that `build` makes; every
-/// particle must stay inside [0, 1] x [0, 1] at every step.
-void expectNoneLeaves(const Launch& launch, void (*build)(WorldId)) {
-    test::BodyTestWorld w;
-    build(w.id);
-    FluidDef water;
-    water.name = "water";
-    water.dimension = 2;
-    water.spacing = launch.spacing;
-    FluidBlockDef block;  // 6 x 6 particles (15 x 15 at 2 cm)
-    block.min = glm::vec3(0.2f, 0.2f, 0.0f);
-    block.max = glm::vec3(0.5f, 0.5f, 0.0f);
-    block.velocity = glm::vec3(glm::normalize(launch.aim) * launch.speed, 0.0f);
-    water.blocks.push_back(block);
-    const FluidId fluid = createFluid(w.id, water);
-    const std::size_t count = readFluid(w.id, fluid).position.size();
-    ASSERT_GT(count, 0u);
-    int outside = 0, firstStep = -1;
-    for (int step = 1; step <= launch.steps && outside == 0; ++step) {
-        stepWorld(w.id, 1.0f / 60.0f);
-        const FluidSnapshot s = readFluid(w.id, fluid);
-        ASSERT_EQ(s.position.size(), count);
-        // A particle's centre beyond a wall's line is outside: the edges (or
-        // the boxes' inner faces) are the walls, with no thickness to hide in.
-        for (const glm::vec3& x : s.position) {
-            if (!(x.x >= 0.0f && x.x <= kSide && x.y >= 0.0f && x.y <= kSide)) {
-                ++outside;
-                firstStep = step;
-            }
-        }
-    }
-    EXPECT_EQ(outside, 0) << "first out at step " << firstStep;
-}
-
-std::string launchName(const ::testing::TestParamInfo<Launch>& info) {
-    return "Launch" + std::to_string(info.index) + "At" + std::to_string(static_cast<int>(info.param.speed)) +
-           "MetresPerSecond";
-}
-
-class EdgeTank : public ::testing::TestWithParam<Launch> {};
-TEST_P(EdgeTank, NoParticleLeavesAtACorner) { expectNoneLeaves(GetParam(), edgeTank); }
-
-class BoxTank : public ::testing::TestWithParam<Launch> {};
-TEST_P(BoxTank, NoParticleLeavesThroughAWall) { expectNoneLeaves(GetParam(), boxTank); }
-
-// Each of these let particles out before the path test of segments (first
-// out at steps 2, 5, 3 and 3: at a corner the solver can throw a particle
-// metres in one substep, past the wall the contacts had in view). The first
-// for 10,000 steps (167 s), the others for the first 300 (5 s), where the
-// launch strikes its corner.
-INSTANTIATE_TEST_SUITE_P(CornerLaunches, EdgeTank,
-                         ::testing::Values(Launch{0.05f, 100.0f, {-1.0f, -1.0f}, 10000},
-                                           Launch{0.05f, 100.0f, {1.0f, 0.3f}, 300},
-                                           Launch{0.02f, 20.0f, {-1.0f, -1.0f}, 300},
-                                           Launch{0.02f, 20.0f, {1.0f, -1.0f}, 300}),
-                         launchName);
-// The first three let particles out through a wall before the path test took
-// polygon edges (first out at steps 6, 2 and 2). The fourth then blew up at
-// step 8 (2.4e6 m/s) and its particles were removed as non-finite, until
-// particles on one point got a direction to push apart along
-// (neighbours.cpp, coincidentDirection).
-INSTANTIATE_TEST_SUITE_P(WallLaunches, BoxTank,
-                         ::testing::Values(Launch{0.05f, 100.0f, {1.0f, 0.3f}, 300},
-                                           Launch{0.02f, 100.0f, {-1.0f, -1.0f}, 300},
-                                           Launch{0.02f, 100.0f, {1.0f, -1.0f}, 300},
-                                           Launch{0.02f, 100.0f, {1.0f, 0.3f}, 300}),
-                         launchName);
-
 // A particle that the path test stops before a still wall (1e-5 m short of
 // it) stops moving into it, as at a collider: its velocity into the wall
 // would otherwise stay until the next substep's contacts, be reported, and
@@ -180,23 +105,26 @@ double mechanicalEnergy(const FluidSnapshot& s) {
 struct LaunchOutcome {
     double mostEnergy = 0.0;  // the fluid's largest mechanical energy over its start
     int outside = 0;          // particle-steps with the centre outside the tank
+    int firstOut = -1;        // the first step with a particle outside
 };
 
-/// A 0.3 m block launched from the tank's middle at `speed` along `angle`
-/// (rad) for 2 s; a lost particle fails the test at once.
-LaunchOutcome launchIntoTank(void (*build)(WorldId), bool crates, float spacing, float speed, float angle,
-                             float baumgarte = FluidDef{}.baumgarte) {
+/// A 0.3 m block with its lower left corner at `lo` launched at `velocity`
+/// (m/s) into the tank that `build` makes, for `steps` steps of 1/60 s; a
+/// lost particle fails the test at once. A particle's centre beyond a wall's
+/// line is outside: the edges (or the boxes' inner faces, or the planes) are
+/// the walls, with no thickness to hide in.
+LaunchOutcome launchIntoTank(void (*build)(WorldId), bool crates, float spacing, glm::vec2 lo, glm::vec2 velocity,
+                             int steps, float baumgarte = FluidDef{}.baumgarte) {
     test::BodyTestWorld w;
     build(w.id);
     if (crates) twoCrates(w.id);
-    FluidDef water =
-        test::waterBlock(spacing, {0.3f, 0.3f}, {0.6f, 0.6f}, glm::vec2(std::cos(angle), std::sin(angle)) * speed);
+    FluidDef water = test::waterBlock(spacing, lo, lo + glm::vec2(0.3f), velocity);
     water.baumgarte = baumgarte;
     const FluidId fluid = createFluid(w.id, water);
     const FluidSnapshot start = readFluid(w.id, fluid);
     const double energy = mechanicalEnergy(start);
     LaunchOutcome out;
-    for (int step = 1; step <= 120; ++step) {
+    for (int step = 1; step <= steps; ++step) {
         stepWorld(w.id, 1.0f / 60.0f);
         const FluidSnapshot s = readFluid(w.id, fluid);
         if (s.count() != start.count()) {
@@ -205,16 +133,75 @@ LaunchOutcome launchIntoTank(void (*build)(WorldId), bool crates, float spacing,
         }
         out.mostEnergy = std::max(out.mostEnergy, mechanicalEnergy(s) / energy);
         for (const glm::vec3& x : s.position) {
-            out.outside += !(x.x >= 0.0f && x.x <= kSide && x.y >= 0.0f && x.y <= kSide);
+            if (!(x.x >= 0.0f && x.x <= kSide && x.y >= 0.0f && x.y <= kSide)) {
+                out.outside += 1;
+                if (out.firstOut < 0) out.firstOut = step;
+            }
         }
     }
     return out;
 }
 
+struct Launch {
+    float spacing;  // m
+    float speed;    // m/s
+    glm::vec2 aim;  // toward a corner or a wall near one
+    int steps;
+};
+
+/// Launches a block at a corner of the tank that `build` makes; every
+/// particle must stay inside [0, 1] x [0, 1] at every step.
+void expectNoneLeaves(const Launch& launch, void (*build)(WorldId)) {
+    const LaunchOutcome out = launchIntoTank(build, false, launch.spacing, {0.2f, 0.2f},
+                                             glm::normalize(launch.aim) * launch.speed, launch.steps);
+    EXPECT_EQ(out.outside, 0) << "first out at step " << out.firstOut;
+}
+
+std::string launchName(const ::testing::TestParamInfo<Launch>& info) {
+    return "Launch" + std::to_string(info.index) + "At" + std::to_string(static_cast<int>(info.param.speed)) +
+           "MetresPerSecond";
+}
+
+class EdgeTank : public ::testing::TestWithParam<Launch> {};
+TEST_P(EdgeTank, NoParticleLeavesAtACorner) { expectNoneLeaves(GetParam(), edgeTank); }
+
+class BoxTank : public ::testing::TestWithParam<Launch> {};
+TEST_P(BoxTank, NoParticleLeavesThroughAWall) { expectNoneLeaves(GetParam(), boxTank); }
+
+// Each of these let particles out before the path test of segments (first
+// out at steps 2, 5, 3 and 3: at a corner the solver can throw a particle
+// metres in one substep, past the wall the contacts had in view). The first
+// for 10,000 steps (167 s), the others for the first 300 (5 s), where the
+// launch strikes its corner.
+INSTANTIATE_TEST_SUITE_P(CornerLaunches, EdgeTank,
+                         ::testing::Values(Launch{0.05f, 100.0f, {-1.0f, -1.0f}, 10000},
+                                           Launch{0.05f, 100.0f, {1.0f, 0.3f}, 300},
+                                           Launch{0.02f, 20.0f, {-1.0f, -1.0f}, 300},
+                                           Launch{0.02f, 20.0f, {1.0f, -1.0f}, 300}),
+                         launchName);
+// The first three let particles out through a wall before the path test took
+// polygon edges (first out at steps 6, 2 and 2). The fourth then blew up at
+// step 8 (2.4e6 m/s) and its particles were removed as non-finite, until
+// particles on one point got a direction to push apart along
+// (neighbours.cpp, coincidentDirection).
+INSTANTIATE_TEST_SUITE_P(WallLaunches, BoxTank,
+                         ::testing::Values(Launch{0.05f, 100.0f, {1.0f, 0.3f}, 300},
+                                           Launch{0.02f, 100.0f, {-1.0f, -1.0f}, 300},
+                                           Launch{0.02f, 100.0f, {1.0f, -1.0f}, 300},
+                                           Launch{0.02f, 100.0f, {1.0f, 0.3f}, 300}),
+                         launchName);
+
 constexpr float kLaunchSpeeds[] = {20.0f, 50.0f, 100.0f};  // m/s
 
 /// Eight directions, none head-on into a wall (rad).
 float launchAngle(int a) { return 0.4f + glm::quarter_pi<float>() * static_cast<float>(a); }
+
+/// The launches' velocity (m/s) along direction a, from the tank's middle.
+glm::vec2 launchVelocity(float speed, int a) {
+    return glm::vec2(std::cos(launchAngle(a)), std::sin(launchAngle(a))) * speed;
+}
+constexpr glm::vec2 kMiddleBlock{0.3f, 0.3f};  // m, the block's lower left corner
+constexpr int kLaunchSteps = 120;              // 2 s
 
 // Blocks launched into the tanks of edges and of boxes at 20, 50 and 100 m/s
 // along eight directions, at 2 and 5 cm spacing. Pressure and contacts only
@@ -239,8 +226,8 @@ TEST(TankLaunches, NoLaunchGainsEnergyOrLosesAParticle) {
                                      << (build == edgeTank ? "edge" : "box") << " tank, spacing " << spacing
                                      << " m, baumgarte " << baumgarte << ", " << speed << " m/s at "
                                      << launchAngle(a) << " rad");
-                        const LaunchOutcome out =
-                            launchIntoTank(build, false, spacing, speed, launchAngle(a), baumgarte);
+                        const LaunchOutcome out = launchIntoTank(build, false, spacing, kMiddleBlock,
+                                                                 launchVelocity(speed, a), kLaunchSteps, baumgarte);
                         EXPECT_LE(out.mostEnergy, 1.01);
                         EXPECT_EQ(out.outside, 0);
                     }
@@ -262,7 +249,8 @@ TEST(TankLaunches, CratesPushNoParticleThroughAWall) {
             for (int a = 0; a < 8; ++a) {
                 SCOPED_TRACE(::testing::Message() << (build == edgeTank ? "edge" : build == boxTank ? "box" : "plane")
                                                   << " tank, " << speed << " m/s at " << launchAngle(a) << " rad");
-                EXPECT_EQ(launchIntoTank(build, true, 0.02f, speed, launchAngle(a)).outside, 0);
+                EXPECT_EQ(launchIntoTank(build, true, 0.02f, kMiddleBlock, launchVelocity(speed, a), kLaunchSteps).outside,
+                          0);
             }
         }
     }

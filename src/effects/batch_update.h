@@ -17,16 +17,17 @@
 
 namespace spindrift {
 
-/// Slots per batch: a multiple of every SIMD width dispatched to (4 and 8
+/// Slots per batch: a multiple of every SIMD width dispatched to (4, 8 and 16
 /// floats), and under 32 (the returned lane mask, with all lanes set, fits).
 inline constexpr std::size_t kBatchLanes = 16;
-static_assert(kBatchLanes % 8 == 0 && kBatchLanes < 32);
+static_assert(kBatchLanes % 16 == 0 && kBatchLanes < 32);
 
 /// Which code runs the update. Scalar: the scalar kernel for every slot (the
 /// path before the vector update, kept as the benchmarks' baseline). The
 /// others: the vector update compiled for that instruction set (Sse2 is the
-/// baseline x86-64 build, 4 lanes; Sse4: SSE4.2, 4 lanes; Avx2: 8 lanes).
-enum class UpdateTarget : std::uint8_t { Scalar, Sse2, Sse4, Avx2 };
+/// baseline x86-64 build, 4 lanes; Sse4: SSE4.2, 4 lanes; Avx2: 8 lanes;
+/// Avx512: AVX-512 F, VL, BW and DQ, 16 lanes).
+enum class UpdateTarget : std::uint8_t { Scalar, Sse2, Sse4, Avx2, Avx512 };
 
 /// The targets this CPU can run, Scalar first.
 std::vector<UpdateTarget> supportedUpdateTargets();

@@ -122,10 +122,12 @@ struct FluidDef {
     /// over 1 % (docs/fluid.md).
     std::uint32_t substeps = 0;
     /// Sleeping, as Box2D's bodies and FleX's particles: a particle that
-    /// stays within `sleepSpeed` x `sleepTime` (m) of where it was for
-    /// `sleepTime` (s) stops (velocity 0, position held) until the solver
-    /// gives it more than twice `sleepSpeed`. A tank at rest then rests;
-    /// flow slower than about `sleepSpeed` (m/s) stops too. 0: never sleeps.
+    /// stays within `sleepSpeed` x `sleepTime` (m), and within half a
+    /// `spacing`, of where it was for `sleepTime` (s) stops (velocity 0,
+    /// position held) until the solver gives it more than twice `sleepSpeed`.
+    /// A tank at rest then rests; flow slower than about `sleepSpeed` (m/s)
+    /// stops too, and so do waves whose particles swing by less than half a
+    /// spacing. 0: never sleeps.
     float sleepSpeed = 0.05f;
     float sleepTime = 0.5f;  ///< s
     glm::vec3 gravity{0.0f, -9.81f, 0.0f};  ///< m/s^2

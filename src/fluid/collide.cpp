@@ -22,6 +22,8 @@ constexpr float kOverlapPush = 0.2f;
 constexpr float kSkin = 1e-5f;
 /// A sleeping particle wakes above this many times FluidDef::sleepSpeed.
 constexpr float kWakeFactor = 2.0f;
+/// The sleep circle's largest radius, in spacings (integratePositions).
+constexpr float kSleepCircleSpacings = 0.5f;
 
 /// |x| <= this is false for NaN and both infinities.
 constexpr float kFloatMax = 3.40282347e38f;
@@ -145,7 +147,15 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
     const bool sleeps = f.def.sleepSpeed > 0.0f;
     const float wakeSpeed = kWakeFactor * f.def.sleepSpeed;
     const float sleepTime = f.def.sleepTime;
-    const float drift = f.def.sleepSpeed * f.def.sleepTime;  // m
+    // The sleep circle's radius (m): at most half a spacing. A standing wave's
+    // particles swing around a point, and near each turning point they stay
+    // within a small circle for a good part of a period: with the radius
+    // sleepSpeed x sleepTime alone (2.5 cm by default), a 4 cm slosh in a 1.6 m
+    // tank at 2 cm spacing (period 1.65 s) fell asleep at its first turn and
+    // froze with its surface 4.6 cm higher at one end than at the other. At
+    // half a spacing it swings on until each end is within about half a
+    // spacing of level (test FluidWaves; docs/fluid.md, "Sleeping and waves").
+    const float drift = std::min(f.def.sleepSpeed * f.def.sleepTime, kSleepCircleSpacings * f.def.spacing);
     // Every body shape within this distance (m) of a particle is in its grid
     // cell's list (beginSubstep grows each shape's box by at least it).
     const float binnedReach = f.radius + f.def.spacing;

@@ -39,7 +39,7 @@ struct Particles {
     std::vector<float> density;    // rho / rho0 at the last setup
     std::vector<std::uint32_t> id; // creation serial
     /// Sleeping (integratePositions): where the particle has stayed within
-    /// FluidDef::sleepSpeed x sleepTime of (m), and for how long (s); at
+    /// the sleep circle's radius of (collide.cpp), and for how long (s); at
     /// sleepTime and above it sleeps.
     std::vector<Vec<D>> anchor;
     std::vector<float> still;

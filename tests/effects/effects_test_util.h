@@ -40,8 +40,9 @@ inline EmitterDef oneShotEmitter(const OneShot& o) {
 /// A world owned by the test, destroyed at scope end.
 struct ScopedWorld {
     explicit ScopedWorld(std::uint32_t threads = 1, std::uint32_t seed = 7, Backend backend = Backend::Cpu,
-                         std::uint32_t framesInFlight = 1) {
+                         std::uint32_t framesInFlight = 1, std::uint32_t eventCapacity = WorldDef{}.eventCapacity) {
         WorldDef def;
+        def.eventCapacity = eventCapacity;
         def.backend = backend;
         def.threads = threads;
         def.seed = seed;

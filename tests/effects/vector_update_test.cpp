@@ -51,10 +51,13 @@ void expectSameParticles(const std::vector<ParticleSnapshot>& a, const std::vect
 struct RunReport {
     std::vector<std::uint64_t> counts;  // per step: born, died, collisions, hits of each collider
     std::vector<ParticleEvent> events;
+    std::uint64_t dropped = 0;  // events past the world's capacity per step
+    std::uint64_t offered = 0;  // a collision event per hit, a death event per death
 };
 
 void expectSameReport(const RunReport& a, const RunReport& b) {
     EXPECT_EQ(a.counts, b.counts);
+    EXPECT_EQ(a.dropped, b.dropped);
     ASSERT_EQ(a.events.size(), b.events.size());
     for (std::size_t k = 0; k < a.events.size(); ++k) {
         const ParticleEvent& x = a.events[k];
@@ -72,8 +75,9 @@ void expectSameReport(const RunReport& a, const RunReport& b) {
 // planes, both Euler integrators, both lifecycles, over-life curves of 1 to 3
 // keys, births, deaths and hits in every step, impacts that kill or take life
 // in both lifecycles, and a sub-emitter born from one emitter's collisions.
-std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t& live, RunReport& report) {
-    test::ScopedWorld w(threads, 5);
+std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t& live, RunReport& report,
+                                              std::uint32_t eventCapacity = WorldDef{}.eventCapacity) {
+    test::ScopedWorld w(threads, 5, Backend::Cpu, 1, eventCapacity);
     createForce(w.id, test::gravity({0.0f, -9.81f, 0.0f}));
     ForceDef f;
     f.kind = ForceKind::Wind;
@@ -147,11 +151,14 @@ std::vector<ParticleSnapshot> runVectorisable(std::uint32_t threads, std::size_t
     for (int i = 0; i < 50; ++i) {
         const StepStats s = stepWorld(w.id, 1.0f / 60.0f);
         report.counts.insert(report.counts.end(), {s.born, s.died, s.collisions});
+        report.offered += s.died + s.collisions;
         for (const ColliderStepStats& c : s.colliderHits) {
             report.counts.push_back(c.hits);
         }
     }
-    report.events = takeEvents(w.id).events;
+    EventBatch batch = takeEvents(w.id);
+    report.events = std::move(batch.events);
+    report.dropped = batch.dropped;
     std::vector<ParticleSnapshot> out;
     live = 0;
     for (EmitterId e : emitters) {
@@ -182,6 +189,31 @@ TEST(VectorUpdate, EveryTargetMatchesTheScalarKernel) {
         ScopedTarget t(target);
         RunReport report;
         expectSameParticles(scalar, runVectorisable(target == UpdateTarget::Sse2 ? 2u : 1u, live, report));
+        expectSameReport(scalarReport, report);
+    }
+}
+
+// A step's events past the world's capacity are dropped and counted, the
+// same ones at every target: the vector update's impacts build at most the
+// capacity per chunk (emitter_step.cpp) where the scalar kernel built them
+// all. Independent reference: the scalar kernel's run with the same capacity.
+TEST(VectorUpdate, EventsPastTheCapacityAreTheScalarKernels) {
+    constexpr std::uint32_t kCapacity = 30;  // per step; the run has more events than that in most steps
+    std::size_t live = 0;
+    RunReport scalarReport;
+    {
+        ScopedTarget t(UpdateTarget::Scalar);
+        runVectorisable(1, live, scalarReport, kCapacity);
+    }
+    EXPECT_GT(scalarReport.dropped, 1000u);  // not vacuous
+    EXPECT_LE(scalarReport.events.size(), 50u * kCapacity);
+    // Conservation: every hit and death is an event, kept or counted dropped.
+    EXPECT_EQ(scalarReport.events.size() + scalarReport.dropped, scalarReport.offered);
+    for (UpdateTarget target : supportedUpdateTargets()) {
+        SCOPED_TRACE(std::string(updateTargetName(target)));
+        ScopedTarget t(target);
+        RunReport report;
+        runVectorisable(2, live, report, kCapacity);
         expectSameReport(scalarReport, report);
     }
 }

@@ -25,6 +25,9 @@ struct WorldDef {
     std::uint32_t seed = 1;
     /// Most collision and death events recorded per step (takeEvents); those
     /// beyond are dropped and counted, never written. 0: no events recorded.
+    /// Events wait for takeEvents up to 32 steps' worth (32 x eventCapacity);
+    /// past that the oldest are dropped and counted, down to 16 steps' worth,
+    /// so a world whose events are never taken does not grow.
     std::uint32_t eventCapacity = 4096;
     /// Vulkan backend: steps the GPU may run behind the CPU, 1 to 3. With 1,
     /// stepWorld waits for its step and reports its counts. With 2 (the
@@ -126,7 +129,8 @@ struct EventBatch {
     /// In step order. Within a step the CPU backend lists them in emitter and
     /// slot order; the GPU's order within a step is unspecified.
     std::vector<ParticleEvent> events;
-    /// Events lost because a step had more than WorldDef::eventCapacity.
+    /// Events lost because a step had more than WorldDef::eventCapacity, or
+    /// because more than 32 steps' worth waited for takeEvents (the oldest).
     std::uint64_t dropped = 0;
 };
 

@@ -20,6 +20,14 @@ void EventQueue::addStep(std::uint64_t step, std::span<const kernels::EventRecor
     }
 }
 
+void EventQueue::trimUntaken() {
+    const std::size_t keep = static_cast<std::size_t>(capacity) * kUntakenEventSteps;
+    if (batch.events.size() <= 2 * keep) return;
+    const std::size_t drop = batch.events.size() - keep;
+    batch.events.erase(batch.events.begin(), batch.events.begin() + static_cast<std::ptrdiff_t>(drop));
+    batch.dropped += drop;
+}
+
 void EventQueue::addEvents(std::span<const ParticleEvent> events) {
     const std::size_t kept = std::min<std::size_t>(events.size(), capacity);
     batch.events.insert(batch.events.end(), events.begin(), events.begin() + static_cast<std::ptrdiff_t>(kept));

@@ -438,6 +438,7 @@ StepStats stepWorld(WorldId id, float dt) {
     auto start = std::chrono::steady_clock::now();
     StepStats stats = emptyStats(w);
     stats.step = w.stepIndex;
+    w.events.trimUntaken();
     const std::size_t firstEvent = w.events.batch.events.size();
 
     // 1. Emitters: births, forces, integration, collisions, deaths, events.

@@ -110,5 +110,48 @@ TEST(Events, KillOnCollisionReportsTheHitAndTheKiller) {
     }
 }
 
+// A world whose events are never taken (the command-line renderer's) must
+// not grow: past 32 steps' worth the oldest waiting events are dropped and
+// counted, down to 16 steps' worth (WorldDef::eventCapacity). Independent
+// references: conservation (every hit and death is an event, kept or counted
+// dropped) and the step counts, which say how many events the last steps
+// had room for.
+TEST(Events, UntakenEventsStayBoundedAndTheNewestAreKept) {
+    constexpr std::uint32_t kCapacity = 10;  // per step; the rain below makes more
+    ScopedWorld w(1, 7, Backend::Cpu, 1, kCapacity);
+    createForce(w.id, test::gravity({0.0f, -kG, 0.0f}));
+    createCollider(w.id, test::groundPlane(0.5f));
+    EmitterDef rain;  // recycle: a steady 2000 particles, many striking the ground each step
+    rain.lifecycle = Lifecycle::Recycle;
+    rain.capacity = 2000;
+    rain.lifetime = {0.2f, 0.4f};
+    rain.speed = {1.0f, 3.0f};
+    rain.shape.kind = SpawnShapeKind::Sphere;
+    rain.shape.center = {0.0f, 0.1f, 0.0f};
+    rain.shape.radius = 0.1f;
+    rain.shape.direction = {0.0f, -1.0f, 0.0f};
+    rain.shape.spreadAngle = 0.5f;
+    createEmitter(w.id, rain);
+    constexpr int kSteps = 200;
+    std::uint64_t offered = 0;
+    std::vector<std::uint64_t> offeredPerStep;
+    for (int s = 0; s < kSteps; ++s) {
+        const StepStats st = stepWorld(w.id, kDt);
+        offered += st.collisions + st.died;
+        offeredPerStep.push_back(st.collisions + st.died);
+    }
+    const EventBatch batch = takeEvents(w.id);
+    ASSERT_GT(offered, 4u * kSteps * kCapacity);  // not vacuous: far more than is kept
+    EXPECT_GE(batch.events.size(), 16u * kCapacity);
+    EXPECT_LE(batch.events.size(), 32u * kCapacity);
+    EXPECT_EQ(batch.events.size() + batch.dropped, offered);
+    // The newest are kept: the last step's events are the batch's last ones,
+    // as many as that step had room for.
+    std::size_t lastStep = 0;
+    for (const ParticleEvent& e : batch.events) lastStep += e.step == kSteps - 1 ? 1 : 0;
+    EXPECT_EQ(lastStep, std::min<std::uint64_t>(kCapacity, offeredPerStep.back()));
+    EXPECT_EQ(batch.events.back().step, static_cast<std::uint64_t>(kSteps - 1));
+}
+
 }  // namespace
 }  // namespace spindrift

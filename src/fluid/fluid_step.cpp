@@ -81,7 +81,8 @@ void stepPasses(const StepContext& w, FluidState& f, float dt, FluidStepStats& s
 }
 
 // The step's strikes of fluid particles on bodies, as collision events on the
-// world's queue (the fires and the application read them there). A pair that
+// world's queue (the application reads them there, at most eventCapacity a
+// step; the fires read every one, EventQueue::stepStrikes). A pair that
 // struck in the previous step or earlier in this one is not counted again.
 void addImpactEvents(const StepContext& w, FluidState& f, const FluidBodyStep& s, FluidId fluid) {
     std::vector<ParticleEvent> events;

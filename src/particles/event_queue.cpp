@@ -28,7 +28,13 @@ void EventQueue::trimUntaken() {
     batch.dropped += drop;
 }
 
+void EventQueue::beginStep() {
+    trimUntaken();
+    stepStrikes.clear();
+}
+
 void EventQueue::addEvents(std::span<const ParticleEvent> events) {
+    stepStrikes.insert(stepStrikes.end(), events.begin(), events.end());
     const std::size_t kept = std::min<std::size_t>(events.size(), capacity);
     batch.events.insert(batch.events.end(), events.begin(), events.begin() + static_cast<std::ptrdiff_t>(kept));
     batch.dropped += events.size() - kept;

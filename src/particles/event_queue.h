@@ -8,6 +8,7 @@
 
 #include <cstddef>
 #include <span>
+#include <vector>
 
 namespace spindrift {
 
@@ -20,6 +21,15 @@ inline constexpr std::size_t kUntakenEventSteps = 16;
 struct EventQueue {
     std::uint32_t capacity = 0;  ///< most events kept per step (WorldDef::eventCapacity)
     EventBatch batch;
+    /// The fluids' strikes on bodies in the current step, every one of them:
+    /// the fires count these, not what `capacity` lets through to the
+    /// application (with a capacity of 0 a fire never went out). Cleared by
+    /// beginStep.
+    std::vector<ParticleEvent> stepStrikes;
+
+    /// Between steps: trims the events nobody took (trimUntaken) and forgets
+    /// the last step's strikes.
+    void beginStep();
 
     /// Drops the oldest waiting events, counted in batch.dropped, once more
     /// than twice kUntakenEventSteps steps' worth wait, down to that many: the
@@ -31,7 +41,8 @@ struct EventQueue {
     /// rest as `dropped`).
     void addStep(std::uint64_t step, std::span<const kernels::EventRecord> records, std::uint64_t dropped);
     /// Appends events made on the host (fluid impacts on bodies), at most
-    /// `capacity` of them; the rest are counted as dropped.
+    /// `capacity` of them (the rest are counted as dropped), and all of them
+    /// to stepStrikes.
     void addEvents(std::span<const ParticleEvent> events);
 };
 

@@ -98,16 +98,14 @@ std::uint32_t fireCount(WorldId id) { return static_cast<std::uint32_t>(worldFro
 float fireStrength(WorldId id, FireId fire) { return strengthLeft(fireFromId(worldFromId(id), fire)); }
 std::uint64_t fireStrikes(WorldId id, FireId fire) { return fireFromId(worldFromId(id), fire).strikes; }
 
-void updateFires(World& w, WorldId id, std::size_t firstEvent, float dt) {
+void updateFires(World& w, WorldId id, float dt) {
     if (w.fires.empty()) return;
     const std::vector<BodySnapshot> bodies = readBodies(id);
-    const std::vector<ParticleEvent>& events = w.events.batch.events;
     for (FireState& f : w.fires) {
         // Strikes of this step on the fire's body, and where they were.
         std::uint64_t strikes = 0;
         glm::vec3 sum(0.0f);
-        for (std::size_t i = std::min(firstEvent, events.size()); i < events.size(); ++i) {
-            const ParticleEvent& e = events[i];
+        for (const ParticleEvent& e : w.events.stepStrikes) {
             if (e.fluid.index != 0 && e.body.index == f.def.body.index) {
                 ++strikes;
                 sum += e.position;

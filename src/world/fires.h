@@ -22,8 +22,8 @@ struct FireState {
     float flamesZ = 0.0f, smokeZ = 0.0f;
 };
 
-/// After a step: the fluid strikes among events[firstEvent..] douse each
-/// fire; its emitters' rates and positions follow (step length dt, s).
-void updateFires(World& w, WorldId id, std::size_t firstEvent, float dt);
+/// After a step: the step's fluid strikes (EventQueue::stepStrikes) douse
+/// each fire; its emitters' rates and positions follow (step length dt, s).
+void updateFires(World& w, WorldId id, float dt);
 
 }  // namespace spindrift

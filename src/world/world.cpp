@@ -438,8 +438,7 @@ StepStats stepWorld(WorldId id, float dt) {
     auto start = std::chrono::steady_clock::now();
     StepStats stats = emptyStats(w);
     stats.step = w.stepIndex;
-    w.events.trimUntaken();
-    const std::size_t firstEvent = w.events.batch.events.size();
+    w.events.beginStep();
 
     // 1. Emitters: births, forces, integration, collisions, deaths, events.
     carryEmitters(w);
@@ -462,7 +461,7 @@ StepStats stepWorld(WorldId id, float dt) {
     }
 
     // 5. Fires: this step's strikes douse them; their emitters follow.
-    updateFires(w, id, firstEvent, dt);
+    updateFires(w, id, dt);
 
     addTotals(w, stats);
     w.time += dt;

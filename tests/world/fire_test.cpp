@@ -147,6 +147,37 @@ TEST(Fires, GoesOutAtTheStrikeItsDouseAllowsFor) {
     EXPECT_GE(fireStrikes(w.id, id), 500u) << "the jet should have put the fire out";
 }
 
+// A fire counts every strike on its body, whatever the world keeps for
+// takeEvents: WorldDef::eventCapacity bounds the application's events, not
+// the fires' (with 0, "no events recorded", a fire never went out). The
+// reference is the same run with room for every event, whose strikes the
+// test above checks against the events one by one.
+TEST(Fires, CountEveryStrikeWhateverTheEventCapacity) {
+    std::vector<std::uint64_t> strikes;
+    for (std::uint32_t capacity : {4096u, 2u, 0u}) {
+        WorldDef def;
+        def.eventCapacity = capacity;
+        OwnedWorld w(def);
+        const BodyId post = staticSlab(w.id, {1.0f, 0.3f}, {0.1f, 0.3f});
+        aimJetAtThePost(w.id, 300.0f, 0.03f);  // several strikes a step
+        FireDef fire;
+        fire.name = "post";
+        fire.body = post;
+        fire.dousePerStrike = 0.001f;
+        const FireId id = createFire(w.id, fire);
+        std::uint64_t taken = 0;
+        for (int i = 0; i < 60; ++i) {
+            stepWorld(w.id, 1.0f / 60.0f);
+            taken += takeEvents(w.id).events.size();
+        }
+        EXPECT_LE(taken, 60u * capacity);
+        strikes.push_back(fireStrikes(w.id, id));
+    }
+    EXPECT_GT(strikes[0], 60u);  // not vacuous: steps with more strikes than a capacity of 2
+    EXPECT_EQ(strikes[1], strikes[0]);
+    EXPECT_EQ(strikes[2], strikes[0]);
+}
+
 // Flames ride on their body: the spawn centre keeps its offset in the body's
 // frame as the body moves and turns.
 TEST(Fires, FlamesFollowTheirBody) {

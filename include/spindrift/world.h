@@ -27,7 +27,8 @@ struct WorldDef {
     /// beyond are dropped and counted, never written. 0: no events recorded.
     /// Events wait for takeEvents up to 32 steps' worth (32 x eventCapacity);
     /// past that the oldest are dropped and counted, down to 16 steps' worth,
-    /// so a world whose events are never taken does not grow.
+    /// so a world whose events are never taken does not grow. Fires count
+    /// every strike whatever this keeps.
     std::uint32_t eventCapacity = 4096;
     /// Vulkan backend: steps the GPU may run behind the CPU, 1 to 3. With 1,
     /// stepWorld waits for its step and reports its counts. With 2 (the

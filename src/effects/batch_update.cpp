@@ -8,7 +8,9 @@
 
 #include <spindrift/errors.h>
 
+#include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <bit>
 #include <string>
 
@@ -141,9 +143,50 @@ std::string_view updateTargetName(UpdateTarget target) {
     return "?";
 }
 
+namespace {
+
+// The largest magnitude evaluateCurve (curves.glsl) can return: a key's value
+// or a mix of two keys' values with a weight in [0, 1], x (1 - f) + y f, at
+// most twice the larger key in magnitude even with rounding; 1 without keys.
+double curveBound(const kernels::CurveParams& c) {
+    double largest = c.count == 0u ? 1.0 : 0.0;
+    for (kernels::uint i = 0u; i < c.count && i < kernels::SD_MAX_CURVE_KEYS; ++i) {
+        for (int k = 0; k < 4; ++k) {
+            largest = std::max(largest, 2.0 * std::abs(static_cast<double>(c.values[i][k])));
+        }
+    }
+    return largest;
+}
+
+// Whether every particle's colour and size (restoreLook, derived.glsl: a
+// start value mixed between two ends, times a curve) stay finite, so that
+// finiteParticle can never remove a particle for them and the vector update
+// need not compute them. Bounds in double: each mix at most twice its larger
+// end, the product at most their product, with a factor 2 of margin for the
+// float product's rounding. A NaN bound fails the comparison: not eligible.
+bool lookStaysFinite(const kernels::EmitterParams& e) {
+    const double limit = 0.5 * static_cast<double>(kernels::SD_FLOAT_MAX);
+    double color = 0.0;
+    for (int k = 0; k < 4; ++k) {
+        color = std::max({color, 2.0 * std::abs(static_cast<double>(e.colorMin[k])),
+                          2.0 * std::abs(static_cast<double>(e.colorMax[k]))});
+    }
+    const double size =
+        2.0 * std::max(std::abs(static_cast<double>(e.sizeMin)), std::abs(static_cast<double>(e.sizeMax)));
+    return color * curveBound(e.colorOverLife) <= limit && size * curveBound(e.sizeOverLife) <= limit;
+}
+
+}  // namespace
+
 bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::EmitterParams& e) {
     using namespace kernels;
     if (e.integrator == SD_INTEGRATE_VERLET || e.integrator == SD_INTEGRATE_RK4) {
+        return false;
+    }
+    // The vector update leaves colour and size to their readers; an emitter
+    // whose look could overflow runs the scalar kernel, which removes the
+    // particles it overflows in.
+    if (!lookStaysFinite(e)) {
         return false;
     }
     // Colour and size by speed have no lane loop: the scalar kernel's.

@@ -43,8 +43,10 @@ UpdateTarget updateTarget();
 std::string_view updateTargetName(UpdateTarget target);
 
 /// Whether the vector update can take emitter e's slots this step: Euler
-/// integrators, no flow fields, only plane colliders, no over-speed curves
-/// (anything else runs the scalar kernel, as before).
+/// integrators, no flow fields, only plane colliders, no over-speed curves,
+/// a colour and size that cannot overflow (they are not stored, and the
+/// vector update does not compute them); anything else runs the scalar
+/// kernel, as before.
 bool batchUpdateEligible(const kernels::KernelContext& ctx, const kernels::EmitterParams& e);
 
 /// What every batch of an emitter's step shares (forcingAt's gravity and

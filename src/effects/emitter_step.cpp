@@ -7,6 +7,7 @@
 #include "kernels/sub_emit.glsl"
 #include "kernels/trail.glsl"
 #include "particles/birth_schedule.h"
+#include "particles/slots.h"
 
 #include <bit>
 #include <cmath>
@@ -36,34 +37,6 @@ struct StepScope {
     std::uint32_t step;   // the world's step (low 32 bits; spawn requests)
     bool recordEvents;
 };
-
-kernels::Particle loadParticle(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i) {
-    kernels::Particle p;
-    p.position = a.position[i];
-    p.velocity = a.velocity[i];
-    p.color = a.color[i];
-    p.age = a.age[i];
-    p.lifetime = a.lifetime[i];
-    p.size = a.size[i];
-    p.rotation = a.rotation[i];
-    p.angularVelocity = a.angularVelocity[i];
-    p.mass = e.mass;
-    p.birth = a.birth[i];
-    p.alive = p.age >= 0.0f ? 1u : 0u;
-    return p;
-}
-
-void storeParticle(ParticleArrays& a, std::size_t i, const kernels::Particle& p) {
-    a.position[i] = p.position;
-    a.velocity[i] = p.velocity;
-    a.color[i] = p.color;
-    a.age[i] = p.age;
-    a.lifetime[i] = p.lifetime;
-    a.size[i] = p.size;
-    a.rotation[i] = p.rotation;
-    a.angularVelocity[i] = p.angularVelocity;
-    a.birth[i] = p.birth;
-}
 
 // Slot i's trail once the slot is stored (src/kernels/trail.glsl, as
 // effects_update.comp's recordTrail).
@@ -102,10 +75,11 @@ void countUpdate(const StepScope& scope, const kernels::Particle& before, const 
 // countUpdate for slot i, updated by the vector update in a step in which it
 // struck the colliders of `hitMask` and neither was born nor died: the update
 // the scalar kernel would have returned is the stored particle with that
-// mask. (`before` is read only for deaths, so the particle after serves.)
+// mask. (`before` is read only for deaths, so the particle after serves;
+// events and spawn requests read no colour or size.)
 void countImpact(const StepScope& scope, const ParticleArrays& a, const kernels::EmitterParams& params,
                  std::size_t i, std::uint32_t hitMask, glm::vec3 startVelocity, ChunkResult& out) {
-    kernels::ParticleUpdate r = kernels::quietUpdate(loadParticle(a, params, i));
+    kernels::ParticleUpdate r = kernels::quietUpdate(storedParticle(a, params, i));
     r.hitMask = hitMask;
     countUpdate(scope, r.particle, r, glm::length(startVelocity), out);
 }

@@ -306,8 +306,9 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterP
     p.resize(n);
     p.trail.resize(n * e.trailPoints);
     download(*w.device, slotTransfers(e, p));
-    // What the device does not store, recomputed by the kernel that the
-    // shader uses for the same purpose.
+    // What the device does not store and the CPU's slots do (lifetime and
+    // spin; colour and size are restored from the slots by readParticles),
+    // recomputed by the kernel that the shader uses for the same purpose.
     for (std::size_t i = 0; i < n; ++i) {
         kernels::Particle q{};
         q.age = p.age[i];
@@ -316,8 +317,6 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterP
         q = kernels::restoreDerived(params, q);
         p.lifetime[i] = q.lifetime;
         p.angularVelocity[i] = q.angularVelocity;
-        p.color[i] = q.color;
-        p.size[i] = q.size;
     }
     return p;
 }

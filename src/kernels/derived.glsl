@@ -45,6 +45,17 @@ SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
     return applyOverSpeed(e, p);
 }
 
+// A particle's look, colour and size, from its key, age, lifetime and
+// velocity: what the update's applyOverLife gave it when it stored them, bit
+// for bit (the same expressions of the same inputs). Neither backend stores
+// the look; the readers and the renderer restore it here.
+SD_FN Particle restoreLook(SD_IN(EmitterParams) e, Particle p) {
+    uint key = particleKey(e.keyBase, p.birth);
+    p.color = startColor(e, key);
+    p.size = startSize(e, key);
+    return applyOverLife(e, p);
+}
+
 // What a slot need not store: lifetime, angular velocity, colour and size are
 // pure functions of the emitter, the birth serial's key, the age and the
 // velocity (nothing changes them after birth but the curves, which read the
@@ -55,9 +66,7 @@ SD_FN Particle restoreDerived(SD_IN(EmitterParams) e, Particle p) {
     uint key = particleKey(e.keyBase, p.birth);
     p.lifetime = randomRange(key, SD_RAND_LIFETIME, e.lifetimeMin, e.lifetimeMax);
     p.angularVelocity = randomRange(key, SD_RAND_SPIN, e.angularVelocityMin, e.angularVelocityMax);
-    p.color = startColor(e, key);
-    p.size = startSize(e, key);
-    return applyOverLife(e, p);
+    return restoreLook(e, p);
 }
 
 SD_END

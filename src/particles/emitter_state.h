@@ -1,9 +1,12 @@
 // One emitter's particles as structure-of-arrays (hot data, one array per
 // attribute) plus its cold definition and emission bookkeeping.
 //
-// Bytes per slot: position 12, velocity 12, colour 16, age 4, lifetime 4,
-// size 4, rotation 4, angular velocity 4, birth serial 4 = 64 B. Mass is one
-// value per emitter (EmitterDef::mass), so it lives in the parameters, not here.
+// Bytes per slot: position 12, velocity 12, age 4, lifetime 4, rotation 4,
+// angular velocity 4, birth serial 4 = 44 B. Mass is one value per emitter
+// (EmitterDef::mass), so it lives in the parameters, not here. Colour and size
+// are not stored: they are pure functions of the emitter, the birth serial,
+// the age and the velocity, restored where they are read
+// (kernels::restoreLook, src/kernels/derived.glsl), as on the Vulkan backend.
 #pragma once
 
 #include "kernels/types.glsl"
@@ -18,10 +21,8 @@ namespace spindrift {
 struct ParticleArrays {
     std::vector<glm::vec3> position;
     std::vector<glm::vec3> velocity;
-    std::vector<glm::vec4> color;
     std::vector<float> age;  // < 0: unborn (recycle) or dead (spawn)
     std::vector<float> lifetime;
-    std::vector<float> size;
     std::vector<float> rotation;
     std::vector<float> angularVelocity;
     std::vector<std::uint32_t> birth;
@@ -31,8 +32,8 @@ struct ParticleArrays {
 
     void resize(std::size_t n);
 };
-inline constexpr std::size_t kBytesPerSlot = 12 + 12 + 16 + 4 * 6;
-static_assert(kBytesPerSlot == 64);
+inline constexpr std::size_t kBytesPerSlot = 12 + 12 + 4 * 5;
+static_assert(kBytesPerSlot == 44);
 
 struct EmitterState {
     EmitterDef def;

@@ -10,6 +10,7 @@
 #include "gpu/gpu_world.h"
 #include "kernels/trail.glsl"
 #include "particles/params.h"
+#include "particles/slots.h"
 
 #include <fmt/format.h>
 
@@ -85,10 +86,8 @@ void BodyWorldDeleter::operator()(coupling::BodyWorld* b) const { delete b; }
 void ParticleArrays::resize(std::size_t n) {
     position.resize(n);
     velocity.resize(n);
-    color.resize(n);
     age.resize(n);
     lifetime.resize(n, 1.0f);
-    size.resize(n);
     rotation.resize(n);
     angularVelocity.resize(n);
     birth.resize(n);
@@ -526,9 +525,10 @@ ParticleSnapshot readParticles(WorldId id, EmitterId emitterId) {
         s.velocity.push_back(p.velocity[i]);
         s.age.push_back(p.age[i]);
         s.lifetime.push_back(p.lifetime[i]);
-        s.size.push_back(p.size[i]);
+        const kernels::Particle look = loadParticle(p, e.params, i);
+        s.size.push_back(look.size);
         s.rotation.push_back(p.rotation[i]);
-        s.color.push_back(p.color[i]);
+        s.color.push_back(look.color);
         s.birth.push_back(p.birth[i]);
         s.slot.push_back(i);
         for (std::uint32_t k = 0; k < points; ++k) {

@@ -195,6 +195,70 @@ TEST(VectorUpdate, EveryTargetMatchesTheScalarKernel) {
     }
 }
 
+// Colour and size are not stored and the vector update does not compute
+// them, so an emitter whose look could overflow runs the scalar kernel, which
+// removes a particle in the step its colour leaves the floats
+// (finiteParticle). Independent reference: a colour of 1e30 times a curve
+// from 1 at half the life to 1e30 at its end passes FLT_MAX (3.4e38) as soon
+// as the age passes 0.5 s, so after 1.5 s at 600 particles/s the particles
+// born in the first second (600, give or take a step's 10) are removed and
+// the rest live, at every target alike.
+TEST(VectorUpdate, ALookThatCouldOverflowRunsTheScalarKernel) {
+    const kernels::KernelContext ctx{nullptr, 0u, nullptr, 0u, nullptr, 0.0f};
+    kernels::EmitterParams params{};
+    params.mass = 1.0f;
+    params.integrator = kernels::SD_INTEGRATE_SEMI_IMPLICIT_EULER;
+    params.colorMax = glm::vec4(1.0e30f);
+    params.colorOverLife.count = 2u;
+    params.colorOverLife.values[0] = glm::vec4(1.0f);
+    params.colorOverLife.values[1] = glm::vec4(1.0f);
+    EXPECT_TRUE(batchUpdateEligible(ctx, params));  // 1e30 times at most 1
+    params.colorOverLife.values[1] = glm::vec4(1.0e30f);
+    EXPECT_FALSE(batchUpdateEligible(ctx, params));
+    params.colorOverLife.values[1] = glm::vec4(1.0f);
+    params.sizeMax = 1.0e20f;
+    params.sizeOverLife.count = 1u;
+    params.sizeOverLife.values[0] = glm::vec4(1.0e20f);
+    EXPECT_FALSE(batchUpdateEligible(ctx, params));  // size 1e40
+
+    std::vector<std::uint64_t> removedAt;
+    for (UpdateTarget target : supportedUpdateTargets()) {
+        SCOPED_TRACE(std::string(updateTargetName(target)));
+        ScopedTarget t(target);
+        test::ScopedWorld w(1);
+        EmitterDef e;
+        e.lifecycle = Lifecycle::Spawn;
+        e.capacity = 2000;
+        e.rate = 600.0f;
+        e.lifetime = {1.0f, 1.0f};
+        e.speed = {0.0f, 0.0f};
+        e.color = {glm::vec4(1.0e30f, 1.0e30f, 1.0e30f, 1.0f), glm::vec4(1.0e30f, 1.0e30f, 1.0e30f, 1.0f)};
+        e.colorOverLife.keys = {{0.5f, glm::vec4(1.0f)}, {1.0f, glm::vec4(1.0e30f)}};
+        const EmitterId id = createEmitter(w.id, e);
+        std::uint64_t born = 0, removed = 0, died = 0;
+        for (int i = 0; i < 90; ++i) {
+            const StepStats s = stepWorld(w.id, 1.0f / 60.0f);
+            born += s.born;
+            removed += s.nonFinite;
+            died += s.died;
+        }
+        EXPECT_EQ(born, 900u);
+        EXPECT_EQ(died, 0u);
+        EXPECT_GE(removed, 590u);
+        EXPECT_LE(removed, 610u);
+        const ParticleSnapshot p = readParticles(w.id, id);
+        EXPECT_EQ(p.count() + removed, born);
+        for (std::size_t i = 0; i < p.count(); ++i) {
+            ASSERT_LE(p.age[i], 0.5f) << i;
+            ASSERT_LE(p.color[i].r, 1.0e30f * 1.0001f) << i;  // at most the curve's 1 before half the life
+        }
+        removedAt.push_back(removed);
+    }
+    for (std::uint64_t r : removedAt) {
+        EXPECT_EQ(r, removedAt.front());
+    }
+}
+
 // A step's events past the world's capacity are dropped and counted, the
 // same ones at every target: the vector update's impacts build at most the
 // capacity per chunk (emitter_step.cpp) where the scalar kernel built them

@@ -195,7 +195,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                     if (spawnMode && a.age[i] < 0.0f) {
                         continue;  // free slot
                     }
-                    kernels::Particle p = loadParticle(a, params, i);
+                    kernels::Particle p = loadForUpdate(a, params, i);
                     kernels::ParticleUpdate r = kernels::updateParticle(ctx, params, p, dt);
                     storeParticle(a, i, r.particle);
                     recordTrail(a, trailPoints, e.trailHead, i, (r.events & kernels::SD_EVENT_BORN) != 0u);

@@ -30,19 +30,38 @@ SD_FN Particle applyOverSpeed(SD_IN(EmitterParams) e, Particle p) {
     return p;
 }
 
-// Colour and size over life and by speed: start values (re-derived from the
-// key) times the curves at normalised age, then times the curves at the
-// current speed.
+// A particle's size and colour: the start values (re-derived from the key)
+// times the curves at its normalised age, then times the curves at its speed
+// (a missing curve is a factor of 1, which changes no bit).
+SD_FN float lifeT(Particle p) {
+    return clamp(p.age / p.lifetime, 0.0f, 1.0f);
+}
+SD_FN float sizeOf(SD_IN(EmitterParams) e, uint key, Particle p) {
+    float size = startSize(e, key) * evaluateCurve(e.sizeOverLife, lifeT(p)).x;
+    if (e.sizeOverSpeed.count != 0u) {
+        size = size * evaluateCurve(e.sizeOverSpeed, overSpeedT(e, p.velocity)).x;
+    }
+    return size;
+}
+SD_FN vec4 colorOf(SD_IN(EmitterParams) e, uint key, Particle p) {
+    vec4 color = startColor(e, key) * evaluateCurve(e.colorOverLife, lifeT(p));
+    if (e.colorOverSpeed.count != 0u) {
+        color = color * evaluateCurve(e.colorOverSpeed, overSpeedT(e, p.velocity));
+    }
+    return color;
+}
+
+// Colour and size over life and by speed, for the particle the update ends
+// with (no curves: p's own, unchanged).
 SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
     if (e.colorOverLife.count == 0u && e.sizeOverLife.count == 0u && e.colorOverSpeed.count == 0u &&
         e.sizeOverSpeed.count == 0u) {
         return p;
     }
     uint key = particleKey(e.keyBase, p.birth);
-    float t = clamp(p.age / p.lifetime, 0.0f, 1.0f);
-    p.color = startColor(e, key) * evaluateCurve(e.colorOverLife, t);
-    p.size = startSize(e, key) * evaluateCurve(e.sizeOverLife, t).x;
-    return applyOverSpeed(e, p);
+    p.color = colorOf(e, key, p);
+    p.size = sizeOf(e, key, p);
+    return p;
 }
 
 // A particle's look, colour and size, from its key, age, lifetime and
@@ -51,9 +70,21 @@ SD_FN Particle applyOverLife(SD_IN(EmitterParams) e, Particle p) {
 // the look; the readers and the renderer restore it here.
 SD_FN Particle restoreLook(SD_IN(EmitterParams) e, Particle p) {
     uint key = particleKey(e.keyBase, p.birth);
+    p.color = colorOf(e, key, p);
+    p.size = sizeOf(e, key, p);
+    return p;
+}
+
+// The look as the update reads it, for a backend that restores it before
+// each update (the CPU's scalar path): the size (its half is the radius a
+// flow field's drag takes) and the start colour, which applyOverLife keeps
+// where no curve changes it and recomputes from the key where one does, so
+// the colour curves need not be evaluated twice.
+SD_FN Particle restoreUpdateLook(SD_IN(EmitterParams) e, Particle p) {
+    uint key = particleKey(e.keyBase, p.birth);
     p.color = startColor(e, key);
-    p.size = startSize(e, key);
-    return applyOverLife(e, p);
+    p.size = sizeOf(e, key, p);
+    return p;
 }
 
 // What a slot need not store: lifetime, angular velocity, colour and size are

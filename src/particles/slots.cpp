@@ -22,6 +22,10 @@ kernels::Particle loadParticle(const ParticleArrays& a, const kernels::EmitterPa
     return kernels::restoreLook(e, storedParticle(a, e, i));
 }
 
+kernels::Particle loadForUpdate(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i) {
+    return kernels::restoreUpdateLook(e, storedParticle(a, e, i));
+}
+
 void storeParticle(ParticleArrays& a, std::size_t i, const kernels::Particle& p) {
     a.position[i] = p.position;
     a.velocity[i] = p.velocity;

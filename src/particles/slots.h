@@ -15,8 +15,11 @@ namespace spindrift {
 /// which read neither).
 kernels::Particle storedParticle(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i);
 
-/// Slot i with its colour and size restored, as the scalar kernel reads it.
+/// Slot i with its colour and size restored (readers).
 kernels::Particle loadParticle(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i);
+
+/// Slot i as the scalar kernel reads it (kernels::restoreUpdateLook).
+kernels::Particle loadForUpdate(const ParticleArrays& a, const kernels::EmitterParams& e, std::size_t i);
 
 /// Stores what the slot keeps of p (not its colour and size).
 void storeParticle(ParticleArrays& a, std::size_t i, const kernels::Particle& p);

@@ -10,8 +10,8 @@
 
 #include <algorithm>
 #include <atomic>
-#include <cmath>
 #include <bit>
+#include <cmath>
 #include <string>
 
 // On x86 four copies: SSE2 (the baseline), SSE4.2, AVX2, AVX-512. Elsewhere only the

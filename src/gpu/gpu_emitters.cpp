@@ -311,10 +311,8 @@ ParticleArrays readSlots(GpuWorld& w, std::size_t index, const kernels::EmitterP
     // recomputed by the kernel that the shader uses for the same purpose.
     for (std::size_t i = 0; i < n; ++i) {
         kernels::Particle q{};
-        q.age = p.age[i];
         q.birth = p.birth[i];
-        q.velocity = p.velocity[i];  // the over-speed curves read it
-        q = kernels::restoreDerived(params, q);
+        q = kernels::restoreBirthDraws(params, q);
         p.lifetime[i] = q.lifetime;
         p.angularVelocity[i] = q.angularVelocity;
     }

@@ -19,10 +19,7 @@ SD_FN Particle evaluateStatelessParticle(SD_IN(EmitterParams) e, uint serial, fl
     p.velocity = p.velocity + g * age;
     p.rotation = p.rotation + p.angularVelocity * age;
     p.age = age;
-    float t = clamp(age / p.lifetime, 0.0f, 1.0f);
-    p.color = p.color * evaluateCurve(e.colorOverLife, t);
-    p.size = p.size * evaluateCurve(e.sizeOverLife, t).x;
-    p = applyOverSpeed(e, p);
+    p = restoreLook(e, p);
     p.alive = age < p.lifetime ? 1u : 0u;
     return p;
 }

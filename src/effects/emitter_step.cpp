@@ -84,6 +84,30 @@ void countImpact(const StepScope& scope, const ParticleArrays& a, const kernels:
     countUpdate(scope, r.particle, r, glm::length(startVelocity), out);
 }
 
+// countImpact for every struck lane of a batch the vector update finished,
+// in a step that owes no spawn requests: the hits' counts and, when events
+// are recorded, their records (updateEvent: a hit's record reads the
+// particle's position and birth serial, in collider order), built from those
+// two arrays instead of a whole particle.
+void countBatchImpacts(const StepScope& scope, const ParticleArrays& a, const BatchResult& batch,
+                       std::size_t first, ChunkResult& out) {
+    for (std::uint32_t lanes = batch.struck; lanes != 0u; lanes &= lanes - 1u) {
+        const auto lane = static_cast<std::size_t>(std::countr_zero(lanes));
+        kernels::Particle hit{};
+        hit.position = a.position[first + lane];
+        hit.birth = a.birth[first + lane];
+        const float speed = scope.recordEvents ? glm::length(batch.startVelocity[lane]) : 0.0f;
+        for (std::uint32_t mask = batch.hitMask[lane]; mask != 0u; mask &= mask - 1u) {
+            const auto collider = static_cast<std::uint32_t>(std::countr_zero(mask));
+            out.hits[collider] += 1;
+            if (scope.recordEvents) {
+                out.events.push_back(
+                    kernels::eventRecord(kernels::SD_EVENT_KIND_COLLISION, collider + 1u, scope.index, hit, speed));
+            }
+        }
+    }
+}
+
 // The slot of an update is free again: its particle died or was removed.
 bool slotFreed(const kernels::ParticleUpdate& r) {
     return (r.events & (kernels::SD_EVENT_DIED | kernels::SD_EVENT_NON_FINITE)) != 0u;
@@ -172,6 +196,7 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
         const UpdateTarget target = updateTarget();
         const bool batches = target != UpdateTarget::Scalar && batchUpdateEligible(ctx, params);
         const BatchConstants constants = batches ? batchConstants(ctx, params, dt) : BatchConstants{};
+        const bool requests = scope.e.requestKinds != 0u;
         pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
             constexpr std::uint32_t kAllLanes = (1u << kBatchLanes) - 1u;
@@ -180,8 +205,9 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                 const BatchResult batch = batches && last - first == kBatchLanes
                                               ? updateBatch(target, ctx, params, constants, a, first, dt)
                                               : BatchResult{};
-                if (batch.finished == kAllLanes && batch.struck == 0u && trailPoints == 0u) {
-                    continue;  // the usual batch: nothing left to do
+                if (batch.finished == kAllLanes && trailPoints == 0u && !requests) {
+                    countBatchImpacts(scope, a, batch, first, out);
+                    continue;  // the usual batch: nothing left but its impacts' counts
                 }
                 for (std::size_t i = first; i < last; ++i) {
                     const std::size_t lane = i - first;

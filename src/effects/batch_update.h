@@ -18,9 +18,13 @@
 namespace spindrift {
 
 /// Slots per batch: a multiple of every SIMD width dispatched to (4, 8 and 16
-/// floats), and under 32 (the returned lane mask, with all lanes set, fits).
-inline constexpr std::size_t kBatchLanes = 16;
-static_assert(kBatchLanes % 16 == 0 && kBatchLanes < 32);
+/// floats), and at most 64 (a LaneMask's bits).
+inline constexpr std::size_t kBatchLanes = 64;
+/// One bit per slot of a batch (bit l: slot first + l).
+using LaneMask = std::uint64_t;
+static_assert(kBatchLanes % 16 == 0 && kBatchLanes <= 8 * sizeof(LaneMask));
+/// The lane mask with every lane of a batch set.
+inline constexpr LaneMask kAllBatchLanes = ~LaneMask{0} >> (8 * sizeof(LaneMask) - kBatchLanes);
 
 /// Which code runs the update. Scalar: the scalar kernel for every slot (the
 /// path before the vector update, kept as the benchmarks' baseline). The
@@ -64,11 +68,11 @@ BatchConstants batchConstants(const kernels::KernelContext& ctx, const kernels::
 /// What updateBatch did with a batch of slots (bit l: slot first + l).
 struct BatchResult {
     /// Lanes updated here, the others left untouched for the scalar kernel.
-    std::uint32_t finished = 0;
+    LaneMask finished = 0;
     /// Finished lanes that struck a collider this step: their updates still
     /// owe the step's counts, events and spawn requests (impacts only: a lane
     /// that dies of it is left to the scalar kernel).
-    std::uint32_t struck = 0;
+    LaneMask struck = 0;
     std::uint32_t hitMask[kBatchLanes] = {};      ///< colliders struck (bit i: collider i), where struck
     glm::vec3 startVelocity[kBatchLanes] = {};    ///< m/s, at the start of the step, where struck
 };

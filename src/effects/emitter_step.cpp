@@ -91,7 +91,7 @@ void countImpact(const StepScope& scope, const ParticleArrays& a, const kernels:
 // two arrays instead of a whole particle.
 void countBatchImpacts(const StepScope& scope, const ParticleArrays& a, const BatchResult& batch,
                        std::size_t first, ChunkResult& out) {
-    for (std::uint32_t lanes = batch.struck; lanes != 0u; lanes &= lanes - 1u) {
+    for (LaneMask lanes = batch.struck; lanes != 0u; lanes &= lanes - 1u) {
         const auto lane = static_cast<std::size_t>(std::countr_zero(lanes));
         kernels::Particle hit{};
         hit.position = a.position[first + lane];
@@ -199,13 +199,12 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
         const bool requests = scope.e.requestKinds != 0u;
         pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
-            constexpr std::uint32_t kAllLanes = (1u << kBatchLanes) - 1u;
             for (std::size_t first = begin; first < end; first += kBatchLanes) {
                 const std::size_t last = std::min(first + kBatchLanes, end);
                 const BatchResult batch = batches && last - first == kBatchLanes
                                               ? updateBatch(target, ctx, params, constants, a, first, dt)
                                               : BatchResult{};
-                if (batch.finished == kAllLanes && trailPoints == 0u && !requests) {
+                if (batch.finished == kAllBatchLanes && trailPoints == 0u && !requests) {
                     countBatchImpacts(scope, a, batch, first, out);
                     continue;  // the usual batch: nothing left but its impacts' counts
                 }

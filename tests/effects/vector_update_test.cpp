@@ -307,7 +307,7 @@ TEST(VectorUpdate, TakesQuietAndStrikingLanesAndLeavesTheRest) {
     const kernels::KernelContext ctx{nullptr, 0u, &plane, 1u, nullptr, 0.0f};
     constexpr std::size_t kStrike = 3, kResting = 5, kOverflow = 6;
     const float dt = 0.1f;
-    const std::uint32_t all = (1u << kBatchLanes) - 1u;
+    const LaneMask all = kAllBatchLanes;
     const std::uint32_t kills = kernels::SD_EMITTER_KILL_ON_COLLISION;
     const std::uint32_t recycle = kernels::SD_EMITTER_RECYCLE;
     for (std::uint32_t flags : {0u, kills, kills | recycle}) {
@@ -349,17 +349,17 @@ TEST(VectorUpdate, TakesQuietAndStrikingLanesAndLeavesTheRest) {
             ASSERT_EQ(kernels::eventCountOf(resting), 0u);  // no impact, as the test needs
             ASSERT_NE(resting.particle.position, glm::vec3(0.32f, -0.0005f, 0.0f));  // pushed out
             ASSERT_EQ(strike.hitMask, 1u);                                            // an impact
-            const std::uint32_t left = (1u << kOverflow) | (strikeLeft ? 1u << kStrike : 0u);
+            const LaneMask left = (LaneMask{1} << kOverflow) | (strikeLeft ? LaneMask{1} << kStrike : LaneMask{0});
             const glm::vec3 strikeStart = a.velocity[kStrike];
             const BatchResult r = updateBatch(target, ctx, e, batchConstants(ctx, e, dt), a, 0, dt);
-            EXPECT_EQ(r.finished, target == UpdateTarget::Scalar ? 0u : all & ~left);
+            EXPECT_EQ(r.finished, target == UpdateTarget::Scalar ? LaneMask{0} : all & ~left);
             EXPECT_EQ(a.velocity[kOverflow].x, 2.0e19f);  // left for the scalar kernel
             if (target == UpdateTarget::Scalar || strikeLeft) {
                 EXPECT_EQ(r.struck, 0u);
                 EXPECT_EQ(a.position[kStrike], glm::vec3(0.0f, 1.0f, 0.0f));
                 EXPECT_EQ(a.age[kStrike], 0.5f);
             } else {
-                EXPECT_EQ(r.struck, 1u << kStrike);
+                EXPECT_EQ(r.struck, LaneMask{1} << kStrike);
                 EXPECT_EQ(r.hitMask[kStrike], 1u);
                 EXPECT_EQ(r.startVelocity[kStrike], strikeStart);
                 EXPECT_EQ(std::memcmp(&a.position[kStrike], &strike.particle.position, sizeof(glm::vec3)), 0);

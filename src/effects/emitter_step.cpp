@@ -3,6 +3,7 @@
 
 #include "effects/batch_update.h"
 
+#include "core/chunk_prefix.h"
 #include "core/saturating.h"
 #include "kernels/sub_emit.glsl"
 #include "kernels/trail.glsl"
@@ -10,6 +11,7 @@
 #include "particles/slots.h"
 
 #include <bit>
+#include <cassert>
 #include <cmath>
 
 namespace spindrift {
@@ -26,6 +28,10 @@ struct ChunkResult {
     std::uint64_t hits[32] = {};
     std::vector<std::uint32_t> dead;  // spawn mode: slots that died, ascending
     std::vector<kernels::EventRecord> events;
+    // Events counted but not built: the chunks before this one had already
+    // offered the step's room (ChunkPrefix), so none of them could be kept.
+    std::uint64_t eventsSkipped = 0;
+    bool skipEvents = false;  // set while the update's chunks before this one fill the room
     std::vector<kernels::SpawnRequest> requests[kernels::SD_SPAWN_EVENT_KINDS];  // for sub-emitters
 };
 
@@ -60,7 +66,10 @@ void countUpdate(const StepScope& scope, const kernels::Particle& before, const 
         out.hits[std::countr_zero(mask)] += 1;
     }
     const std::uint32_t n = scope.recordEvents ? kernels::eventCountOf(r) : 0u;
-    for (std::uint32_t k = 0; k < n; ++k) {
+    if (out.skipEvents) {
+        out.eventsSkipped += n;
+    }
+    for (std::uint32_t k = 0; k < n && !out.skipEvents; ++k) {
         out.events.push_back(kernels::updateEvent(k, before, r, scope.index, speed));
     }
     for (std::uint32_t kinds = scope.e.requestKinds; kinds != 0u; kinds &= kinds - 1u) {
@@ -100,7 +109,9 @@ void countBatchImpacts(const StepScope& scope, const ParticleArrays& a, const Ba
         for (std::uint32_t mask = batch.hitMask[lane]; mask != 0u; mask &= mask - 1u) {
             const auto collider = static_cast<std::uint32_t>(std::countr_zero(mask));
             out.hits[collider] += 1;
-            if (scope.recordEvents) {
+            if (scope.recordEvents && out.skipEvents) {
+                out.eventsSkipped += 1;
+            } else if (scope.recordEvents) {
                 out.events.push_back(
                     kernels::eventRecord(kernels::SD_EVENT_KIND_COLLISION, collider + 1u, scope.index, hit, speed));
             }
@@ -121,7 +132,8 @@ void mergeChunks(std::vector<ChunkResult>& chunks, EmitterState& e, StepStats& s
         std::size_t room = events.capacity - std::min<std::size_t>(events.capacity, events.records.size());
         std::size_t kept = std::min(room, c.events.size());
         events.records.insert(events.records.end(), c.events.begin(), c.events.begin() + static_cast<std::ptrdiff_t>(kept));
-        events.dropped += c.events.size() - kept;
+        events.dropped += c.events.size() - kept + c.eventsSkipped;
+        assert(c.eventsSkipped == 0 || room == 0);  // only events past the room are skipped
         born += c.born;
         died += c.died;
         nonFinite += c.nonFinite;
@@ -197,9 +209,16 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
         const bool batches = target != UpdateTarget::Scalar && batchUpdateEligible(ctx, params);
         const BatchConstants constants = batches ? batchConstants(ctx, params, dt) : BatchConstants{};
         const bool requests = scope.e.requestKinds != 0u;
+        // The step keeps the first events in chunk order, as many as it has
+        // room for: a chunk after a finished prefix that offered that many
+        // only counts its own (a launch strikes the ground 50,000 times a
+        // step, with room for 4,096).
+        const std::size_t room = events.capacity - std::min<std::size_t>(events.capacity, events.records.size());
+        ChunkPrefix offered(scope.recordEvents ? chunks.size() : 0u, room);
         pool.forChunks(e.def.capacity, kChunk, [&](std::size_t c, std::size_t begin, std::size_t end) {
             ChunkResult& out = chunks[c];
             for (std::size_t first = begin; first < end; first += kBatchLanes) {
+                out.skipEvents = scope.recordEvents && offered.full();
                 const std::size_t last = std::min(first + kBatchLanes, end);
                 const BatchResult batch = batches && last - first == kBatchLanes
                                               ? updateBatch(target, ctx, params, constants, a, first, dt)
@@ -229,6 +248,9 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                         out.dead.push_back(static_cast<std::uint32_t>(i));
                     }
                 }
+            }
+            if (scope.recordEvents) {
+                offered.finish(c, out.events.size() + out.eventsSkipped);
             }
         });
     }

@@ -260,9 +260,11 @@ TEST(VectorUpdate, ALookThatCouldOverflowRunsTheScalarKernel) {
 }
 
 // A step's events past the world's capacity are dropped and counted, the
-// same ones at every target: the vector update's impacts build at most the
-// capacity per chunk (emitter_step.cpp) where the scalar kernel built them
-// all. Independent reference: the scalar kernel's run with the same capacity.
+// same ones at every target and thread count: the update's chunks skip
+// building the events that lie past the step's room (ChunkPrefix,
+// emitter_step.cpp), and which chunks skip depends on the order they run in.
+// Independent reference: the scalar kernel's run with the same capacity on
+// one thread, and the conservation of the offered events.
 TEST(VectorUpdate, EventsPastTheCapacityAreTheScalarKernels) {
     constexpr std::uint32_t kCapacity = 30;  // per step; the run has more events than that in most steps
     std::size_t live = 0;

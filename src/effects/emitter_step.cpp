@@ -95,26 +95,32 @@ void countImpact(const StepScope& scope, const ParticleArrays& a, const kernels:
 
 // countImpact for every struck lane of a batch the vector update finished,
 // in a step that owes no spawn requests: the hits' counts and, when events
-// are recorded, their records (updateEvent: a hit's record reads the
-// particle's position and birth serial, in collider order), built from those
-// two arrays instead of a whole particle.
+// are recorded and have room, their records (updateEvent: a hit's record
+// reads the particle's position and birth serial, in collider order), built
+// from those two arrays instead of a whole particle. Events past the room
+// read neither: the birth serials are not in cache (the update does not read
+// them), and a launch strikes the ground 50,000 times a step.
 void countBatchImpacts(const StepScope& scope, const ParticleArrays& a, const BatchResult& batch,
                        std::size_t first, ChunkResult& out) {
+    const bool build = scope.recordEvents && !out.skipEvents;
     for (LaneMask lanes = batch.struck; lanes != 0u; lanes &= lanes - 1u) {
         const auto lane = static_cast<std::size_t>(std::countr_zero(lanes));
+        const std::uint32_t hitMask = batch.hitMask[lane];
+        for (std::uint32_t mask = hitMask; mask != 0u; mask &= mask - 1u) {
+            out.hits[std::countr_zero(mask)] += 1;
+        }
+        if (!build) {
+            out.eventsSkipped += scope.recordEvents ? static_cast<std::uint64_t>(std::popcount(hitMask)) : 0u;
+            continue;
+        }
         kernels::Particle hit{};
         hit.position = a.position[first + lane];
         hit.birth = a.birth[first + lane];
-        const float speed = scope.recordEvents ? glm::length(batch.startVelocity[lane]) : 0.0f;
-        for (std::uint32_t mask = batch.hitMask[lane]; mask != 0u; mask &= mask - 1u) {
+        const float speed = glm::length(batch.startVelocity[lane]);
+        for (std::uint32_t mask = hitMask; mask != 0u; mask &= mask - 1u) {
             const auto collider = static_cast<std::uint32_t>(std::countr_zero(mask));
-            out.hits[collider] += 1;
-            if (scope.recordEvents && out.skipEvents) {
-                out.eventsSkipped += 1;
-            } else if (scope.recordEvents) {
-                out.events.push_back(
-                    kernels::eventRecord(kernels::SD_EVENT_KIND_COLLISION, collider + 1u, scope.index, hit, speed));
-            }
+            out.events.push_back(
+                kernels::eventRecord(kernels::SD_EVENT_KIND_COLLISION, collider + 1u, scope.index, hit, speed));
         }
     }
 }

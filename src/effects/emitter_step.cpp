@@ -93,35 +93,34 @@ void countImpact(const StepScope& scope, const ParticleArrays& a, const kernels:
     countUpdate(scope, r.particle, r, glm::length(startVelocity), out);
 }
 
-// countImpact for every struck lane of a batch the vector update finished,
-// in a step that owes no spawn requests: the hits' counts and, when events
-// are recorded and have room, their records (updateEvent: a hit's record
-// reads the particle's position and birth serial, in collider order), built
-// from those two arrays instead of a whole particle. Events past the room
-// read neither: the birth serials are not in cache (the update does not read
+// countImpact for a struck lane of a batch the vector update finished, in a
+// step that owes no spawn requests: the hits' counts and, when events are
+// recorded and have room, their records (updateEvent: a hit's record reads
+// the particle's position and birth serial, in collider order), built from
+// those two arrays instead of a whole particle. Events past the room read
+// neither: the birth serials are not in cache (the update does not read
 // them), and a launch strikes the ground 50,000 times a step.
-void countBatchImpacts(const StepScope& scope, const ParticleArrays& a, const BatchResult& batch,
-                       std::size_t first, ChunkResult& out) {
-    const bool build = scope.recordEvents && !out.skipEvents;
-    for (LaneMask lanes = batch.struck; lanes != 0u; lanes &= lanes - 1u) {
-        const auto lane = static_cast<std::size_t>(std::countr_zero(lanes));
-        const std::uint32_t hitMask = batch.hitMask[lane];
-        for (std::uint32_t mask = hitMask; mask != 0u; mask &= mask - 1u) {
-            out.hits[std::countr_zero(mask)] += 1;
-        }
-        if (!build) {
-            out.eventsSkipped += scope.recordEvents ? static_cast<std::uint64_t>(std::popcount(hitMask)) : 0u;
-            continue;
-        }
-        kernels::Particle hit{};
-        hit.position = a.position[first + lane];
-        hit.birth = a.birth[first + lane];
-        const float speed = glm::length(batch.startVelocity[lane]);
-        for (std::uint32_t mask = hitMask; mask != 0u; mask &= mask - 1u) {
-            const auto collider = static_cast<std::uint32_t>(std::countr_zero(mask));
-            out.events.push_back(
-                kernels::eventRecord(kernels::SD_EVENT_KIND_COLLISION, collider + 1u, scope.index, hit, speed));
-        }
+void countLaneImpact(const StepScope& scope, const ParticleArrays& a, const BatchResult& batch, std::size_t lane,
+                     std::size_t i, ChunkResult& out) {
+    const std::uint32_t hitMask = batch.hitMask[lane];
+    for (std::uint32_t mask = hitMask; mask != 0u; mask &= mask - 1u) {
+        out.hits[std::countr_zero(mask)] += 1;
+    }
+    if (!scope.recordEvents) {
+        return;
+    }
+    if (out.skipEvents) {
+        out.eventsSkipped += static_cast<std::uint64_t>(std::popcount(hitMask));
+        return;
+    }
+    kernels::Particle hit{};
+    hit.position = a.position[i];
+    hit.birth = a.birth[i];
+    const float speed = glm::length(batch.startVelocity[lane]);
+    for (std::uint32_t mask = hitMask; mask != 0u; mask &= mask - 1u) {
+        const auto collider = static_cast<std::uint32_t>(std::countr_zero(mask));
+        out.events.push_back(
+            kernels::eventRecord(kernels::SD_EVENT_KIND_COLLISION, collider + 1u, scope.index, hit, speed));
     }
 }
 
@@ -229,16 +228,20 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                 const BatchResult batch = batches && last - first == kBatchLanes
                                               ? updateBatch(target, ctx, params, constants, a, first, dt)
                                               : BatchResult{};
-                if (batch.finished == kAllBatchLanes && trailPoints == 0u && !requests) {
-                    countBatchImpacts(scope, a, batch, first, out);
-                    continue;  // the usual batch: nothing left but its impacts' counts
-                }
-                for (std::size_t i = first; i < last; ++i) {
-                    const std::size_t lane = i - first;
+                // The lanes left to do, in slot order (events keep it): every
+                // lane the vector update did not finish, and those it finished
+                // that struck a collider or have a trail to record.
+                const LaneMask lanes = kAllBatchLanes >> (kBatchLanes - (last - first));
+                LaneMask work = trailPoints != 0u ? lanes : (lanes & ~batch.finished) | batch.struck;
+                for (; work != 0u; work &= work - 1u) {
+                    const auto lane = static_cast<std::size_t>(std::countr_zero(work));
+                    const std::size_t i = first + lane;
                     if ((batch.finished >> lane & 1u) != 0u) {
                         recordTrail(a, trailPoints, e.trailHead, i, false);
-                        if ((batch.struck >> lane & 1u) != 0u) {
+                        if ((batch.struck >> lane & 1u) != 0u && requests) {
                             countImpact(scope, a, params, i, batch.hitMask[lane], batch.startVelocity[lane], out);
+                        } else if ((batch.struck >> lane & 1u) != 0u) {
+                            countLaneImpact(scope, a, batch, lane, i, out);
                         }
                         continue;  // done by the vector update
                     }

@@ -46,24 +46,39 @@ struct Candidate {
     std::uint32_t index;
 };
 
-/// Appends to near[0, count) the particles [first, last) within h of
-/// particle i (not i itself): a store per candidate, kept or overwritten, and
-/// no branch on the distance. `near` only grows (its size is the high-water
-/// mark): resizing it per particle would zero every slot first, measured at
-/// 15 % of the setup.
+/// The particles of the 3^D sub-cells around one sub-cell, in sub-cell and
+/// then grid order: phase 1's candidates for every particle of that sub-cell
+/// (grid order keeps them consecutive), gathered once for all of them
+/// instead of once per particle. `overflows`: the particles of crushed
+/// sub-cells left out (kCrushedSubCell), counted for each particle.
 template <int D>
-void gatherNear(const Particles<D>& p, Vec<D> xi, std::size_t i, float h2, std::uint32_t first, std::uint32_t last,
-                std::vector<Candidate<D>>& near, std::size_t& count) {
-    if (near.size() < count + (last - first)) near.resize(std::max(2 * near.size(), count + (last - first)));
-    Candidate<D>* slot = near.data() + count;
-    std::uint32_t kept = 0;
-    for (std::uint32_t j = first; j < last; ++j) {
-        const Vec<D> offset = p.position[j] - xi;
+struct CandidateBlock {
+    std::uint32_t key = ~0u;  // the sub-cell it was gathered around
+    std::vector<Vec<D>> position;
+    std::vector<std::uint32_t> index;
+    std::uint64_t overflows = 0;
+};
+
+/// Writes to near[0, count) the particles of `block` within h of particle i
+/// (not i itself): a store per candidate, kept or overwritten, and no branch
+/// on the distance. `near` only grows (its size is the high-water mark):
+/// resizing it per particle would zero every slot first, measured at 15 % of
+/// the setup.
+template <int D>
+std::size_t gatherNear(const CandidateBlock<D>& block, Vec<D> xi, std::size_t i, float h2,
+                       std::vector<Candidate<D>>& near) {
+    const std::size_t total = block.index.size();
+    if (near.size() < total) near.resize(std::max(2 * near.size(), total));
+    Candidate<D>* slot = near.data();
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < total; ++k) {
+        const std::uint32_t j = block.index[k];
+        const Vec<D> offset = block.position[k] - xi;
         const float r2 = glm::dot(offset, offset);
         slot[kept] = Candidate<D>{offset, r2, j};
-        kept += static_cast<std::uint32_t>(r2 < h2) & static_cast<std::uint32_t>(j != i);
+        kept += static_cast<std::size_t>(r2 < h2) & static_cast<std::size_t>(j != i);
     }
-    count += kept;
+    return kept;
 }
 
 /// The direction from particle i to a neighbour j on top of it (r = 0), the
@@ -117,16 +132,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
         out.clear();  // keeps its capacity from the last step
         std::size_t used = 0;  // out[0, used) is written; out only grows until the chunk ends
         std::vector<Candidate<D>> near;
-        for (std::size_t i = begin; i < end; ++i) {
-            const Vec<D> xi = p.position[i];
-            const Vec<D> vi = p.velocity[i];
-            c.first[i] = static_cast<std::uint32_t>(used);
-            // Phase 1: the particles of the 3^D sub-cells around i that lie
-            // within h, gathered with a store per candidate and no branch on
-            // the distance (about a third pass in 2D, at random, so a branch
-            // mispredicts often: measured, the setup was 60 % of a step).
-            const std::array<int, 3> sc = subCellOf<D>(g, g.key[i]);
-            std::size_t nearCount = 0;
+        CandidateBlock<D> block;
+        // The candidates of the sub-cells around sub-cell `key`.
+        auto gatherBlock = [&](std::uint32_t key, CandidateBlock<D>& b) {
+            b.key = key;
+            b.position.clear();
+            b.index.clear();
+            b.overflows = 0;
+            const std::array<int, 3> sc = subCellOf<D>(g, key);
             for (int dz = -zReach; dz <= zReach; ++dz) {
                 const int sz = sc[2] + dz;
                 if (sz < 0 || sz >= subCells[2]) continue;
@@ -146,11 +159,28 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                         // a tank of zero width).
                         const std::uint32_t first = g.keyStart[k];
                         const std::uint32_t last = std::min(g.keyStart[k + 1], first + f.subCellReadLimit);
-                        s.overflows += g.keyStart[k + 1] - last;
-                        gatherNear<D>(p, xi, i, h2, first, last, near, nearCount);
+                        b.overflows += g.keyStart[k + 1] - last;
+                        for (std::uint32_t j = first; j < last; ++j) {
+                            b.position.push_back(p.position[j]);
+                            b.index.push_back(j);
+                        }
                     }
                 }
             }
+        };
+        for (std::size_t i = begin; i < end; ++i) {
+            const Vec<D> xi = p.position[i];
+            const Vec<D> vi = p.velocity[i];
+            c.first[i] = static_cast<std::uint32_t>(used);
+            // Phase 1: the particles of the 3^D sub-cells around i that lie
+            // within h, gathered with a store per candidate and no branch on
+            // the distance (about a third pass in 2D, at random, so a branch
+            // mispredicts often: measured, the setup was 60 % of a step).
+            if (g.key[i] != block.key) {
+                gatherBlock(g.key[i], block);
+            }
+            s.overflows += block.overflows;
+            const std::size_t nearCount = gatherNear<D>(block, xi, i, h2, near);
             // Phase 2: the pairs within h, dense.
             float density = 1.0f;  // the particle itself: W(0) = 1
             float mass = 0.0f;

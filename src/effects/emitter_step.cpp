@@ -238,9 +238,12 @@ void stepEmitter(WorkerPool& pool, const kernels::KernelContext& ctx, EmitterSta
                     const std::size_t i = first + lane;
                     if ((batch.finished >> lane & 1u) != 0u) {
                         recordTrail(a, trailPoints, e.trailHead, i, false);
-                        if ((batch.struck >> lane & 1u) != 0u && requests) {
+                        if ((batch.struck >> lane & 1u) == 0u) {
+                            continue;
+                        }
+                        if (requests) {  // spawn requests read the whole particle
                             countImpact(scope, a, params, i, batch.hitMask[lane], batch.startVelocity[lane], out);
-                        } else if ((batch.struck >> lane & 1u) != 0u) {
+                        } else {
                             countLaneImpact(scope, a, batch, lane, i, out);
                         }
                         continue;  // done by the vector update

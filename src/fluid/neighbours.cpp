@@ -59,7 +59,43 @@ struct CandidateBlock {
     std::uint64_t overflows = 0;
 };
 
-/// Writes to near[0, count) the particles of `block` within h of particle i
+/// Fills `block` with the candidates of the 3^D sub-cells around sub-cell
+/// `key`. A sub-cell crushed past kCrushedSubCell times its count at rest
+/// (fluid_state.h) is read only `readLimit` far: the rest count as
+/// overflows. Without the bound a fluid squeezed into a point makes every
+/// particle every other's neighbour, and a step costs seconds
+/// (docs/fuzzing.md: a jet of 16,777,217 particles/s, a tank of zero width).
+template <int D>
+void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std::uint32_t readLimit,
+                 CandidateBlock<D>& block) {
+    const int subCells[3] = {2 * g.cells[0], 2 * g.cells[1], D == 3 ? 2 * g.cells[2] : 1};
+    const int zReach = D == 3 ? 1 : 0;
+    block.key = key;
+    block.position.clear();
+    block.index.clear();
+    block.overflows = 0;
+    const std::array<int, 3> sc = subCellOf<D>(g, key);
+    for (int dz = -zReach; dz <= zReach; ++dz) {
+        const int sz = sc[2] + dz;
+        if (sz < 0 || sz >= subCells[2]) continue;
+        for (int dy = -1; dy <= 1; ++dy) {
+            const int sy = sc[1] + dy;
+            if (sy < 0 || sy >= subCells[1]) continue;
+            for (int dx = -1; dx <= 1; ++dx) {
+                const int sx = sc[0] + dx;
+                if (sx < 0 || sx >= subCells[0]) continue;
+                const std::uint32_t k = keyOfSubCell<D>(g, sx, sy, sz);
+                const std::uint32_t first = g.keyStart[k];
+                const std::uint32_t last = std::min(g.keyStart[k + 1], first + readLimit);
+                block.overflows += g.keyStart[k + 1] - last;
+                block.position.insert(block.position.end(), p.position.begin() + first, p.position.begin() + last);
+                for (std::uint32_t j = first; j < last; ++j) block.index.push_back(j);
+            }
+        }
+    }
+}
+
+/// Writes to near[0, the returned count) the particles of `block` within h of particle i
 /// (not i itself): a store per candidate, kept or overwritten, and no branch
 /// on the distance. `near` only grows (its size is the high-water mark):
 /// resizing it per particle would zero every slot first, measured at 15 % of
@@ -122,8 +158,6 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     const float invH = 1.0f / f.h;
     const float invDt = 1.0f / dt;
     const float invRest = 1.0f / f.restDensity;
-    const int subCells[3] = {2 * g.cells[0], 2 * g.cells[1], D == 3 ? 2 * g.cells[2] : 1};
-    const int zReach = D == 3 ? 1 : 0;
     std::vector<ChunkStats> chunks(WorkerPool::chunkCount(n, kParticleChunk));
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
@@ -133,41 +167,6 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
         std::size_t used = 0;  // out[0, used) is written; out only grows until the chunk ends
         std::vector<Candidate<D>> near;
         CandidateBlock<D> block;
-        // The candidates of the sub-cells around sub-cell `key`.
-        auto gatherBlock = [&](std::uint32_t key, CandidateBlock<D>& b) {
-            b.key = key;
-            b.position.clear();
-            b.index.clear();
-            b.overflows = 0;
-            const std::array<int, 3> sc = subCellOf<D>(g, key);
-            for (int dz = -zReach; dz <= zReach; ++dz) {
-                const int sz = sc[2] + dz;
-                if (sz < 0 || sz >= subCells[2]) continue;
-                for (int dy = -1; dy <= 1; ++dy) {
-                    const int sy = sc[1] + dy;
-                    if (sy < 0 || sy >= subCells[1]) continue;
-                    for (int dx = -1; dx <= 1; ++dx) {
-                        const int sx = sc[0] + dx;
-                        if (sx < 0 || sx >= subCells[0]) continue;
-                        const std::uint32_t k = keyOfSubCell<D>(g, sx, sy, sz);
-                        // A sub-cell crushed past kCrushedSubCell times its
-                        // count at rest (fluid_state.h) is read only that
-                        // far: the rest count as overflows. Without the bound
-                        // a fluid squeezed into a point makes every particle
-                        // every other's neighbour, and a step costs seconds
-                        // (docs/fuzzing.md: a jet of 16,777,217 particles/s,
-                        // a tank of zero width).
-                        const std::uint32_t first = g.keyStart[k];
-                        const std::uint32_t last = std::min(g.keyStart[k + 1], first + f.subCellReadLimit);
-                        b.overflows += g.keyStart[k + 1] - last;
-                        for (std::uint32_t j = first; j < last; ++j) {
-                            b.position.push_back(p.position[j]);
-                            b.index.push_back(j);
-                        }
-                    }
-                }
-            }
-        };
         for (std::size_t i = begin; i < end; ++i) {
             const Vec<D> xi = p.position[i];
             const Vec<D> vi = p.velocity[i];
@@ -177,7 +176,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             // the distance (about a third pass in 2D, at random, so a branch
             // mispredicts often: measured, the setup was 60 % of a step).
             if (g.key[i] != block.key) {
-                gatherBlock(g.key[i], block);
+                gatherBlock<D>(p, g, g.key[i], f.subCellReadLimit, block);
             }
             s.overflows += block.overflows;
             const std::size_t nearCount = gatherNear<D>(block, xi, i, h2, near);

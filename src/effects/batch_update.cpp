@@ -17,11 +17,6 @@
 // On x86 four copies: SSE2 (the baseline), SSE4.2, AVX2, AVX-512. Elsewhere only the
 // baseline copy is built (the compiler's own vector width) and is reported
 // under the Sse2 name; the others are unsupported.
-#if defined(__x86_64__) || defined(__i386__)
-#define SD_X86 1
-#else
-#define SD_X86 0
-#endif
 
 namespace spindrift {
 namespace {
@@ -51,7 +46,7 @@ namespace sse2 {
 #include "effects/batch_update_body.inc"
 }  // namespace sse2
 
-#if SD_X86
+#if SPINDRIFT_X86
 SD_TARGET_BEGIN("sse4.2")
 namespace sse4 {
 #include "effects/batch_update_body.inc"
@@ -74,76 +69,6 @@ namespace sse4 = sse2;  // never dispatched to: supports() is false
 namespace avx2 = sse2;
 namespace avx512 = sse2;
 #endif
-
-bool supports(UpdateTarget target) {
-    switch (target) {
-    case UpdateTarget::Scalar:
-    case UpdateTarget::Sse2:
-        return true;
-#if SD_X86
-    case UpdateTarget::Sse4:
-        return __builtin_cpu_supports("sse4.2");
-    case UpdateTarget::Avx2:
-        return __builtin_cpu_supports("avx2");
-    case UpdateTarget::Avx512:
-        return __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512vl") &&
-               __builtin_cpu_supports("avx512bw") && __builtin_cpu_supports("avx512dq");
-#else
-    case UpdateTarget::Sse4:
-    case UpdateTarget::Avx2:
-    case UpdateTarget::Avx512:
-        return false;
-#endif
-    }
-    return false;
-}
-
-std::atomic<UpdateTarget>& currentTarget() {
-    static std::atomic<UpdateTarget> target{bestUpdateTarget()};
-    return target;
-}
-
-}  // namespace
-
-std::vector<UpdateTarget> supportedUpdateTargets() {
-    std::vector<UpdateTarget> out;
-    for (UpdateTarget t :
-         {UpdateTarget::Scalar, UpdateTarget::Sse2, UpdateTarget::Sse4, UpdateTarget::Avx2, UpdateTarget::Avx512}) {
-        if (supports(t)) {
-            out.push_back(t);
-        }
-    }
-    return out;
-}
-
-UpdateTarget bestUpdateTarget() {
-    if (supports(UpdateTarget::Avx512)) return UpdateTarget::Avx512;
-    if (supports(UpdateTarget::Avx2)) return UpdateTarget::Avx2;
-    if (supports(UpdateTarget::Sse4)) return UpdateTarget::Sse4;
-    return UpdateTarget::Sse2;
-}
-
-void setUpdateTarget(UpdateTarget target) {
-    if (!supports(target)) {
-        throw Error("setUpdateTarget: this CPU cannot run " + std::string(updateTargetName(target)));
-    }
-    currentTarget().store(target);
-}
-
-UpdateTarget updateTarget() { return currentTarget().load(); }
-
-std::string_view updateTargetName(UpdateTarget target) {
-    switch (target) {
-    case UpdateTarget::Scalar: return "scalar";
-    case UpdateTarget::Sse2: return "sse2";
-    case UpdateTarget::Sse4: return "sse4.2";
-    case UpdateTarget::Avx2: return "avx2";
-    case UpdateTarget::Avx512: return "avx512";
-    }
-    return "?";
-}
-
-namespace {
 
 // The largest magnitude evaluateCurve (curves.glsl) can return: a key's value
 // or a mix of two keys' values with a weight in [0, 1], x (1 - f) + y f, at

@@ -6,13 +6,13 @@
 // update"; tests/effects/vector_update_test.cpp).
 #pragma once
 
+#include "core/cpu_target.h"
 #include "kernels/layout.glsl"
 #include "particles/cpu_kernels.h"
 #include "particles/emitter_state.h"
 
 #include <cstddef>
 #include <cstdint>
-#include <string_view>
 #include <vector>
 
 namespace spindrift {
@@ -25,26 +25,6 @@ using LaneMask = std::uint64_t;
 static_assert(kBatchLanes % 16 == 0 && kBatchLanes <= 8 * sizeof(LaneMask));
 /// The lane mask with every lane of a batch set.
 inline constexpr LaneMask kAllBatchLanes = ~LaneMask{0} >> (8 * sizeof(LaneMask) - kBatchLanes);
-
-/// Which code runs the update. Scalar: the scalar kernel for every slot (the
-/// path before the vector update, kept as the benchmarks' baseline). The
-/// others: the vector update compiled for that instruction set (Sse2 is the
-/// baseline x86-64 build, 4 lanes; Sse4: SSE4.2, 4 lanes; Avx2: 8 lanes;
-/// Avx512: AVX-512 F, VL, BW and DQ, 16 lanes).
-enum class UpdateTarget : std::uint8_t { Scalar, Sse2, Sse4, Avx2, Avx512 };
-
-/// The targets this CPU can run, Scalar first.
-std::vector<UpdateTarget> supportedUpdateTargets();
-
-/// The best target this CPU supports.
-UpdateTarget bestUpdateTarget();
-
-/// Sets the target of every CPU update in the process (tests and benchmarks;
-/// the default is bestUpdateTarget()). Throws spindrift::Error if the CPU
-/// cannot run it.
-void setUpdateTarget(UpdateTarget target);
-UpdateTarget updateTarget();
-std::string_view updateTargetName(UpdateTarget target);
 
 /// Whether the vector update can take emitter e's slots this step: Euler
 /// integrators, no flow fields, only plane colliders, no over-speed curves,

@@ -2,13 +2,25 @@
 // every particle, the particles of the 3^D sub-cells around its own within h,
 // each stored with its index and g = w * direction; its density, bias and
 // effective mass; and the step's density statistics.
+#include "core/cpu_target.h"
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
 #include <cmath>
 
+#if SPINDRIFT_X86
+#include <immintrin.h>
+#endif
+
 namespace spindrift::fluid {
 namespace {
+
+/// Lanes of the widest filter (AVX-512's 16 floats): blocks are padded to a
+/// multiple, and near lists have this much room past their candidates.
+constexpr std::size_t kNearLanes = 16;
+/// A padding candidate's coordinates (m): its squared distance overflows to
+/// infinity from any particle, so no filter keeps it.
+constexpr float kFarAway = 1.0e30f;
 
 struct ChunkStats {
     double errorSum = 0.0;
@@ -38,24 +50,39 @@ std::uint32_t keyOfSubCell(const Grid<D>& g, int sx, int sy, int sz) {
 }
 
 
-/// A particle within h of the one being set up (phase 1 of the setup).
+/// The particles within h of the one being set up (phase 1 of the setup), as
+/// structure of arrays: offset (m, from the particle to it) per axis, squared
+/// distance (m^2) and index. Room for kNearLanes more than the candidates, so
+/// a vector filter stores whole vectors past the last kept one.
 template <int D>
-struct Candidate {
-    Vec<D> offset;  // m, from the particle to it
-    float r2;       // m^2
-    std::uint32_t index;
+struct NearList {
+    std::array<std::vector<float>, D> offset;
+    std::vector<float> r2;
+    std::vector<std::uint32_t> index;
+
+    void reserve(std::size_t candidates) {
+        const std::size_t room = candidates + kNearLanes;
+        if (index.size() >= room) return;  // only grows: resizing zeroes every slot (measured, 15 % of the setup)
+        const std::size_t size = std::max(2 * index.size(), room);
+        for (std::vector<float>& axis : offset) axis.resize(size);
+        r2.resize(size);
+        index.resize(size);
+    }
 };
 
 /// The particles of the 3^D sub-cells around one sub-cell, in sub-cell and
-/// then grid order: phase 1's candidates for every particle of that sub-cell
-/// (grid order keeps them consecutive), gathered once for all of them
-/// instead of once per particle. `overflows`: the particles of crushed
-/// sub-cells left out (kCrushedSubCell), counted for each particle.
+/// then grid order, as structure of arrays: phase 1's candidates for every
+/// particle of that sub-cell (grid order keeps them consecutive), gathered
+/// once for all of them instead of once per particle. Padded to a multiple
+/// of kNearLanes with points far away (kFarAway), which no filter keeps.
+/// `overflows`: the particles of crushed sub-cells left out
+/// (kCrushedSubCell), counted for each particle.
 template <int D>
 struct CandidateBlock {
     std::uint32_t key = ~0u;  // the sub-cell it was gathered around
-    std::vector<Vec<D>> position;
+    std::array<std::vector<float>, D> position;
     std::vector<std::uint32_t> index;
+    std::size_t count = 0;  // candidates before the padding
     std::uint64_t overflows = 0;
 };
 
@@ -71,7 +98,7 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
     const int subCells[3] = {2 * g.cells[0], 2 * g.cells[1], D == 3 ? 2 * g.cells[2] : 1};
     const int zReach = D == 3 ? 1 : 0;
     block.key = key;
-    block.position.clear();
+    for (std::vector<float>& axis : block.position) axis.clear();
     block.index.clear();
     block.overflows = 0;
     const std::array<int, 3> sc = subCellOf<D>(g, key);
@@ -88,33 +115,132 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
                 const std::uint32_t first = g.keyStart[k];
                 const std::uint32_t last = std::min(g.keyStart[k + 1], first + readLimit);
                 block.overflows += g.keyStart[k + 1] - last;
-                block.position.insert(block.position.end(), p.position.begin() + first, p.position.begin() + last);
-                for (std::uint32_t j = first; j < last; ++j) block.index.push_back(j);
+                for (std::uint32_t j = first; j < last; ++j) {
+                    for (int a = 0; a < D; ++a) block.position[a].push_back(p.position[j][a]);
+                    block.index.push_back(j);
+                }
             }
         }
     }
+    block.count = block.index.size();
+    const std::size_t padded = (block.count + kNearLanes - 1) / kNearLanes * kNearLanes;
+    for (std::vector<float>& axis : block.position) axis.resize(padded, kFarAway);
+    block.index.resize(padded, 0u);
 }
 
-/// Writes to near[0, the returned count) the particles of `block` within h of particle i
-/// (not i itself): a store per candidate, kept or overwritten, and no branch
-/// on the distance. `near` only grows (its size is the high-water mark):
-/// resizing it per particle would zero every slot first, measured at 15 % of
-/// the setup.
+/// Writes to `near` [0, the returned count) the particles of `block` within h
+/// of particle i (not i itself), in block order, with no branch on the
+/// distance. The offsets and squared distances are those of glm's
+/// `x_j - x_i` and `dot(offset, offset)` (no fused multiply-add), so every
+/// filter keeps the same particles with the same values.
 template <int D>
-std::size_t gatherNear(const CandidateBlock<D>& block, Vec<D> xi, std::size_t i, float h2,
-                       std::vector<Candidate<D>>& near) {
-    const std::size_t total = block.index.size();
-    if (near.size() < total) near.resize(std::max(2 * near.size(), total));
-    Candidate<D>* slot = near.data();
+std::size_t filterNearScalar(const CandidateBlock<D>& block, const float* xi, std::uint32_t i, float h2,
+                             NearList<D>& near) {
     std::size_t kept = 0;
-    for (std::size_t k = 0; k < total; ++k) {
-        const std::uint32_t j = block.index[k];
-        const Vec<D> offset = block.position[k] - xi;
-        const float r2 = glm::dot(offset, offset);
-        slot[kept] = Candidate<D>{offset, r2, j};
-        kept += static_cast<std::size_t>(r2 < h2) & static_cast<std::size_t>(j != i);
+    for (std::size_t k = 0; k < block.count; ++k) {
+        float offset[D];
+        for (int a = 0; a < D; ++a) offset[a] = block.position[a][k] - xi[a];
+        float r2 = offset[0] * offset[0] + offset[1] * offset[1];
+        if constexpr (D == 3) r2 = r2 + offset[2] * offset[2];
+        for (int a = 0; a < D; ++a) near.offset[a][kept] = offset[a];
+        near.r2[kept] = r2;
+        near.index[kept] = block.index[k];
+        kept += static_cast<std::size_t>(r2 < h2) & static_cast<std::size_t>(block.index[k] != i);
     }
     return kept;
+}
+
+#if SPINDRIFT_X86
+/// filterNearScalar in 16 lanes: AVX-512's compress packs the kept lanes,
+/// and a whole vector is stored (NearList has room past the end).
+template <int D>
+__attribute__((target("avx512f"))) std::size_t filterNearAvx512(const CandidateBlock<D>& block, const float* xi,
+                                                                 std::uint32_t i, float h2, NearList<D>& near) {
+    const __m512 limit = _mm512_set1_ps(h2);
+    const __m512i self = _mm512_set1_epi32(static_cast<int>(i));
+    __m512 origin[D];
+    for (int a = 0; a < D; ++a) origin[a] = _mm512_set1_ps(xi[a]);
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < block.index.size(); k += 16) {
+        __m512 offset[D];
+        for (int a = 0; a < D; ++a) offset[a] = _mm512_sub_ps(_mm512_loadu_ps(block.position[a].data() + k), origin[a]);
+        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(offset[0], offset[0]), _mm512_mul_ps(offset[1], offset[1]));
+        if constexpr (D == 3) r2 = _mm512_add_ps(r2, _mm512_mul_ps(offset[2], offset[2]));
+        const __m512i index = _mm512_loadu_si512(block.index.data() + k);
+        const __mmask16 keep = _mm512_cmp_ps_mask(r2, limit, _CMP_LT_OQ) & _mm512_cmpneq_epi32_mask(index, self);
+        for (int a = 0; a < D; ++a) {
+            _mm512_storeu_ps(near.offset[a].data() + kept, _mm512_maskz_compress_ps(keep, offset[a]));
+        }
+        _mm512_storeu_ps(near.r2.data() + kept, _mm512_maskz_compress_ps(keep, r2));
+        _mm512_storeu_si512(near.index.data() + kept, _mm512_maskz_compress_epi32(keep, index));
+        kept += static_cast<std::size_t>(__builtin_popcount(keep));
+    }
+    return kept;
+}
+
+/// For each 8-bit mask of kept lanes, the lanes' indices packed to the front:
+/// AVX2 has no compress, so a permute by this row packs them.
+struct PackTable {
+    std::uint32_t lanes[256][8];
+};
+constexpr PackTable makePackTable() {
+    PackTable t{};
+    for (std::uint32_t mask = 0; mask < 256; ++mask) {
+        std::uint32_t next = 0;
+        for (std::uint32_t lane = 0; lane < 8; ++lane) {
+            if ((mask >> lane) & 1u) t.lanes[mask][next++] = lane;
+        }
+    }
+    return t;
+}
+constexpr PackTable kPackTable = makePackTable();
+
+/// filterNearScalar in 8 lanes (AVX2), packed by kPackTable.
+template <int D>
+__attribute__((target("avx2"))) std::size_t filterNearAvx2(const CandidateBlock<D>& block, const float* xi,
+                                                             std::uint32_t i, float h2, NearList<D>& near) {
+    const __m256 limit = _mm256_set1_ps(h2);
+    const __m256i self = _mm256_set1_epi32(static_cast<int>(i));
+    __m256 origin[D];
+    for (int a = 0; a < D; ++a) origin[a] = _mm256_set1_ps(xi[a]);
+    std::size_t kept = 0;
+    for (std::size_t k = 0; k < block.index.size(); k += 8) {
+        __m256 offset[D];
+        for (int a = 0; a < D; ++a) offset[a] = _mm256_sub_ps(_mm256_loadu_ps(block.position[a].data() + k), origin[a]);
+        __m256 r2 = _mm256_add_ps(_mm256_mul_ps(offset[0], offset[0]), _mm256_mul_ps(offset[1], offset[1]));
+        if constexpr (D == 3) r2 = _mm256_add_ps(r2, _mm256_mul_ps(offset[2], offset[2]));
+        const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block.index.data() + k));
+        const int within = _mm256_movemask_ps(_mm256_cmp_ps(r2, limit, _CMP_LT_OQ));
+        const int isSelf = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(index, self)));
+        const auto keep = static_cast<unsigned>(within & ~isSelf);
+        const __m256i pack = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPackTable.lanes[keep]));
+        for (int a = 0; a < D; ++a) {
+            _mm256_storeu_ps(near.offset[a].data() + kept, _mm256_permutevar8x32_ps(offset[a], pack));
+        }
+        _mm256_storeu_ps(near.r2.data() + kept, _mm256_permutevar8x32_ps(r2, pack));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(near.index.data() + kept),
+                            _mm256_permutevar8x32_epi32(index, pack));
+        kept += static_cast<std::size_t>(__builtin_popcount(keep));
+    }
+    return kept;
+}
+#endif
+
+/// The filter of the process's update target (core/cpu_target.h); the
+/// others run the scalar one.
+template <int D>
+using NearFilter = std::size_t (*)(const CandidateBlock<D>&, const float*, std::uint32_t, float, NearList<D>&);
+
+template <int D>
+NearFilter<D> nearFilter() {
+#if SPINDRIFT_X86
+    switch (updateTarget()) {
+    case UpdateTarget::Avx512: return &filterNearAvx512<D>;
+    case UpdateTarget::Avx2: return &filterNearAvx2<D>;
+    default: break;
+    }
+#endif
+    return &filterNearScalar<D>;
 }
 
 /// The direction from particle i to a neighbour j on top of it (r = 0), the
@@ -159,13 +285,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     const float invDt = 1.0f / dt;
     const float invRest = 1.0f / f.restDensity;
     std::vector<ChunkStats> chunks(WorkerPool::chunkCount(n, kParticleChunk));
+    const NearFilter<D> filter = nearFilter<D>();
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkStats s;
         std::vector<Neighbour<D>>& out = lists[chunk];
         out.clear();  // keeps its capacity from the last step
         std::size_t used = 0;  // out[0, used) is written; out only grows until the chunk ends
-        std::vector<Candidate<D>> near;
+        NearList<D> near;
         CandidateBlock<D> block;
         for (std::size_t i = begin; i < end; ++i) {
             const Vec<D> xi = p.position[i];
@@ -179,7 +306,8 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                 gatherBlock<D>(p, g, g.key[i], f.subCellReadLimit, block);
             }
             s.overflows += block.overflows;
-            const std::size_t nearCount = gatherNear<D>(block, xi, i, h2, near);
+            near.reserve(block.index.size());
+            const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
             // Phase 2: the pairs within h, dense.
             float density = 1.0f;  // the particle itself: W(0) = 1
             float mass = 0.0f;
@@ -198,22 +326,25 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             if (out.size() < used + nearCount) out.resize(std::max(2 * out.size(), used + nearCount));
             Neighbour<D>* dst = out.data() + used;
             for (std::size_t k = 0; k < nearCount; ++k) {
-                const Candidate<D>& cand = near[k];
-                const float r = std::sqrt(cand.r2);
+                const float r2 = near.r2[k];
+                const std::uint32_t j = near.index[k];
+                Vec<D> offset;
+                for (int a = 0; a < D; ++a) offset[a] = near.offset[a][k];
+                const float r = std::sqrt(r2);
                 density += kernels::fluidDensityKernel(r * invH);
                 if (count == cap) {
                     s.overflows += 1;
                     continue;
                 }
-                const bool apart = cand.r2 > 0.0f;
+                const bool apart = r2 > 0.0f;
                 const float invR = apart ? 1.0f / r : 0.0f;
-                const float w = kernels::fluidWeight(cand.r2, invH2);
-                const Vec<D> gj = apart ? cand.offset * (w * invR) : coincidentDirection<D>(i, cand.index) * w;
+                const float w = kernels::fluidWeight(r2, invH2);
+                const Vec<D> gj = apart ? offset * (w * invR) : coincidentDirection<D>(i, j) * w;
                 // Closing speed of the pair (m/s): picks the next step's
                 // substeps (fluid_step.cpp).
-                fastest = std::max(fastest, glm::dot(vi - p.velocity[cand.index], cand.offset) * invR);
-                dst[count] = Neighbour<D>{gj, cand.index};
-                warm -= gj * (lambdaI + p.pressure[cand.index] * warmFraction);
+                fastest = std::max(fastest, glm::dot(vi - p.velocity[j], offset) * invR);
+                dst[count] = Neighbour<D>{gj, j};
+                warm -= gj * (lambdaI + p.pressure[j] * warmFraction);
                 mass += w * w;
                 gSum += gj;
                 count += 1;

@@ -2,6 +2,7 @@
 // scalar kernel gives, bit for bit, at every SIMD width this CPU can run: the
 // same operations in the same order per particle. Independent reference: the
 // scalar kernel, updateParticle, which the GPU backend runs too.
+#include "core/scoped_update_target.h"
 #include "effects/batch_update.h"
 #include "effects/effects_test_util.h"
 
@@ -16,14 +17,7 @@
 namespace spindrift {
 namespace {
 
-// Restores the process's update target when a test ends.
-struct ScopedTarget {
-    explicit ScopedTarget(UpdateTarget t) : saved(updateTarget()) { setUpdateTarget(t); }
-    ~ScopedTarget() { setUpdateTarget(saved); }
-    ScopedTarget(const ScopedTarget&) = delete;
-    ScopedTarget& operator=(const ScopedTarget&) = delete;
-    UpdateTarget saved;
-};
+using test::ScopedTarget;
 
 template <class T>
 bool bitEqual(const std::vector<T>& a, const std::vector<T>& b) {

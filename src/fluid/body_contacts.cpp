@@ -92,10 +92,10 @@ glm::ivec2 cellCoords(const Grid<2>& g, glm::vec2 x) {
 /// One visit of a contact (see the file comment for who calls it how).
 template <bool Dynamic>
 void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyStep& s, float invDt,
-                  float radius, float fluidFriction) {
-    const bool split = !p.pseudo.empty();
+                  float radius, float fluidFriction, bool split) {
+    Motion<2>& m = p.motion[c.particle];
     const glm::vec2 n = c.normal;
-    glm::vec2 vp = p.velocity[c.particle];
+    glm::vec2 vp = m.velocity;
     const glm::vec2 vb = kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
     // Real velocity: close the gap, no more; an overlap is pushed out by the
     // pseudo velocity when impulses are split (kinetic energy otherwise).
@@ -122,7 +122,7 @@ void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyS
     }
     if (impulse.x != 0.0f || impulse.y != 0.0f) {
         vp += impulse * s.particleInvMass;
-        p.velocity[c.particle] = vp;
+        m.velocity = vp;
         if constexpr (Dynamic) {
             // Newton's third law: the body takes the opposite impulse, now (its
             // local velocity) and at the step's end (the exchange).
@@ -138,11 +138,11 @@ void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyS
         // the body may not enter it; the pseudo part pushes an overlap out.
         // Position only: no momentum, and no reaction on the body.
         const glm::vec2 vbNow = kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
-        const glm::vec2 rel = vp + p.pseudo[c.particle] - vbNow;
+        const glm::vec2 rel = vp + m.pseudo - vbNow;
         const glm::vec3 moved = kernels::fluidContactVelocity(
             glm::vec3(rel, 0.0f), kernels::makeSurface(c.separation + radius, glm::vec3(n, 0.0f)), radius, invDt,
             kOverlapPush, 0.0f);
-        p.pseudo[c.particle] += glm::vec2(moved) - rel;
+        m.pseudo += glm::vec2(moved) - rel;
     }
 }
 
@@ -247,11 +247,13 @@ void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float 
     const float invDt = 1.0f / dt;
     pool.forChunks(s.fixedContacts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
         for (BodyContact& c : s.fixedContacts[chunk]) {
-            solveContact<false>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction);
+            solveContact<false>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction, f.def.splitImpulse);
         }
     });
     for (std::vector<BodyContact>& list : s.dynamicContacts) {
-        for (BodyContact& c : list) solveContact<true>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction);
+        for (BodyContact& c : list) {
+            solveContact<true>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction, f.def.splitImpulse);
+        }
     }
 }
 

@@ -111,12 +111,13 @@ void solveContacts(WorkerPool& pool, FluidState& f, float dt) {
     const float invDt = 1.0f / dt;
     const float radius = f.radius;
     const float mu = f.def.friction;
-    const bool split = !p.pseudo.empty();
+    const bool split = f.def.splitImpulse;
     pool.forChunks(f.contacts.size(), 1, [&](std::size_t chunk, std::size_t, std::size_t) {
         for (const Contact& c : f.contacts[chunk]) {
-            const glm::vec3 v = to3<D>(p.velocity[c.particle]);
+            Motion<D>& m = p.motion[c.particle];
+            const glm::vec3 v = to3<D>(m.velocity);
             if (!split) {
-                p.velocity[c.particle] = from3<D>(kernels::fluidContactVelocity(v, c.surface, radius, invDt, kOverlapPush, mu));
+                m.velocity = from3<D>(kernels::fluidContactVelocity(v, c.surface, radius, invDt, kOverlapPush, mu));
                 continue;
             }
             // Split impulses: the real velocity only stops at the surface (no
@@ -124,10 +125,10 @@ void solveContacts(WorkerPool& pool, FluidState& f, float dt) {
             // particle's motion this step, real plus pseudo, also may not
             // enter the wall, and the pseudo part pushes an overlap out.
             const glm::vec3 real = kernels::fluidContactVelocity(v, c.surface, radius, invDt, 0.0f, mu);
-            p.velocity[c.particle] = from3<D>(real);
-            const glm::vec3 total = real + to3<D>(p.pseudo[c.particle]);
+            m.velocity = from3<D>(real);
+            const glm::vec3 total = real + to3<D>(m.pseudo);
             const glm::vec3 moved = kernels::fluidContactVelocity(total, c.surface, radius, invDt, kOverlapPush, 0.0f);
-            p.pseudo[c.particle] += from3<D>(moved - total);
+            m.pseudo += from3<D>(moved - total);
         }
     });
     if constexpr (D == 2) {
@@ -204,7 +205,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                     }
                 }
             }
-            const glm::vec3 motion = p.pseudo.empty() ? v : v + to3<D>(p.pseudo[i]);
+            const glm::vec3 motion = f.def.splitImpulse ? v + to3<D>(p.motion[i].pseudo) : v;
             glm::vec3 x1 = x0 + motion * dt;
             if (!finite(x1) || !finiteSpeed(v)) {
                 removeLater(chunk, i);

@@ -29,6 +29,16 @@ inline constexpr std::size_t kParticleChunk = 2048;
 /// Grid cells per chunk of one colour of the parallel solver.
 inline constexpr std::size_t kCellChunk = 8;
 
+/// A particle's velocity and, with split impulses, its pseudo velocity (m/s,
+/// solver.cpp), side by side: a sweep reads and writes both of a neighbour
+/// with one load and one store (in 2D, 16 bytes: one SIMD register).
+template <int D>
+struct Motion {
+    Vec<D> velocity;
+    Vec<D> pseudo;
+};
+static_assert(sizeof(Motion<2>) == 16 && sizeof(Motion<3>) == 24);
+
 /// Hot per-particle data, one array per attribute, kept in grid order (sorted
 /// by cell every step so neighbours are close in memory).
 template <int D>
@@ -43,13 +53,17 @@ struct Particles {
     /// sleepTime and above it sleeps.
     std::vector<Vec<D>> anchor;
     std::vector<float> still;
-    /// Split impulses: this step's position-correction velocity (m/s),
-    /// zeroed every step, so not kept in grid order.
-    std::vector<Vec<D>> pseudo;
+    /// The solve's working copy of the velocities (solver.cpp): filled from
+    /// `velocity` when the solve starts and copied back when it ends; the
+    /// contacts solved between its sweeps read and write it too. With split
+    /// impulses its pseudo part is this substep's position-correction
+    /// velocity (m/s), which the positions' pass then reads; it starts at
+    /// zero every substep, so it is not kept in grid order.
+    std::vector<Motion<D>> motion;
 
     std::size_t size() const { return position.size(); }
     /// Calls fn(array) for every array kept in particle order (all but
-    /// pseudo), so a pass that reorders or removes particles misses none.
+    /// motion), so a pass that reorders or removes particles misses none.
     template <class Fn>
     void forEachKept(Fn&& fn) {
         fn(position);
@@ -61,8 +75,8 @@ struct Particles {
         fn(still);
     }
     /// Keeps the particles for which keep(i) is true, in their order, and
-    /// returns how many were removed (pseudo is only resized: it is refilled
-    /// every step).
+    /// returns how many were removed (motion is only resized: it is refilled
+    /// every substep).
     template <class Keep>
     std::size_t keepIf(Keep&& keep) {
         std::vector<std::uint8_t> kept(size());
@@ -78,7 +92,7 @@ struct Particles {
             }
             array.resize(n);
         });
-        if (pseudo.size() > n) pseudo.resize(n);
+        if (motion.size() > n) motion.resize(n);
         return kept.size() - n;
     }
     void push(Vec<D> x, Vec<D> v, std::uint32_t serial) {

@@ -14,6 +14,7 @@
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
+#include <cstring>
 
 namespace spindrift::fluid {
 namespace {
@@ -36,10 +37,31 @@ constexpr float kAllowanceSlop = 0.1f;
 /// 0.11 m/s.
 constexpr float kRealBiasShare = 0.25f;
 
+/// Four floats in one SIMD register (GCC's and Clang's vector extension;
+/// plain float operations lane by lane, so the same results as four scalar
+/// ones, on any target). glm's vec4 stayed four scalar registers (measured).
+typedef float Float4 __attribute__((vector_size(16)));
+
+/// A 2D Motion as four floats (vx, vy, px, py): one load of a neighbour
+/// serves both rates, one store both impulses.
+inline Float4 bothOf(const Motion<2>& m) {
+    Float4 r;
+    std::memcpy(&r, &m, sizeof r);
+    return r;
+}
+inline void storeBoth(Motion<2>& m, Float4 r) { std::memcpy(&m, &r, sizeof r); }
+/// (gx, gy, gx, gy): a pair's g for both constraints at once.
+inline Float4 twice(glm::vec2 g) { return Float4{g.x, g.y, g.x, g.y}; }
+/// (a, a, b, b).
+inline Float4 pairOf(float a, float b) { return Float4{a, a, b, b}; }
+/// Lane 0: t[0] + t[1], lane 2: t[2] + t[3], the two dot products of a pair
+/// whose products t holds (the sums glm::dot makes: IEEE addition commutes).
+inline Float4 pairDots(Float4 t) { return t + __builtin_shufflevector(t, t, 1, 0, 3, 2); }
+
 template <int D>
 struct SolverView {
-    Vec<D>* velocity;
-    Vec<D>* pseudo;  // null: bias on the real velocity
+    Motion<D>* motion;  // velocities, and pseudo velocities when split
+    bool split;         // false: bias on the real velocity
     float* pressure;
     float* pseudoImpulse;
     const std::vector<Neighbour<D>>* lists;  // per chunk (NeighbourChunks)
@@ -51,25 +73,26 @@ struct SolverView {
     float allowanceSlop;  // m/s of bias an under-dense particle's allowance starts above
 };
 
-/// Applies impulse `delta` of particle i's constraint to `v`: v_n += g delta on
-/// every neighbour, v_i -= sum g delta (Newton's third law, slide 39).
+/// Applies impulse `delta` of particle i's constraint to the velocities: v_n +=
+/// g delta on every neighbour, v_i -= sum g delta (Newton's third law, slide 39).
 template <int D>
-inline void applyImpulse(const SolverView<D>& s, Vec<D>* v, std::size_t i, float delta) {
+inline void applyImpulse(const SolverView<D>& s, std::size_t i, float delta) {
     const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
     Vec<D> self = Vec<D>(s.wall[i]) * delta;  // the motionless ghosts take no impulse
     for (std::uint32_t k = 0; k < s.count[i]; ++k) {
         const Vec<D> impulse = list[k].g * delta;
-        v[list[k].index] += impulse;
+        s.motion[list[k].index].velocity += impulse;
         self += impulse;
     }
-    v[i] -= self;
+    s.motion[i].velocity -= self;
 }
 
-/// C' of particle i's constraint over velocities v (slide 36).
+/// C' of particle i's constraint over the velocities (slide 36).
 template <int D>
-inline float rateOf(const SolverView<D>& s, const Vec<D>* v, std::size_t i) {
+inline float rateOf(const SolverView<D>& s, std::size_t i) {
     const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
-    const Vec<D> vi = v[i];
+    const Motion<D>* m = s.motion;
+    const Vec<D> vi = m[i].velocity;
     const std::uint32_t count = s.count[i];
     // Two chains of additions (even and odd neighbours), summed at the end:
     // one chain of 28 dependent additions bound the sweep (measured).
@@ -77,21 +100,106 @@ inline float rateOf(const SolverView<D>& s, const Vec<D>* v, std::size_t i) {
     float odd = 0.0f;
     std::uint32_t k = 0;
     for (; k + 1 < count; k += 2) {
-        even += glm::dot(list[k].g, v[list[k].index] - vi);
-        odd += glm::dot(list[k + 1].g, v[list[k + 1].index] - vi);
+        even += glm::dot(list[k].g, m[list[k].index].velocity - vi);
+        odd += glm::dot(list[k + 1].g, m[list[k + 1].index].velocity - vi);
     }
-    if (k < count) even += glm::dot(list[k].g, v[list[k].index] - vi);
+    if (k < count) even += glm::dot(list[k].g, m[list[k].index].velocity - vi);
     return even + odd;
+}
+
+/// C' of an over-dense particle's two constraints, over the velocities and
+/// over the pseudo velocities, in one pass over its neighbours.
+struct SplitRates {
+    float rate;
+    float pseudoRate;
+};
+
+template <int D>
+inline SplitRates splitRates(const SolverView<D>& s, std::size_t i) {
+    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    const std::uint32_t count = s.count[i];
+    const Motion<D>* m = s.motion;
+    const Vec<D> wall(s.wall[i]);
+    if constexpr (D == 2) {
+        // The same sums as below, two lanes at a time (bit-identical).
+        const Float4 mi = bothOf(m[i]);
+        Float4 even{-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f};
+        Float4 odd{0.0f, 0.0f, 0.0f, 0.0f};
+        std::uint32_t k = 0;
+        for (; k + 1 < count; k += 2) {
+            even += pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi));
+            odd += pairDots(twice(list[k + 1].g) * (bothOf(m[list[k + 1].index]) - mi));
+        }
+        if (k < count) even += pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi));
+        return {even[0] + odd[0], even[2] + odd[2]};
+    } else {
+        const Vec<D> vi = m[i].velocity;
+        const Vec<D> pi = m[i].pseudo;
+        float rate = -glm::dot(wall, vi);
+        float pseudoRate = -glm::dot(wall, pi);
+        float rateOdd = 0.0f;
+        float pseudoOdd = 0.0f;
+        std::uint32_t k = 0;
+        for (; k + 1 < count; k += 2) {
+            const Motion<D>& a = m[list[k].index];
+            const Motion<D>& b = m[list[k + 1].index];
+            rate += glm::dot(list[k].g, a.velocity - vi);
+            pseudoRate += glm::dot(list[k].g, a.pseudo - pi);
+            rateOdd += glm::dot(list[k + 1].g, b.velocity - vi);
+            pseudoOdd += glm::dot(list[k + 1].g, b.pseudo - pi);
+        }
+        if (k < count) {
+            const Motion<D>& a = m[list[k].index];
+            rate += glm::dot(list[k].g, a.velocity - vi);
+            pseudoRate += glm::dot(list[k].g, a.pseudo - pi);
+        }
+        return {rate + rateOdd, pseudoRate + pseudoOdd};
+    }
+}
+
+/// Applies an over-dense particle's two impulses: `delta` to the velocities,
+/// `push` to the pseudo velocities, as applyImpulse does.
+template <int D>
+inline void applySplitImpulses(const SolverView<D>& s, std::size_t i, float delta, float push) {
+    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    const std::uint32_t count = s.count[i];
+    Motion<D>* m = s.motion;
+    const Vec<D> wall(s.wall[i]);
+    if constexpr (D == 2) {
+        const Float4 both = pairOf(delta, push);
+        Float4 self = twice(wall) * both;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            const Float4 impulse = twice(list[k].g) * both;
+            Motion<2>& n = m[list[k].index];
+            storeBoth(n, bothOf(n) + impulse);
+            self += impulse;
+        }
+        storeBoth(m[i], bothOf(m[i]) - self);
+    } else {
+        Vec<D> self = wall * delta;
+        Vec<D> pseudoSelf = wall * push;
+        for (std::uint32_t k = 0; k < count; ++k) {
+            Motion<D>& n = m[list[k].index];
+            const Vec<D> impulse = list[k].g * delta;
+            const Vec<D> shift = list[k].g * push;
+            n.velocity += impulse;
+            n.pseudo += shift;
+            self += impulse;
+            pseudoSelf += shift;
+        }
+        m[i].velocity -= self;
+        m[i].pseudo -= pseudoSelf;
+    }
 }
 
 /// One visit of particle i's constraint (slide 36, signs in fluid.glsl).
 template <int D>
 inline void visit(const SolverView<D>& s, std::size_t i) {
-    if (s.pseudo == nullptr) {
+    if (!s.split) {
         const kernels::FluidImpulse r =
-            kernels::fluidSolveImpulse(rateOf<D>(s, s.velocity, i), s.bias[i], s.invMass[i], s.pressure[i]);
+            kernels::fluidSolveImpulse(rateOf<D>(s, i), s.bias[i], s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;
-        if (r.delta != 0.0f) applyImpulse<D>(s, s.velocity, i, r.delta);
+        if (r.delta != 0.0f) applyImpulse<D>(s, i, r.delta);
         return;
     }
     // The bias splits by sign: an under-dense particle's positive bias lets
@@ -103,54 +211,19 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
     const float bias = s.bias[i];
     if (bias >= 0.0f) {
         const kernels::FluidImpulse r = kernels::fluidSolveImpulse(
-            rateOf<D>(s, s.velocity, i), std::max(bias - s.allowanceSlop, 0.0f), s.invMass[i], s.pressure[i]);
+            rateOf<D>(s, i), std::max(bias - s.allowanceSlop, 0.0f), s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;
-        if (r.delta != 0.0f) applyImpulse<D>(s, s.velocity, i, r.delta);
+        if (r.delta != 0.0f) applyImpulse<D>(s, i, r.delta);
         return;
     }
-    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
-    const std::uint32_t count = s.count[i];
-    const Vec<D> vi = s.velocity[i];
-    const Vec<D> pi = s.pseudo[i];
-    const Vec<D> wall(s.wall[i]);
-    float rate = -glm::dot(wall, vi);
-    float pseudoRate = -glm::dot(wall, pi);
-    float rateOdd = 0.0f;
-    float pseudoOdd = 0.0f;
-    std::uint32_t k = 0;
-    for (; k + 1 < count; k += 2) {
-        const std::uint32_t j = list[k].index;
-        const std::uint32_t l = list[k + 1].index;
-        rate += glm::dot(list[k].g, s.velocity[j] - vi);
-        pseudoRate += glm::dot(list[k].g, s.pseudo[j] - pi);
-        rateOdd += glm::dot(list[k + 1].g, s.velocity[l] - vi);
-        pseudoOdd += glm::dot(list[k + 1].g, s.pseudo[l] - pi);
-    }
-    if (k < count) {
-        const std::uint32_t j = list[k].index;
-        rate += glm::dot(list[k].g, s.velocity[j] - vi);
-        pseudoRate += glm::dot(list[k].g, s.pseudo[j] - pi);
-    }
-    rate += rateOdd;
-    pseudoRate += pseudoOdd;
-    const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, bias * kRealBiasShare, s.invMass[i], s.pressure[i]);
+    const SplitRates rates = splitRates<D>(s, i);
+    const kernels::FluidImpulse r =
+        kernels::fluidSolveImpulse(rates.rate, bias * kRealBiasShare, s.invMass[i], s.pressure[i]);
     const kernels::FluidImpulse q =
-        kernels::fluidSolveImpulse(pseudoRate, bias * (1.0f - kRealBiasShare), s.invMass[i], s.pseudoImpulse[i]);
+        kernels::fluidSolveImpulse(rates.pseudoRate, bias * (1.0f - kRealBiasShare), s.invMass[i], s.pseudoImpulse[i]);
     s.pressure[i] = r.accumulated;
     s.pseudoImpulse[i] = q.accumulated;
-    Vec<D> self = wall * r.delta;
-    Vec<D> pseudoSelf = wall * q.delta;
-    for (std::uint32_t k = 0; k < count; ++k) {
-        const std::uint32_t j = list[k].index;
-        const Vec<D> impulse = list[k].g * r.delta;
-        const Vec<D> push = list[k].g * q.delta;
-        s.velocity[j] += impulse;
-        s.pseudo[j] += push;
-        self += impulse;
-        pseudoSelf += push;
-    }
-    s.velocity[i] -= self;
-    s.pseudo[i] -= pseudoSelf;
+    applySplitImpulses<D>(s, i, r.delta, q.delta);
 }
 
 /// The accumulated impulse particle i starts the solve with: the previous
@@ -172,7 +245,7 @@ inline void warmStart(const SolverView<D>& s, std::size_t i, float fraction) {
     const float start = warmPressure<D>(s, i, fraction);
     s.pressure[i] = start;
     if (start != 0.0f) {
-        applyImpulse<D>(s, s.velocity, i, start);
+        applyImpulse<D>(s, i, start);
     }
 }
 
@@ -202,13 +275,18 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
     Particles<D>& p = f.particles<D>();
     const std::size_t n = p.size();
     f.pseudoImpulse.assign(n, 0.0f);
-    if (f.def.splitImpulse) {
-        p.pseudo.assign(n, Vec<D>(0.0f));
-    } else {
-        p.pseudo.clear();
-    }
-    const SolverView<D> s{p.velocity.data(),
-                          f.def.splitImpulse ? p.pseudo.data() : nullptr,
+    // The working copy of the velocities (Particles::motion), with the warm
+    // start the setup gathered (neighbours.cpp) already added.
+    const bool gathered = f.constraints.warmGathered && f.def.solver == FluidSolver::Parallel;
+    p.motion.resize(n);
+    pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        const glm::vec3* warm = f.constraints.warmVelocity.data();
+        for (std::size_t i = begin; i < end; ++i) {
+            p.motion[i] = Motion<D>{gathered ? p.velocity[i] + Vec<D>(warm[i]) : p.velocity[i], Vec<D>(0.0f)};
+        }
+    });
+    const SolverView<D> s{p.motion.data(),
+                          f.def.splitImpulse,
                           p.pressure.data(),
                           f.pseudoImpulse.data(),
                           f.neighbours<D>().data(),
@@ -231,26 +309,24 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
             for (std::size_t i = 0; i < n; ++i) visit<D>(s, i);
             solveContacts<D>(pool, f, dt);
         }
-        return;
-    }
-    const Grid<D>& g = f.grid<D>();
-    if (f.constraints.warmGathered) {
-        // The setup gathered each particle's warm start (neighbours.cpp).
-        const glm::vec3* warm = f.constraints.warmVelocity.data();
-        pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
-            for (std::size_t i = begin; i < end; ++i) {
-                s.pressure[i] = warmPressure<D>(s, i, fraction);
-                s.velocity[i] += Vec<D>(warm[i]);
-            }
-        });
     } else {
-        forEachByColour<D>(pool, g, [&](std::size_t i) { warmStart<D>(s, i, fraction); });
-    }
-    solveContacts<D>(pool, f, dt);
-    for (std::uint32_t it = 0; it < iterations; ++it) {
-        forEachByColour<D>(pool, g, [&](std::size_t i) { visit<D>(s, i); });
+        const Grid<D>& g = f.grid<D>();
+        if (gathered) {
+            pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+                for (std::size_t i = begin; i < end; ++i) s.pressure[i] = warmPressure<D>(s, i, fraction);
+            });
+        } else {
+            forEachByColour<D>(pool, g, [&](std::size_t i) { warmStart<D>(s, i, fraction); });
+        }
         solveContacts<D>(pool, f, dt);
+        for (std::uint32_t it = 0; it < iterations; ++it) {
+            forEachByColour<D>(pool, g, [&](std::size_t i) { visit<D>(s, i); });
+            solveContacts<D>(pool, f, dt);
+        }
     }
+    pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) p.velocity[i] = p.motion[i].velocity;
+    });
 }
 
 template void solveConstraints<2>(WorkerPool&, FluidState&, float);

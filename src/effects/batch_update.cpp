@@ -9,10 +9,8 @@
 #include <spindrift/errors.h>
 
 #include <algorithm>
-#include <atomic>
 #include <bit>
 #include <cmath>
-#include <string>
 
 // On x86 four copies: SSE2 (the baseline), SSE4.2, AVX2, AVX-512. Elsewhere only the
 // baseline copy is built (the compiler's own vector width) and is reported

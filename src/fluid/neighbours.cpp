@@ -304,9 +304,9 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             // mispredicts often: measured, the setup was 60 % of a step).
             if (g.key[i] != block.key) {
                 gatherBlock<D>(p, g, g.key[i], f.subCellReadLimit, block);
+                near.reserve(block.index.size());
             }
             s.overflows += block.overflows;
-            near.reserve(block.index.size());
             const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
             // Phase 2: the pairs within h, dense.
             float density = 1.0f;  // the particle itself: W(0) = 1

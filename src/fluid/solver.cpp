@@ -52,8 +52,6 @@ inline Float4 bothOf(const Motion<2>& m) {
 inline void storeBoth(Motion<2>& m, Float4 r) { std::memcpy(&m, &r, sizeof r); }
 /// (gx, gy, gx, gy): a pair's g for both constraints at once.
 inline Float4 twice(glm::vec2 g) { return Float4{g.x, g.y, g.x, g.y}; }
-/// (a, a, b, b).
-inline Float4 pairOf(float a, float b) { return Float4{a, a, b, b}; }
 /// Lane 0: t[0] + t[1], lane 2: t[2] + t[3], the two dot products of a pair
 /// whose products t holds (the sums glm::dot makes: IEEE addition commutes).
 inline Float4 pairDots(Float4 t) { return t + __builtin_shufflevector(t, t, 1, 0, 3, 2); }
@@ -166,7 +164,7 @@ inline void applySplitImpulses(const SolverView<D>& s, std::size_t i, float delt
     Motion<D>* m = s.motion;
     const Vec<D> wall(s.wall[i]);
     if constexpr (D == 2) {
-        const Float4 both = pairOf(delta, push);
+        const Float4 both{delta, delta, push, push};
         Float4 self = twice(wall) * both;
         for (std::uint32_t k = 0; k < count; ++k) {
             const Float4 impulse = twice(list[k].g) * both;

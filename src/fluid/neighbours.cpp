@@ -243,19 +243,174 @@ NearFilter<D> nearFilter() {
     return &filterNearScalar<D>;
 }
 
-/// The direction from particle i to a neighbour j on top of it (r = 0), the
-/// opposite of j's to i, so that the pair's constraints push them apart. In a
-/// crushed corner several particles end on one point (equal coordinates in
-/// float); W's slope there is w(0) = 1 along any direction. When
-/// such a pair counted in the density only, a particle among several on one
-/// point was over-dense with almost nothing to push against: effective mass
-/// 3e-6, impulses of 8e4 m/s a visit, and a 50 m/s launch into a tank of
-/// edges blew up (docs/fluid.md, "Launches into tanks").
+/// Lanes of the pairs' loop (phase 2 of the setup): one particle's sums over
+/// its pairs are kept per lane, 16 of them (AVX-512's width), and added in
+/// lane order at the end, so every target, whatever its vector width (or
+/// none), adds the same numbers in the same order: bit-identical results.
+constexpr std::size_t kPairLanes = 16;
+
+/// What phase 2 reads besides the near list: particle i, its velocity and
+/// warm-start pressure, the particles' velocities and pressures (gathered
+/// through the neighbours' indices) and the setup's constants.
 template <int D>
-Vec<D> coincidentDirection(std::size_t i, std::uint32_t j) {
-    Vec<D> d(0.0f);
-    d[0] = j > i ? 1.0f : -1.0f;
-    return d;
+struct PairInputs {
+    std::uint32_t i;
+    Vec<D> vi;             // m/s
+    float lambdaI;         // i's warm-start pressure (m/s), scaled
+    const float* velocity; // the particles' velocities, D floats each (m/s)
+    const float* pressure; // the particles' last pressures (m/s)
+    float warmFraction;
+    float invH;
+    float invH2;
+};
+
+/// One particle's sums over its pairs.
+template <int D>
+struct PairSums {
+    float density = 0.0f;  // the neighbours' W
+    float mass = 0.0f;     // sum w^2
+    float fastest = 0.0f;  // m/s, the fastest closing speed of a neighbour
+    Vec<D> gSum{0.0f};
+    Vec<D> warm{0.0f};     // m/s, the gathered warm start
+};
+
+/// Phase 2 for one particle: its near list's W summed into the density (all
+/// `listed` of them) and its first `paired` neighbours' g = w * direction
+/// written to `dst`, with their sums. A lane loop the vectoriser turns into
+/// gathers where the target has them (AVX2, AVX-512); always inlined into
+/// each target's copy below.
+template <int D>
+[[gnu::always_inline]] inline PairSums<D> setUpPairs(const NearList<D>& near, std::size_t listed, std::size_t paired,
+                                                     const PairInputs<D>& in, Neighbour<D>* dst) {
+    constexpr std::size_t L = kPairLanes;
+    float density[L] = {};
+    float mass[L] = {};
+    float fastest[L] = {};
+    float gSum[D][L] = {};
+    float warm[D][L] = {};
+    float g[D][L];
+    // Local copies of the arrays' addresses and constants: read through
+    // `near` and `in` inside the lane loop, g++ reloads them per lane and
+    // does not vectorise it.
+    const float* const r2s = near.r2.data();
+    const std::uint32_t* const indices = near.index.data();
+    const float* offsets[D];
+    for (int a = 0; a < D; ++a) offsets[a] = near.offset[a].data();
+    const float* const velocity = in.velocity;
+    const float* const pressure = in.pressure;
+    const std::uint32_t i = in.i;
+    const float invH = in.invH;
+    const float invH2 = in.invH2;
+    const float lambdaI = in.lambdaI;
+    const float warmFraction = in.warmFraction;
+    float vi[D];
+    for (int a = 0; a < D; ++a) vi[a] = in.vi[a];
+    for (std::size_t base = 0; base < listed; base += L) {
+        // Lanes past `listed` read the near list's room past its end (valid
+        // indices, finite values) and add nothing. Not `omp simd`: g++ 12
+        // then unrolls the 16 lanes completely before the vectoriser sees
+        // them, and `unroll 1` cannot be combined with it.
+#pragma GCC unroll 1
+        for (std::size_t l = 0; l < L; ++l) {
+            const std::size_t k = base + l;
+            const bool isListed = k < listed;
+            // The pairs' sums are masked by a factor (x 1 or x 0), not a
+            // select each: g++ 12 if-converts a few selects on one
+            // condition and leaves more as branches, unvectorised.
+            const float pairedFactor = k < paired ? 1.0f : 0.0f;
+            const float r2 = r2s[k];
+            const std::uint32_t j = indices[k];
+            const float r = std::sqrt(r2);
+            density[l] += isListed ? kernels::fluidDensityKernel(r * invH) : 0.0f;
+            const bool apart = r2 > 0.0f;
+            const float invR = apart ? 1.0f / r : 0.0f;
+            const float w = kernels::fluidWeight(r2, invH2);
+            // The direction to a neighbour on top of i (r = 0): along x, away
+            // from the higher index, the opposite of its direction to i, so
+            // that the pair's constraints push them apart. In a crushed
+            // corner several particles end on one point (equal coordinates
+            // in float); W's slope there is w(0) = 1 along any direction.
+            // When such a pair counted in the density only, a particle among
+            // several on one point was over-dense with almost nothing to push
+            // against: effective mass 3e-6, impulses of 8e4 m/s a visit, and
+            // a 50 m/s launch into a tank of edges blew up (docs/fluid.md,
+            // "Launches into tanks").
+            const float side = j > i ? 1.0f : -1.0f;
+            float closing = 0.0f;  // glm::dot(vi - v_j, offset), in glm's order
+            const float warmPressure = lambdaI + pressure[j] * warmFraction;
+#pragma GCC unroll 3  // unrolled before the vectoriser sees the lane loop
+            for (int a = 0; a < D; ++a) {
+                const float offset = offsets[a][k];
+                const float ga = apart ? offset * (w * invR) : (a == 0 ? side : 0.0f) * w;
+                g[a][l] = ga;
+                const float approach = (vi[a] - velocity[D * j + a]) * offset;
+                closing = a == 0 ? approach : closing + approach;
+                gSum[a][l] += ga * pairedFactor;
+                warm[a][l] -= ga * warmPressure * pairedFactor;
+            }
+            closing = closing * invR;
+            const float pairedClosing = k < paired ? closing : 0.0f;  // fastest starts at 0
+            fastest[l] = pairedClosing > fastest[l] ? pairedClosing : fastest[l];
+            mass[l] += w * w * pairedFactor;
+        }
+        const std::size_t stored = paired > base ? std::min(L, paired - base) : 0;
+        for (std::size_t l = 0; l < stored; ++l) {
+            Neighbour<D>& out = dst[base + l];
+            for (int a = 0; a < D; ++a) out.g[a] = g[a][l];
+            out.index = near.index[base + l];
+        }
+    }
+    PairSums<D> sums;
+    for (std::size_t l = 0; l < L; ++l) {  // lane order, the same on every target
+        sums.density += density[l];
+        sums.mass += mass[l];
+        sums.fastest = fastest[l] > sums.fastest ? fastest[l] : sums.fastest;
+        for (int a = 0; a < D; ++a) {
+            sums.gSum[a] += gSum[a][l];
+            sums.warm[a] += warm[a][l];
+        }
+    }
+    return sums;
+}
+
+template <int D>
+PairSums<D> setUpPairsBaseline(const NearList<D>& near, std::size_t listed, std::size_t paired,
+                               const PairInputs<D>& in, Neighbour<D>* dst) {
+    return setUpPairs<D>(near, listed, paired, in, dst);
+}
+
+#if SPINDRIFT_X86
+template <int D>
+__attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const NearList<D>& near, std::size_t listed,
+                                                           std::size_t paired, const PairInputs<D>& in,
+                                                           Neighbour<D>* dst) {
+    return setUpPairs<D>(near, listed, paired, in, dst);
+}
+
+// 512-bit vectors: g++ would otherwise keep 256-bit ones (as in
+// src/effects/batch_update.cpp).
+template <int D>
+__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=512"))) PairSums<D>
+setUpPairsAvx512(const NearList<D>& near, std::size_t listed, std::size_t paired, const PairInputs<D>& in,
+                 Neighbour<D>* dst) {
+    return setUpPairs<D>(near, listed, paired, in, dst);
+}
+#endif
+
+/// Phase 2 of the process's update target (core/cpu_target.h).
+template <int D>
+using PairSetup = PairSums<D> (*)(const NearList<D>&, std::size_t, std::size_t, const PairInputs<D>&, Neighbour<D>*);
+
+template <int D>
+PairSetup<D> pairSetup() {
+#if SPINDRIFT_X86
+    switch (updateTarget()) {
+    case UpdateTarget::Avx512: return &setUpPairsAvx512<D>;
+    case UpdateTarget::Avx2: return &setUpPairsAvx2<D>;
+    default: break;
+    }
+#endif
+    return &setUpPairsBaseline<D>;
 }
 
 }  // namespace
@@ -286,6 +441,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     const float invRest = 1.0f / f.restDensity;
     std::vector<ChunkStats> chunks(WorkerPool::chunkCount(n, kParticleChunk));
     const NearFilter<D> filter = nearFilter<D>();
+    const PairSetup<D> pairs = pairSetup<D>();
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkStats s;
@@ -308,47 +464,25 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             }
             s.overflows += block.overflows;
             const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
-            // Phase 2: the pairs within h, dense.
-            float density = 1.0f;  // the particle itself: W(0) = 1
-            float mass = 0.0f;
-            float fastest = 0.0f;  // m/s, the fastest closing speed of a neighbour
-            Vec<D> gSum(0.0f);
-            // The warm start of the pairs, gathered: i's own constraint gives
-            // i -g lambda_i per neighbour, neighbour j's gives it -g lambda_j
-            // (g of the pair seen from j is -g), so i gains -g (lambda_i +
-            // lambda_j) from each pair, the same sum the scattered warm start
-            // makes when every list is symmetric.
+            // Phase 2: the pairs within h, dense, in lanes (setUpPairs).
+            // The warm start of the pairs is gathered: i's own constraint
+            // gives i -g lambda_i per neighbour, neighbour j's gives it -g
+            // lambda_j (g of the pair seen from j is -g), so i gains -g
+            // (lambda_i + lambda_j) from each pair, the same sum the
+            // scattered warm start makes when every list is symmetric.
             const float lambdaI = p.pressure[i] * warmFraction;
-            Vec<D> warm(0.0f);
-            std::uint32_t count = 0;
-            // Written through a pointer, not push_back: the vector's size
-            // stored per pair kept the loop's sums in memory (measured).
-            if (out.size() < used + nearCount) out.resize(std::max(2 * out.size(), used + nearCount));
-            Neighbour<D>* dst = out.data() + used;
-            for (std::size_t k = 0; k < nearCount; ++k) {
-                const float r2 = near.r2[k];
-                const std::uint32_t j = near.index[k];
-                Vec<D> offset;
-                for (int a = 0; a < D; ++a) offset[a] = near.offset[a][k];
-                const float r = std::sqrt(r2);
-                density += kernels::fluidDensityKernel(r * invH);
-                if (count == cap) {
-                    s.overflows += 1;
-                    continue;
-                }
-                const bool apart = r2 > 0.0f;
-                const float invR = apart ? 1.0f / r : 0.0f;
-                const float w = kernels::fluidWeight(r2, invH2);
-                const Vec<D> gj = apart ? offset * (w * invR) : coincidentDirection<D>(i, j) * w;
-                // Closing speed of the pair (m/s): picks the next step's
-                // substeps (fluid_step.cpp).
-                fastest = std::max(fastest, glm::dot(vi - p.velocity[j], offset) * invR);
-                dst[count] = Neighbour<D>{gj, j};
-                warm -= gj * (lambdaI + p.pressure[j] * warmFraction);
-                mass += w * w;
-                gSum += gj;
-                count += 1;
-            }
+            const std::size_t paired = std::min<std::size_t>(nearCount, cap);
+            s.overflows += nearCount - paired;
+            if (out.size() < used + paired) out.resize(std::max(2 * out.size(), used + paired));
+            const PairInputs<D> in{static_cast<std::uint32_t>(i), vi, lambdaI, &p.velocity[0][0], p.pressure.data(),
+                                   warmFraction, invH, invH2};
+            const PairSums<D> sums = pairs(near, nearCount, paired, in, out.data() + used);
+            const float fastest = sums.fastest;
+            float density = 1.0f + sums.density;  // the particle itself: W(0) = 1
+            float mass = sums.mass;
+            Vec<D> gSum = sums.gSum;
+            Vec<D> warm = sums.warm;
+            const auto count = static_cast<std::uint32_t>(paired);
             s.approach[approachBin(fastest)] += 1;
             c.count[i] = count;
             used += count;

@@ -13,6 +13,7 @@
 // size over-life curves. Built through the public API only (world.h,
 // effects.h); stepWorld(world, 1/60) per iteration. Argument: threads of the
 // CPU backend (WorldDef::threads), also used by the copy baseline.
+#include "bench_util.h"
 #include "effects/batch_update.h"
 
 #include <spindrift/world.h>
@@ -256,17 +257,8 @@ BENCHMARK(BM_MemcpyBaseline)->ArgName("threads")->Arg(1)->Arg(2)->Unit(benchmark
 // particles come to rest on the ground.
 void BM_StandardStackVsCopy(benchmark::State& state) {
     using Clock = std::chrono::steady_clock;
-    const spindrift::UpdateTarget saved = spindrift::updateTarget();
-    const spindrift::UpdateTarget target = state.range(1) == 1   ? spindrift::UpdateTarget::Scalar
-                                           : state.range(1) == 2 ? spindrift::UpdateTarget::Avx2
-                                                                 : spindrift::bestUpdateTarget();
-    const std::vector<spindrift::UpdateTarget> supported = spindrift::supportedUpdateTargets();
-    if (std::find(supported.begin(), supported.end(), target) == supported.end()) {
-        state.SkipWithError("this CPU cannot run the target");
-        return;
-    }
-    spindrift::setUpdateTarget(target);
-    state.SetLabel(std::string(spindrift::updateTargetName(spindrift::updateTarget())));
+    const spindrift::bench::ScopedTarget target(state, state.range(1));
+    if (!target.ok()) return;
     try {
         StandardStack stack(static_cast<std::uint32_t>(state.range(0)), static_cast<int>(state.range(2)));
         CopyBaseline copy(static_cast<int>(state.range(0)));
@@ -296,7 +288,6 @@ void BM_StandardStackVsCopy(benchmark::State& state) {
     } catch (const std::exception& e) {
         state.SkipWithError(e.what());
     }
-    spindrift::setUpdateTarget(saved);
 }
 BENCHMARK(BM_StandardStackVsCopy)
     ->ArgNames({"threads", "target", "warmup"})

@@ -13,7 +13,11 @@
 // median_density_error (over the steps, of the step's mean of
 // max(rho / rho0 - 1, 0)), substeps (mean per step), particles, and the
 // passes' wall time per step (grid_ms, setup_ms, contacts_ms, solve_ms,
-// integrate_ms).
+// integrate_ms). Args {particles, threads, target}: the CPU's vector target
+// (bench_util.h: 0 the best, 1 scalar, 2 AVX2). Every target gives the same
+// results bit for bit (FluidDeterminism.BitIdenticalAtEveryVectorTarget), so
+// the same substeps: the 10k cases at 1 thread compare the targets' passes
+// side by side.
 //
 // BM_FluidLiquidFunDamBreak (issue 12): exactly LiquidFun's Testbed dam break,
 // to compare with LiquidFun measured outside the repository (docs/performance.md).
@@ -92,6 +96,8 @@ WorldId makeWorld(std::uint32_t dimension, std::uint32_t particles, std::uint32_
 void damBreak(benchmark::State& state, std::uint32_t dimension) {
     const auto particles = static_cast<std::uint32_t>(state.range(0));
     const auto threads = static_cast<std::uint32_t>(state.range(1));
+    const bench::ScopedTarget target(state, state.range(2));
+    if (!target.ok()) return;
     const WorldId world = makeWorld(dimension, particles, threads);
     std::vector<double> errors;
     double substeps = 0.0;
@@ -215,16 +221,19 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
 }
 
 BENCHMARK(BM_FluidDamBreak2D)
-    ->ArgNames({"particles", "threads"})
-    ->Args({10000, 2})
-    ->Args({30000, 2})
-    ->Args({100000, 1})
-    ->Args({100000, 2})
+    ->ArgNames({"particles", "threads", "target"})
+    ->Args({10000, 1, 1})
+    ->Args({10000, 1, 2})
+    ->Args({10000, 1, 0})
+    ->Args({10000, 2, 0})
+    ->Args({30000, 2, 0})
+    ->Args({100000, 1, 0})
+    ->Args({100000, 2, 0})
     ->Iterations(kSteps)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FluidDamBreak3D)
-    ->ArgNames({"particles", "threads"})
-    ->Args({100000, 2})
+    ->ArgNames({"particles", "threads", "target"})
+    ->Args({100000, 2, 0})
     ->Iterations(kSteps)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FluidLiquidFunDamBreak)

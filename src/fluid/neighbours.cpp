@@ -249,21 +249,6 @@ NearFilter<D> nearFilter() {
 /// none), adds the same numbers in the same order: bit-identical results.
 constexpr std::size_t kPairLanes = 16;
 
-/// What phase 2 reads besides the near list: particle i, its velocity and
-/// warm-start pressure, the particles' velocities and pressures (gathered
-/// through the neighbours' indices) and the setup's constants.
-template <int D>
-struct PairInputs {
-    std::uint32_t i;
-    Vec<D> vi;             // m/s
-    float lambdaI;         // i's warm-start pressure (m/s), scaled
-    const float* velocity; // the particles' velocities, D floats each (m/s)
-    const float* pressure; // the particles' last pressures (m/s)
-    float warmFraction;
-    float invH;
-    float invH2;
-};
-
 /// One particle's sums over its pairs.
 template <int D>
 struct PairSums {
@@ -274,37 +259,109 @@ struct PairSums {
     Vec<D> warm{0.0f};     // m/s, the gathered warm start
 };
 
+/// What phase 2 reads for one particle: its near list, the particles'
+/// velocities and pressures (gathered through the neighbours' indices), i's
+/// own values and the setup's constants, as plain addresses and values (read
+/// through a NearList inside a lane loop, g++ reloads them per lane and does
+/// not vectorise it).
+template <int D>
+struct PairArrays {
+    const float* r2;                // m^2
+    const std::uint32_t* index;
+    const float* offset[D];         // m
+    const float* velocity;          // the particles' velocities, D floats each (m/s)
+    const float* pressure;          // the particles' last pressures (m/s)
+    std::uint32_t i;
+    float vi[D];                    // m/s
+    float lambdaI;                  // i's warm-start pressure (m/s), scaled
+    float warmFraction;
+    float invH;
+    float invH2;
+};
+
+/// The terms of near-list entry k, a pair of particle i and neighbour j.
+template <int D>
+struct PairTerm {
+    float density;       // W(r / h)
+    float w;             // the pair's weight
+    float g[D];          // w * direction, from i to j
+    float closing;       // m/s, how fast the two approach
+    float warmPressure;  // m/s, lambda_i + lambda_j of the warm start
+};
+
+template <int D>
+[[gnu::always_inline]] inline PairTerm<D> pairTerm(const PairArrays<D>& a, std::size_t k) {
+    PairTerm<D> t;
+    const float r2 = a.r2[k];
+    const std::uint32_t j = a.index[k];
+    const float r = std::sqrt(r2);
+    t.density = kernels::fluidDensityKernel(r * a.invH);
+    const bool apart = r2 > 0.0f;
+    const float invR = apart ? 1.0f / r : 0.0f;
+    t.w = kernels::fluidWeight(r2, a.invH2);
+    // The direction to a neighbour on top of i (r = 0): along x, away from
+    // the higher index, the opposite of its direction to i, so that the
+    // pair's constraints push them apart. In a crushed corner several
+    // particles end on one point (equal coordinates in float); W's slope
+    // there is w(0) = 1 along any direction. When such a pair counted in the
+    // density only, a particle among several on one point was over-dense with
+    // almost nothing to push against: effective mass 3e-6, impulses of 8e4
+    // m/s a visit, and a 50 m/s launch into a tank of edges blew up
+    // (docs/fluid.md, "Launches into tanks").
+    const float side = j > a.i ? 1.0f : -1.0f;
+    float closing = 0.0f;  // glm::dot(vi - v_j, offset), in glm's order
+#pragma GCC unroll 3  // unrolled before the vectoriser sees the lane loop
+    for (int axis = 0; axis < D; ++axis) {
+        const float offset = a.offset[axis][k];
+        t.g[axis] = apart ? offset * (t.w * invR) : (axis == 0 ? side : 0.0f) * t.w;
+        const float approach = (a.vi[axis] - a.velocity[D * j + axis]) * offset;
+        closing = axis == 0 ? approach : closing + approach;
+    }
+    t.closing = closing * invR;
+    t.warmPressure = a.lambdaI + a.pressure[j] * a.warmFraction;
+    return t;
+}
+
+/// One particle's sums over its pairs, per lane: entry k of the near list
+/// goes to lane k % kPairLanes. Not zeroed by itself (value-initialise it):
+/// the baseline writes every lane, and zeroing it per particle was 4 % of
+/// the setup there.
+template <int D>
+struct PairLanes {
+    float density[kPairLanes];
+    float mass[kPairLanes];
+    float fastest[kPairLanes];
+    float gSum[D][kPairLanes];
+    float warm[D][kPairLanes];
+
+    /// The lanes' sums in lane order, the same on every target.
+    PairSums<D> sum() const {
+        PairSums<D> sums;
+        for (std::size_t l = 0; l < kPairLanes; ++l) {
+            sums.density += density[l];
+            sums.mass += mass[l];
+            sums.fastest = fastest[l] > sums.fastest ? fastest[l] : sums.fastest;
+            for (int a = 0; a < D; ++a) {
+                sums.gSum[a] += gSum[a][l];
+                sums.warm[a] += warm[a][l];
+            }
+        }
+        return sums;
+    }
+};
+
 /// Phase 2 for one particle: its near list's W summed into the density (all
 /// `listed` of them) and its first `paired` neighbours' g = w * direction
 /// written to `dst`, with their sums. A lane loop the vectoriser turns into
 /// gathers where the target has them (AVX2, AVX-512); always inlined into
-/// each target's copy below.
+/// each of those targets' copies below.
 template <int D>
-[[gnu::always_inline]] inline PairSums<D> setUpPairs(const NearList<D>& near, std::size_t listed, std::size_t paired,
-                                                     const PairInputs<D>& in, Neighbour<D>* dst) {
+[[gnu::always_inline]] inline PairSums<D> setUpPairLanes(const PairArrays<D>& in, std::size_t listed,
+                                                         std::size_t paired, Neighbour<D>* dst) {
     constexpr std::size_t L = kPairLanes;
-    float density[L] = {};
-    float mass[L] = {};
-    float fastest[L] = {};
-    float gSum[D][L] = {};
-    float warm[D][L] = {};
+    const PairArrays<D> arrays = in;  // a local copy: through the reference, the 3D loop stayed scalar
+    PairLanes<D> lanes{};
     float g[D][L];
-    // Local copies of the arrays' addresses and constants: read through
-    // `near` and `in` inside the lane loop, g++ reloads them per lane and
-    // does not vectorise it.
-    const float* const r2s = near.r2.data();
-    const std::uint32_t* const indices = near.index.data();
-    const float* offsets[D];
-    for (int a = 0; a < D; ++a) offsets[a] = near.offset[a].data();
-    const float* const velocity = in.velocity;
-    const float* const pressure = in.pressure;
-    const std::uint32_t i = in.i;
-    const float invH = in.invH;
-    const float invH2 = in.invH2;
-    const float lambdaI = in.lambdaI;
-    const float warmFraction = in.warmFraction;
-    float vi[D];
-    for (int a = 0; a < D; ++a) vi[a] = in.vi[a];
     for (std::size_t base = 0; base < listed; base += L) {
         // Lanes past `listed` read the near list's room past its end (valid
         // indices, finite values) and add nothing. Not `omp simd`: g++ 12
@@ -313,93 +370,90 @@ template <int D>
 #pragma GCC unroll 1
         for (std::size_t l = 0; l < L; ++l) {
             const std::size_t k = base + l;
-            const bool isListed = k < listed;
-            // The pairs' sums are masked by a factor (x 1 or x 0), not a
-            // select each: g++ 12 if-converts a few selects on one
-            // condition and leaves more as branches, unvectorised.
+            const PairTerm<D> t = pairTerm<D>(arrays, k);
+            lanes.density[l] += k < listed ? t.density : 0.0f;
+            // The pairs' sums are masked by a factor (x 1 or x 0: the terms
+            // are finite), not a select each: g++ 12 if-converts a few
+            // selects on one condition and leaves more as branches.
             const float pairedFactor = k < paired ? 1.0f : 0.0f;
-            const float r2 = r2s[k];
-            const std::uint32_t j = indices[k];
-            const float r = std::sqrt(r2);
-            density[l] += isListed ? kernels::fluidDensityKernel(r * invH) : 0.0f;
-            const bool apart = r2 > 0.0f;
-            const float invR = apart ? 1.0f / r : 0.0f;
-            const float w = kernels::fluidWeight(r2, invH2);
-            // The direction to a neighbour on top of i (r = 0): along x, away
-            // from the higher index, the opposite of its direction to i, so
-            // that the pair's constraints push them apart. In a crushed
-            // corner several particles end on one point (equal coordinates
-            // in float); W's slope there is w(0) = 1 along any direction.
-            // When such a pair counted in the density only, a particle among
-            // several on one point was over-dense with almost nothing to push
-            // against: effective mass 3e-6, impulses of 8e4 m/s a visit, and
-            // a 50 m/s launch into a tank of edges blew up (docs/fluid.md,
-            // "Launches into tanks").
-            const float side = j > i ? 1.0f : -1.0f;
-            float closing = 0.0f;  // glm::dot(vi - v_j, offset), in glm's order
-            const float warmPressure = lambdaI + pressure[j] * warmFraction;
-#pragma GCC unroll 3  // unrolled before the vectoriser sees the lane loop
             for (int a = 0; a < D; ++a) {
-                const float offset = offsets[a][k];
-                const float ga = apart ? offset * (w * invR) : (a == 0 ? side : 0.0f) * w;
-                g[a][l] = ga;
-                const float approach = (vi[a] - velocity[D * j + a]) * offset;
-                closing = a == 0 ? approach : closing + approach;
-                gSum[a][l] += ga * pairedFactor;
-                warm[a][l] -= ga * warmPressure * pairedFactor;
+                g[a][l] = t.g[a];
+                lanes.gSum[a][l] += t.g[a] * pairedFactor;
+                lanes.warm[a][l] -= t.g[a] * t.warmPressure * pairedFactor;
             }
-            closing = closing * invR;
-            const float pairedClosing = k < paired ? closing : 0.0f;  // fastest starts at 0
-            fastest[l] = pairedClosing > fastest[l] ? pairedClosing : fastest[l];
-            mass[l] += w * w * pairedFactor;
+            const float closing = k < paired ? t.closing : 0.0f;  // the fastest starts at 0
+            lanes.fastest[l] = closing > lanes.fastest[l] ? closing : lanes.fastest[l];
+            lanes.mass[l] += t.w * t.w * pairedFactor;
         }
         const std::size_t stored = paired > base ? std::min(L, paired - base) : 0;
         for (std::size_t l = 0; l < stored; ++l) {
             Neighbour<D>& out = dst[base + l];
             for (int a = 0; a < D; ++a) out.g[a] = g[a][l];
-            out.index = near.index[base + l];
+            out.index = arrays.index[base + l];
         }
     }
-    PairSums<D> sums;
-    for (std::size_t l = 0; l < L; ++l) {  // lane order, the same on every target
-        sums.density += density[l];
-        sums.mass += mass[l];
-        sums.fastest = fastest[l] > sums.fastest ? fastest[l] : sums.fastest;
-        for (int a = 0; a < D; ++a) {
-            sums.gSum[a] += gSum[a][l];
-            sums.warm[a] += warm[a][l];
-        }
-    }
-    return sums;
+    return lanes.sum();
 }
 
+/// setUpPairLanes for targets without gathers (SSE2, SSE4.2, and the scalar
+/// target), lane by lane: each lane's entries in the same order, summed in
+/// registers (a masked lane adds exactly nothing), so the same bits without
+/// computing lanes past the list. Summed into an array indexed by k % 16
+/// instead, the setup was 20 % slower than the scalar loop before the lanes.
 template <int D>
-PairSums<D> setUpPairsBaseline(const NearList<D>& near, std::size_t listed, std::size_t paired,
-                               const PairInputs<D>& in, Neighbour<D>* dst) {
-    return setUpPairs<D>(near, listed, paired, in, dst);
+PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, std::size_t paired,
+                               Neighbour<D>* dst) {
+    PairLanes<D> lanes;
+    for (std::size_t l = 0; l < kPairLanes; ++l) {  // every lane: a lane past the list gets zeros
+        float density = 0.0f;
+        float mass = 0.0f;
+        float fastest = 0.0f;
+        float gSum[D] = {};
+        float warm[D] = {};
+        std::size_t k = l;
+        for (; k < paired; k += kPairLanes) {
+            const PairTerm<D> t = pairTerm<D>(arrays, k);
+            density += t.density;
+            for (int a = 0; a < D; ++a) {
+                dst[k].g[a] = t.g[a];
+                gSum[a] += t.g[a];
+                warm[a] -= t.g[a] * t.warmPressure;
+            }
+            dst[k].index = arrays.index[k];
+            fastest = t.closing > fastest ? t.closing : fastest;
+            mass += t.w * t.w;
+        }
+        for (; k < listed; k += kPairLanes) density += pairTerm<D>(arrays, k).density;
+        lanes.density[l] = density;
+        lanes.mass[l] = mass;
+        lanes.fastest[l] = fastest;
+        for (int a = 0; a < D; ++a) {
+            lanes.gSum[a][l] = gSum[a];
+            lanes.warm[a][l] = warm[a];
+        }
+    }
+    return lanes.sum();
 }
 
 #if SPINDRIFT_X86
 template <int D>
-__attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const NearList<D>& near, std::size_t listed,
-                                                           std::size_t paired, const PairInputs<D>& in,
-                                                           Neighbour<D>* dst) {
-    return setUpPairs<D>(near, listed, paired, in, dst);
+__attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& arrays, std::size_t listed,
+                                                           std::size_t paired, Neighbour<D>* dst) {
+    return setUpPairLanes<D>(arrays, listed, paired, dst);
 }
 
 // 512-bit vectors: g++ would otherwise keep 256-bit ones (as in
 // src/effects/batch_update.cpp).
 template <int D>
 __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=512"))) PairSums<D>
-setUpPairsAvx512(const NearList<D>& near, std::size_t listed, std::size_t paired, const PairInputs<D>& in,
-                 Neighbour<D>* dst) {
-    return setUpPairs<D>(near, listed, paired, in, dst);
+setUpPairsAvx512(const PairArrays<D>& arrays, std::size_t listed, std::size_t paired, Neighbour<D>* dst) {
+    return setUpPairLanes<D>(arrays, listed, paired, dst);
 }
 #endif
 
 /// Phase 2 of the process's update target (core/cpu_target.h).
 template <int D>
-using PairSetup = PairSums<D> (*)(const NearList<D>&, std::size_t, std::size_t, const PairInputs<D>&, Neighbour<D>*);
+using PairSetup = PairSums<D> (*)(const PairArrays<D>&, std::size_t, std::size_t, Neighbour<D>*);
 
 template <int D>
 PairSetup<D> pairSetup() {
@@ -464,7 +518,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             }
             s.overflows += block.overflows;
             const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
-            // Phase 2: the pairs within h, dense, in lanes (setUpPairs).
+            // Phase 2: the pairs within h, dense, in lanes (setUpPairLanes).
             // The warm start of the pairs is gathered: i's own constraint
             // gives i -g lambda_i per neighbour, neighbour j's gives it -g
             // lambda_j (g of the pair seen from j is -g), so i gains -g
@@ -474,9 +528,13 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             const std::size_t paired = std::min<std::size_t>(nearCount, cap);
             s.overflows += nearCount - paired;
             if (out.size() < used + paired) out.resize(std::max(2 * out.size(), used + paired));
-            const PairInputs<D> in{static_cast<std::uint32_t>(i), vi, lambdaI, &p.velocity[0][0], p.pressure.data(),
-                                   warmFraction, invH, invH2};
-            const PairSums<D> sums = pairs(near, nearCount, paired, in, out.data() + used);
+            PairArrays<D> arrays{near.r2.data(), near.index.data(), {}, &p.velocity[0][0], p.pressure.data(),
+                                 static_cast<std::uint32_t>(i), {}, lambdaI, warmFraction, invH, invH2};
+            for (int a = 0; a < D; ++a) {
+                arrays.offset[a] = near.offset[a].data();
+                arrays.vi[a] = vi[a];
+            }
+            const PairSums<D> sums = pairs(arrays, nearCount, paired, out.data() + used);
             const float fastest = sums.fastest;
             float density = 1.0f + sums.density;  // the particle itself: W(0) = 1
             float mass = sums.mass;

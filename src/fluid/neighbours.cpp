@@ -226,22 +226,6 @@ __attribute__((target("avx2"))) std::size_t filterNearAvx2(const CandidateBlock<
 }
 #endif
 
-/// The filter of the process's update target (core/cpu_target.h); the
-/// others run the scalar one.
-template <int D>
-using NearFilter = std::size_t (*)(const CandidateBlock<D>&, const float*, std::uint32_t, float, NearList<D>&);
-
-template <int D>
-NearFilter<D> nearFilter() {
-#if SPINDRIFT_X86
-    switch (updateTarget()) {
-    case UpdateTarget::Avx512: return &filterNearAvx512<D>;
-    case UpdateTarget::Avx2: return &filterNearAvx2<D>;
-    default: break;
-    }
-#endif
-    return &filterNearScalar<D>;
-}
 
 /// Lanes of the pairs' loop (phase 2 of the setup): one particle's sums over
 /// its pairs are kept per lane, 16 of them (AVX-512's width), and added in
@@ -449,23 +433,19 @@ __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=51
 setUpPairsAvx512(const PairArrays<D>& arrays, std::size_t listed, std::size_t paired, Neighbour<D>* dst) {
     return setUpPairLanes<D>(arrays, listed, paired, dst);
 }
-#endif
 
-/// Phase 2 of the process's update target (core/cpu_target.h).
-template <int D>
-using PairSetup = PairSums<D> (*)(const PairArrays<D>&, std::size_t, std::size_t, Neighbour<D>*);
-
-template <int D>
-PairSetup<D> pairSetup() {
-#if SPINDRIFT_X86
+/// The copy of a setup phase (the filter, the pairs) for the process's
+/// update target (core/cpu_target.h): AVX-512, AVX2, or the baseline for
+/// every other one.
+template <class Fn>
+Fn forUpdateTarget(Fn baseline, Fn avx2, Fn avx512) {
     switch (updateTarget()) {
-    case UpdateTarget::Avx512: return &setUpPairsAvx512<D>;
-    case UpdateTarget::Avx2: return &setUpPairsAvx2<D>;
-    default: break;
+    case UpdateTarget::Avx512: return avx512;
+    case UpdateTarget::Avx2: return avx2;
+    default: return baseline;
     }
-#endif
-    return &setUpPairsBaseline<D>;
 }
+#endif
 
 }  // namespace
 
@@ -494,8 +474,13 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     const float invDt = 1.0f / dt;
     const float invRest = 1.0f / f.restDensity;
     std::vector<ChunkStats> chunks(WorkerPool::chunkCount(n, kParticleChunk));
-    const NearFilter<D> filter = nearFilter<D>();
-    const PairSetup<D> pairs = pairSetup<D>();
+#if SPINDRIFT_X86
+    const auto filter = forUpdateTarget(&filterNearScalar<D>, &filterNearAvx2<D>, &filterNearAvx512<D>);
+    const auto pairs = forUpdateTarget(&setUpPairsBaseline<D>, &setUpPairsAvx2<D>, &setUpPairsAvx512<D>);
+#else
+    const auto filter = &filterNearScalar<D>;
+    const auto pairs = &setUpPairsBaseline<D>;
+#endif
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkStats s;
@@ -538,24 +523,20 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
                 arrays.offset[a] = near.offset[a].data();
                 arrays.vi[a] = vi[a];
             }
-            const PairSums<D> sums = pairs(arrays, nearCount, paired, out.data() + used);
-            const float fastest = sums.fastest;
-            float density = 1.0f + sums.density;  // the particle itself: W(0) = 1
-            float mass = sums.mass;
-            Vec<D> gSum = sums.gSum;
-            Vec<D> warm = sums.warm;
+            PairSums<D> sums = pairs(arrays, nearCount, paired, out.data() + used);
             const auto count = static_cast<std::uint32_t>(paired);
-            s.approach[approachBin(fastest)] += 1;
+            s.approach[approachBin(sums.fastest)] += 1;
             c.count[i] = count;
             used += count;
             // The colliders' ghosts (wall_density.cpp): motionless
             // neighbours, so they add to the density and to the particle's
-            // own Jacobian entry, -(sum g + wall).
-            density += c.wallDensity[i];
-            gSum += Vec<D>(c.wallGradient[i]);
-            if (count != 0) warm -= Vec<D>(c.wallGradient[i]) * lambdaI;  // the ghosts take no impulse
+            // own Jacobian entry, -(sum g + wall). W(0) = 1 is the particle
+            // itself.
+            const float density = 1.0f + sums.density + c.wallDensity[i];
+            sums.gSum += Vec<D>(c.wallGradient[i]);
+            if (count != 0) sums.warm -= Vec<D>(c.wallGradient[i]) * lambdaI;  // the ghosts take no impulse
             glm::vec3 warm3(0.0f);
-            for (int a = 0; a < D; ++a) warm3[a] = warm[a];
+            for (int a = 0; a < D; ++a) warm3[a] = sums.warm[a];
             c.warmVelocity[i] = warm3;
             // Effective mass of the Jacobian (g_n for each neighbour, -sum g for
             // the particle itself): sum |g|^2 + |sum g|^2. The slides' A =
@@ -563,7 +544,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             // surface, where the g do not cancel, it under-estimates the
             // particle's own response several times and the solver
             // over-corrects and diverges (measured: a 20-layer tank collapsed).
-            mass += glm::dot(gSum, gSum);
+            const float mass = sums.mass + glm::dot(sums.gSum, sums.gSum);
             c.invMass[i] = mass > 0.0f ? 1.0f / mass : 0.0f;
             c.bias[i] = kernels::fluidBias(density, f.restDensity, f.def.baumgarte, f.h, invDt);
             const float relative = density * invRest;

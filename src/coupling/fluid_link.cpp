@@ -20,11 +20,110 @@ public:
     std::vector<std::uint32_t> slots;
 };
 
+/// Marks a body slot that is not in the fluid step's list.
+constexpr std::uint32_t kNotGathered = ~0u;
+
+/// A body as the fluid step's local copy starts it: Box2D's pose and velocity.
+fluid::StepBody stepBodyOf(const BodySlot& slot, std::uint32_t slotIndex) {
+    const b2Body& body = *slot.body;
+    fluid::StepBody b;
+    b.slot = slotIndex;
+    b.centre = glm::vec2(body.GetWorldCenter().x, body.GetWorldCenter().y);
+    b.angle = body.GetAngle();
+    b.localCentre = glm::vec2(body.GetLocalCenter().x, body.GetLocalCenter().y);
+    b.velocity = glm::vec2(body.GetLinearVelocity().x, body.GetLinearVelocity().y);
+    b.angularVelocity = body.GetAngularVelocity();
+    b.friction = slot.def.friction;
+    if (body.GetType() == b2_dynamicBody && body.GetMass() > 0.0f) {
+        b.invMass = 1.0f / body.GetMass();
+        // Box2D's inertia is about the body origin; ours about the centre of mass.
+        const float inertia = body.GetInertia() - body.GetMass() * glm::dot(b.localCentre, b.localCentre);
+        b.invInertia = inertia > 0.0f ? 1.0f / inertia : 0.0f;
+    }
+    return b;
+}
+
+glm::vec2 toGlm(const b2Vec2& v) { return {v.x, v.y}; }
+
+/// The fluid's copy of one of Box2D's joints (the kinds JointDef makes), its
+/// anchors measured from the bodies' centres of mass.
+fluid::StepJoint stepJointOf(const JointSlot& slot, const fluid::FluidBodyStep& out, std::uint32_t a,
+                             std::uint32_t b) {
+    fluid::StepJoint j;
+    j.bodyA = a;
+    j.bodyB = b;
+    const b2Joint& joint = *slot.joint;
+    auto anchors = [&](const b2Vec2& localA, const b2Vec2& localB, float reference) {
+        j.anchorA = toGlm(localA) - out.bodies[a].localCentre;
+        j.anchorB = toGlm(localB) - out.bodies[b].localCentre;
+        j.referenceAngle = reference;
+    };
+    switch (slot.def.kind) {
+    case JointKind::Revolute: {
+        const auto& r = static_cast<const b2RevoluteJoint&>(joint);
+        j.kind = fluid::StepJointKind::Revolute;
+        anchors(r.GetLocalAnchorA(), r.GetLocalAnchorB(), r.GetReferenceAngle());
+        j.limit = r.IsLimitEnabled();
+        j.lower = r.GetLowerLimit();
+        j.upper = r.GetUpperLimit();
+        j.motor = r.IsMotorEnabled();
+        j.motorSpeed = r.GetMotorSpeed();
+        j.maxMotor = r.GetMaxMotorTorque();
+        break;
+    }
+    case JointKind::Prismatic: {
+        const auto& p = static_cast<const b2PrismaticJoint&>(joint);
+        j.kind = fluid::StepJointKind::Prismatic;
+        anchors(p.GetLocalAnchorA(), p.GetLocalAnchorB(), p.GetReferenceAngle());
+        j.axisA = toGlm(p.GetLocalAxisA());
+        j.limit = p.IsLimitEnabled();
+        j.lower = p.GetLowerLimit();
+        j.upper = p.GetUpperLimit();
+        j.motor = p.IsMotorEnabled();
+        j.motorSpeed = p.GetMotorSpeed();
+        j.maxMotor = p.GetMaxMotorForce();
+        break;
+    }
+    case JointKind::Weld: {
+        const auto& w = static_cast<const b2WeldJoint&>(joint);
+        j.kind = fluid::StepJointKind::Weld;
+        anchors(w.GetLocalAnchorA(), w.GetLocalAnchorB(), w.GetReferenceAngle());
+        break;
+    }
+    }
+    return j;
+}
+
+/// The joints with a gathered body at either end, in creation order. A
+/// partner far from the fluid joins the list as an immovable body without
+/// shapes (its velocity kept: a kinematic partner still moves), so the joint
+/// holds the gathered end where Box2D would; a grab (mouse joint) is left to
+/// Box2D. Calling thread only.
+void gatherJoints(const BodyWorld& world, std::vector<std::uint32_t>& indexOfSlot, fluid::FluidBodyStep& out) {
+    out.joints.clear();
+    auto slotOf = [](b2Body* body) { return static_cast<std::uint32_t>(body->GetUserData().pointer) - 1; };
+    for (const JointSlot& slot : world.joints) {
+        if (slot.joint == nullptr) continue;
+        const std::uint32_t slotA = slotOf(slot.joint->GetBodyA()), slotB = slotOf(slot.joint->GetBodyB());
+        if (indexOfSlot[slotA] == kNotGathered && indexOfSlot[slotB] == kNotGathered) continue;
+        for (std::uint32_t s : {slotA, slotB}) {
+            if (indexOfSlot[s] != kNotGathered) continue;
+            fluid::StepBody partner = stepBodyOf(world.bodies[s], s);
+            partner.invMass = 0.0f;
+            partner.invInertia = 0.0f;
+            indexOfSlot[s] = static_cast<std::uint32_t>(out.bodies.size());
+            out.bodies.push_back(partner);
+        }
+        out.joints.push_back(stepJointOf(slot, out, indexOfSlot[slotA], indexOfSlot[slotB]));
+    }
+}
+
 /// Gathers the bodies whose fixtures overlap the fluid's particles (grown by
 /// what they can travel in dt) through b2World::QueryAABB. Calling thread
 /// only. False when there are none (then the fluid ignores bodies this step).
 bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid::FluidBodyStep& out) {
     out.bodies.clear();
+    out.joints.clear();
     out.shapeBody.clear();
     out.shapeSource.clear();
     out.contactCount = 0;
@@ -50,30 +149,18 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid:
     // Creation order, whatever order the tree answered in.
     std::sort(query.slots.begin(), query.slots.end());
     query.slots.erase(std::unique(query.slots.begin(), query.slots.end()), query.slots.end());
+    std::vector<std::uint32_t> indexOfSlot(world.bodies.size(), kNotGathered);
     for (std::uint32_t slot1 : query.slots) {
         const BodySlot& slot = world.bodies[slot1 - 1];
-        const b2Body& body = *slot.body;
-        fluid::StepBody b;
-        b.slot = slot1 - 1;
-        b.centre = glm::vec2(body.GetWorldCenter().x, body.GetWorldCenter().y);
-        b.angle = body.GetAngle();
-        b.localCentre = glm::vec2(body.GetLocalCenter().x, body.GetLocalCenter().y);
-        b.velocity = glm::vec2(body.GetLinearVelocity().x, body.GetLinearVelocity().y);
-        b.angularVelocity = body.GetAngularVelocity();
-        b.friction = slot.def.friction;
-        if (body.GetType() == b2_dynamicBody && body.GetMass() > 0.0f) {
-            b.invMass = 1.0f / body.GetMass();
-            // Box2D's inertia is about the body origin; ours about the centre of mass.
-            const float inertia = body.GetInertia() - body.GetMass() * glm::dot(b.localCentre, b.localCentre);
-            b.invInertia = inertia > 0.0f ? 1.0f / inertia : 0.0f;
-        }
         const auto index = static_cast<std::uint32_t>(out.bodies.size());
-        out.bodies.push_back(b);
+        indexOfSlot[slot1 - 1] = index;
+        out.bodies.push_back(stepBodyOf(slot, slot1 - 1));
         for (const LocalShape& s : slot.fluidShapes) {
             out.shapeBody.push_back(index);
             out.shapeSource.push_back(&s);
         }
     }
+    gatherJoints(world, indexOfSlot, out);
     out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
     out.particleInvMass = 1.0f / out.particleMass;
     return true;
@@ -90,6 +177,26 @@ void FluidLink::applyRecoil(BodyId body, const fluid::JetMount& mount) {
 fluid::FluidBodyStep* FluidLink::gather(const fluid::FluidState& f, float dt) {
     if (bodies_ == nullptr || !gatherBodies(*bodies_, f, dt, bodies_->fluidStep)) return nullptr;
     return &bodies_->fluidStep;
+}
+
+fluid::FluidBodyStep* FluidLink::gatherMoved(const fluid::FluidState& f) {
+    if (bodies_ == nullptr || f.bodiesAtEnd.empty()) return nullptr;
+    fluid::FluidBodyStep& out = bodies_->fluidStep;
+    out.bodies.clear();
+    out.joints.clear();
+    out.shapeBody.clear();
+    out.shapeSource.clear();
+    for (const fluid::BodyEndPose& end : f.bodiesAtEnd) {
+        const BodySlot& slot = bodies_->bodies[end.slot];
+        if (slot.body == nullptr) continue;
+        const auto index = static_cast<std::uint32_t>(out.bodies.size());
+        out.bodies.push_back(stepBodyOf(slot, end.slot));
+        for (const LocalShape& s : slot.fluidShapes) {
+            out.shapeBody.push_back(index);
+            out.shapeSource.push_back(&s);
+        }
+    }
+    return out.bodies.empty() ? nullptr : &out;
 }
 
 void FluidLink::exchange(const fluid::FluidBodyStep& step) { applyExchange(*bodies_, gatherExchange(step)); }

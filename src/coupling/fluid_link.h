@@ -19,6 +19,10 @@ public:
     void applyRecoil(BodyId body, const fluid::JetMount& mount) override;
     fluid::FluidBodyStep* gather(const fluid::FluidState& f, float dt) override;
     void exchange(const fluid::FluidBodyStep& step) override;
+    /// After Box2D's step: the bodies of f.bodiesAtEnd at the poses Box2D
+    /// left them, with their shapes (for fluid::carryOutOfMovedBodies), or
+    /// null when there are none. Calling thread only.
+    fluid::FluidBodyStep* gatherMoved(const fluid::FluidState& f);
 
 private:
     BodyWorld* bodies_;

@@ -187,6 +187,7 @@ void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float
     for (std::size_t k = 0; k < count; ++k) {
         forCells(k, [&](std::size_t c) { s.cellShapes[fill[c]++] = static_cast<std::uint32_t>(k); });
     }
+    setUpJointRows(s.joints, s.bodies, dt, s.jointRows);
 }
 
 void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const Grid<2>& g,
@@ -255,6 +256,7 @@ void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float 
             solveContact<true>(c, s.bodies[c.body], p, s, invDt, f.radius, f.def.friction, f.def.splitImpulse);
         }
     }
+    solveJointRows(s.jointRows, s.bodies);
 }
 
 void advanceBodies(FluidBodyStep& s, float dt) {
@@ -265,6 +267,48 @@ void advanceBodies(FluidBodyStep& s, float dt) {
     for (std::size_t k = 0; k < s.shapes.size(); ++k) {
         s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
     }
+}
+
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s) {
+    const std::size_t count = s.shapeBody.size();
+    s.shapes.resize(count);
+    s.shapeBox.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
+        s.shapeBox[k] = boundsOf(s.shapes[k]);
+    }
+    // Each body's pose at the end of the fluid's step (bodiesAtEnd is by slot).
+    std::vector<BodyEndPose> was(s.bodies.size());
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        const auto it = std::lower_bound(f.bodiesAtEnd.begin(), f.bodiesAtEnd.end(), s.bodies[b].slot,
+                                         [](const BodyEndPose& e, std::uint32_t slot) { return e.slot < slot; });
+        was[b] = it != f.bodiesAtEnd.end() && it->slot == s.bodies[b].slot
+                     ? *it
+                     : BodyEndPose{s.bodies[b].slot, s.bodies[b].centre, s.bodies[b].angle};
+    }
+    Particles<2>& p = f.p2;
+    std::vector<std::uint64_t> moved(WorkerPool::chunkCount(p.size(), kParticleChunk), 0);
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            glm::vec2 x = p.position[i];
+            for (std::size_t k = 0; k < count; ++k) {
+                const glm::vec4 box = s.shapeBox[k];
+                if (x.x < box.x || x.y < box.y || x.x > box.z || x.y > box.w) continue;
+                const kernels::FluidBodyShape& shape = s.shapes[k];
+                if (kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f)).distance >= 0.0f) continue;
+                const StepBody& now = s.bodies[shape.body];
+                const BodyEndPose& then = was[shape.body];
+                x = now.centre + rotate(now.angle - then.angle, x - then.centre);
+                const kernels::FluidSurface out = kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f));
+                if (out.distance < 0.0f) x += glm::vec2(out.normal) * (kSkin - out.distance);
+                moved[chunk] += 1;
+            }
+            p.position[i] = x;
+        }
+    });
+    std::uint64_t total = 0;
+    for (std::uint64_t m : moved) total += m;
+    return total;
 }
 
 namespace {

@@ -7,6 +7,7 @@
 #pragma once
 
 #include "core/parallel.h"
+#include "fluid/body_joints.h"
 #include "kernels/fluid.glsl"
 
 #include <cstdint>
@@ -69,6 +70,9 @@ struct BodyImpact {
 
 struct FluidBodyStep {
     std::vector<StepBody> bodies;
+    // The joints between them, and their rows at the current substep.
+    std::vector<StepJoint> joints;
+    std::vector<JointRow> jointRows;
     std::vector<std::uint32_t> shapeBody;              // body of each candidate shape
     std::vector<const LocalShape*> shapeSource;        // its shape in the body frame
     std::vector<kernels::FluidBodyShape> shapes;       // world geometry at the current substep
@@ -90,16 +94,24 @@ struct FluidBodyStep {
     std::vector<std::vector<BodyImpact>> impacts;
 };
 
-/// Shapes at the bodies' current poses, binned into the substep's grid cells.
+/// Shapes at the bodies' current poses, binned into the substep's grid cells;
+/// the joints' rows at those poses.
 void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& grid, float dt);
 /// Contacts of every particle with the shapes of its grid cell; a particle
 /// touching a dynamic body is kept awake (FluidDef::sleepSpeed).
 void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const Grid<2>& grid,
                       float dt);
-/// One sweep over the contacts (after each sweep of the fluid constraints).
+/// One sweep over the contacts (after each sweep of the fluid constraints),
+/// then over the joints, which answer the contacts' push on the bodies.
 void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float dt);
 /// Moves the local poses on by dt with their velocities and updates the shapes.
 void advanceBodies(FluidBodyStep& s, float dt);
+/// After Box2D's step: a particle inside a body at the pose Box2D left it
+/// (`s`: the bodies of f.bodiesAtEnd at their new poses, with their shapes)
+/// moves with the body from where the fluid's copy ended (f.bodiesAtEnd),
+/// which puts it back on the side it was on; if that is still inside, out
+/// through the nearest surface. Returns how many moved.
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s);
 /// Ends a path x0 -> x1 that crosses an edge of a still shape (edges and
 /// chains have no inside to test) on x0's side of it, with no velocity v
 /// left toward it; then puts an end point that lies inside a body shape back

@@ -15,6 +15,13 @@
 
 namespace spindrift::fluid {
 struct FluidBodyStep;
+
+/// A body's pose as a fluid step's copy of it ended the step.
+struct BodyEndPose {
+    std::uint32_t slot = 0;   // index in the world's bodies
+    glm::vec2 centre{0.0f};   // m, centre of mass
+    float angle = 0.0f;       // rad
+};
 struct StepContext;
 }
 
@@ -268,6 +275,10 @@ struct FluidState {
     /// The rigid bodies near this 2D fluid during its step (body_contacts.h,
     /// filled by src/coupling); null outside stepFluid or when none are near.
     FluidBodyStep* bodies = nullptr;
+    /// Where the step's copies of the dynamic bodies ended it, by slot:
+    /// Box2D's step then moves the real ones, which the copies may not have
+    /// followed (carryOutOfMovedBodies).
+    std::vector<BodyEndPose> bodiesAtEnd;
     /// (particle id << 32 | body slot) of the last step's strikes, sorted: a
     /// drop that lands over two steps (the speculative contact slows it
     /// first) strikes once.

@@ -239,7 +239,11 @@ FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float 
             stepPasses<3>(w, f, h, stats);
         }
     }
+    f.bodiesAtEnd.clear();
     if (f.bodies != nullptr) {
+        for (const StepBody& b : f.bodies->bodies) {
+            if (b.invMass > 0.0f) f.bodiesAtEnd.push_back({b.slot, b.centre, b.angle});
+        }
         addImpactEvents(w, f, *f.bodies, id);
         w.bodies.exchange(*f.bodies);
         stats.bodyContacts = f.bodies->contactCount;

@@ -53,6 +53,14 @@ void stepFluids(World& w, float dt, StepStats& stats) {
     }
 }
 
+void settleFluids(World& w) {
+    if (!w.bodies) return;
+    coupling::FluidLink bodies(w.bodies.get());
+    for (const auto& f : w.fluids) {
+        if (fluid::FluidBodyStep* moved = bodies.gatherMoved(*f)) fluid::carryOutOfMovedBodies(w.pool, *f, *moved);
+    }
+}
+
 void validateFluidDef(const FluidDef& def) { fluid::validateFluidDef(def); }
 
 FluidId createFluid(WorldId id, const FluidDef& def) {

@@ -457,6 +457,12 @@ StepStats stepWorld(WorldId id, float dt) {
         const auto bodiesStart = std::chrono::steady_clock::now();
         stats.frozenBodies = coupling::stepBodies(*w.bodies, dt);
         stats.bodiesMs = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - bodiesStart).count();
+        // The fluids solved against copies of the bodies that see joints
+        // but not the bodies' contacts with each other or Box2D's position
+        // correction, so Box2D may leave a body where its copy did not go:
+        // a particle left inside moves with the body back to the side it
+        // was on.
+        settleFluids(w);
     }
 
     // 5. Fires: this step's strikes douse them; their emitters follow.

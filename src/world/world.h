@@ -77,5 +77,8 @@ const fluid::FluidState& fluidStateFromId(const World& world, FluidId fluid);
 /// Advances every fluid by dt; appends one FluidStepStats per fluid to `stats`
 /// (fluid_api.cpp).
 void stepFluids(World& world, float dt, StepStats& stats);
+/// After the bodies' step: particles Box2D's step left inside a body move
+/// with it (fluid::carryOutOfMovedBodies).
+void settleFluids(World& world);
 
 }  // namespace spindrift

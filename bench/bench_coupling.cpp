@@ -14,6 +14,15 @@
 // iteration. Counters: ms_per_step, body_contacts (particle-body contacts per
 // step, all substeps), bodies_ms (Box2D step per step), contacts_ms and
 // solve_ms (fluid passes, which include the body contacts), substeps.
+//
+// BM_Showcase: scenes/showcase.toml as `spindrift render` plays it (9 s of
+// 1/60 s steps, the scene's threads), the whole run once per iteration.
+// Counters: ms_per_step (world step, mean), fluid_ms_late (fluid step, mean
+// over t >= 5.3 s, where the pool behind the gate forms), substeps (mean) and
+// substeps_late, and last_fire_out_s (when the last fire went out; 0: one
+// still burns at the end).
+#include <spindrift/fires.h>
+#include <spindrift/scene.h>
 #include <spindrift/world.h>
 
 #include "bench_util.h"
@@ -116,6 +125,44 @@ BENCHMARK(BM_CoupledDamBreak)
     ->Args({200, 2})
     ->Iterations(kSteps)
     ->Unit(benchmark::kMillisecond);
+
+void BM_Showcase(benchmark::State& state) {
+    const SceneDef scene = loadScene(std::string(SPINDRIFT_SOURCE_DIR) + "/scenes/showcase.toml");
+    const auto steps = static_cast<int>(std::ceil(scene.render.seconds / scene.run.dt));
+    constexpr double kLateFrom = 5.3;  // s
+    double ms = 0.0, lateFluidMs = 0.0, substeps = 0.0, lateSubsteps = 0.0, lastOut = 0.0;
+    int late = 0;
+    for (auto _ : state) {
+        const WorldId w = buildWorld(scene);
+        ms = lateFluidMs = substeps = lateSubsteps = lastOut = 0.0;
+        late = 0;
+        for (int i = 0; i < steps; ++i) {
+            const StepStats s = stepWorld(w, scene.run.dt);
+            takeEvents(w);
+            ms += s.milliseconds;
+            const FluidStepStats& f = s.fluids.at(0);
+            const double fluidMs = f.gridMs + f.contactsMs + f.setupMs + f.solveMs + f.integrateMs;
+            substeps += f.substeps;
+            if (s.time >= kLateFrom) {
+                lateFluidMs += fluidMs;
+                lateSubsteps += f.substeps;
+                late += 1;
+            }
+            bool burning = false;
+            for (std::uint32_t fire = 1; fire <= fireCount(w); ++fire) burning |= fireStrength(w, FireId{fire}) > 0.0f;
+            if (burning) lastOut = 0.0;
+            else if (lastOut == 0.0) lastOut = s.time;
+        }
+        destroyWorld(w);
+    }
+    state.counters["ms_per_step"] = ms / steps;
+    state.counters["fluid_ms_late"] = lateFluidMs / std::max(late, 1);
+    state.counters["substeps"] = substeps / steps;
+    state.counters["substeps_late"] = lateSubsteps / std::max(late, 1);
+    state.counters["last_fire_out_s"] = lastOut;
+}
+
+BENCHMARK(BM_Showcase)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

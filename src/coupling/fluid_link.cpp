@@ -52,44 +52,38 @@ fluid::StepJoint stepJointOf(const JointSlot& slot, const fluid::FluidBodyStep& 
     fluid::StepJoint j;
     j.bodyA = a;
     j.bodyB = b;
-    const b2Joint& joint = *slot.joint;
-    auto anchors = [&](const b2Vec2& localA, const b2Vec2& localB, float reference) {
-        j.anchorA = toGlm(localA) - out.bodies[a].localCentre;
-        j.anchorB = toGlm(localB) - out.bodies[b].localCentre;
-        j.referenceAngle = reference;
+    // Box2D's revolute, prismatic and weld joints spell these alike.
+    auto anchors = [&](const auto& joint, fluid::StepJointKind kind) {
+        j.kind = kind;
+        j.anchorA = toGlm(joint.GetLocalAnchorA()) - out.bodies[a].localCentre;
+        j.anchorB = toGlm(joint.GetLocalAnchorB()) - out.bodies[b].localCentre;
+        j.referenceAngle = joint.GetReferenceAngle();
+    };
+    auto limitAndMotor = [&](const auto& joint, float maxMotor) {
+        j.limit = joint.IsLimitEnabled();
+        j.lower = joint.GetLowerLimit();
+        j.upper = joint.GetUpperLimit();
+        j.motor = joint.IsMotorEnabled();
+        j.motorSpeed = joint.GetMotorSpeed();
+        j.maxMotor = maxMotor;
     };
     switch (slot.def.kind) {
     case JointKind::Revolute: {
-        const auto& r = static_cast<const b2RevoluteJoint&>(joint);
-        j.kind = fluid::StepJointKind::Revolute;
-        anchors(r.GetLocalAnchorA(), r.GetLocalAnchorB(), r.GetReferenceAngle());
-        j.limit = r.IsLimitEnabled();
-        j.lower = r.GetLowerLimit();
-        j.upper = r.GetUpperLimit();
-        j.motor = r.IsMotorEnabled();
-        j.motorSpeed = r.GetMotorSpeed();
-        j.maxMotor = r.GetMaxMotorTorque();
+        const auto& r = static_cast<const b2RevoluteJoint&>(*slot.joint);
+        anchors(r, fluid::StepJointKind::Revolute);
+        limitAndMotor(r, r.GetMaxMotorTorque());
         break;
     }
     case JointKind::Prismatic: {
-        const auto& p = static_cast<const b2PrismaticJoint&>(joint);
-        j.kind = fluid::StepJointKind::Prismatic;
-        anchors(p.GetLocalAnchorA(), p.GetLocalAnchorB(), p.GetReferenceAngle());
+        const auto& p = static_cast<const b2PrismaticJoint&>(*slot.joint);
+        anchors(p, fluid::StepJointKind::Prismatic);
         j.axisA = toGlm(p.GetLocalAxisA());
-        j.limit = p.IsLimitEnabled();
-        j.lower = p.GetLowerLimit();
-        j.upper = p.GetUpperLimit();
-        j.motor = p.IsMotorEnabled();
-        j.motorSpeed = p.GetMotorSpeed();
-        j.maxMotor = p.GetMaxMotorForce();
+        limitAndMotor(p, p.GetMaxMotorForce());
         break;
     }
-    case JointKind::Weld: {
-        const auto& w = static_cast<const b2WeldJoint&>(joint);
-        j.kind = fluid::StepJointKind::Weld;
-        anchors(w.GetLocalAnchorA(), w.GetLocalAnchorB(), w.GetReferenceAngle());
+    case JointKind::Weld:
+        anchors(static_cast<const b2WeldJoint&>(*slot.joint), fluid::StepJointKind::Weld);
         break;
-    }
     }
     return j;
 }

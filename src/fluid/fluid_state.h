@@ -330,6 +330,11 @@ float jetAimAngle(const std::vector<FluidJetAimKey>& aim, float t);
 /// returns how many.
 std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>& mounts);
 
+/// Where buildGrid puts the grid for particles at `x` (m) with sub-cells `h`
+/// m wide: sets g.h, g.origin and g.cells (uses g.scratchFloat), nothing
+/// else. The device's grid (src/gpu/gpu_fluid_grid.h) takes its place from here.
+template <int D> void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, float h, Grid<D>& g);
+
 // The passes of one step, in order (fluid_step.cpp).
 template <int D> void buildGrid(WorkerPool& pool, FluidState& f);
 template <int D> void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats& stats);

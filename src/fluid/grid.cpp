@@ -62,26 +62,45 @@ float cappedOrigin(const std::vector<Vec<D>>& x, int a, const Bounds<D>& box, fl
     return std::max(box.lo[a], std::min(*middle - 0.5f * width, box.hi[a] - width));  // hi - width may be below lo
 }
 
+/// x in 3D, for the kernels (z 0 in 2D).
+template <int D>
+glm::vec3 toVec3(Vec<D> x) {
+    if constexpr (D == 2) {
+        return glm::vec3(x, 0.0f);
+    } else {
+        return x;
+    }
+}
+
 }  // namespace
 
-/// Sub-cell coordinate of x along one axis, clamped into the grid.
-inline int subCell(float x, float origin, float invH, int subCells) {
-    float s = std::floor((x - origin) * invH);
-    return static_cast<int>(std::clamp(s, 0.0f, static_cast<float>(subCells - 1)));
+/// The key of grid.cpp's sort (cell * 2^D + quadrant): kernels::fluidGridKey,
+/// which the device's grid (src/gpu/gpu_fluid_grid.cpp) computes too.
+template <int D>
+std::uint32_t keyOf(const Grid<D>& g, Vec<D> x, float invH) {
+    return kernels::fluidGridKey(toVec3<D>(x), D, toVec3<D>(g.origin), invH,
+                                 glm::ivec3(g.cells[0], g.cells[1], g.cells[2]));
 }
 
 template <int D>
-std::uint32_t keyOf(const Grid<D>& g, Vec<D> x, float invH) {
-    std::uint32_t cell = 0;
-    std::uint32_t quadrant = 0;
-    std::uint32_t stride = 1;
-    for (int a = 0; a < D; ++a) {
-        int s = subCell(x[a], g.origin[a], invH, 2 * g.cells[a]);
-        cell += static_cast<std::uint32_t>(s >> 1) * stride;
-        quadrant |= static_cast<std::uint32_t>(s & 1) << a;
-        stride *= static_cast<std::uint32_t>(g.cells[a]);
+void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, float h, Grid<D>& g) {
+    const std::size_t n = x.size();
+    // The grid covers the particles' box, capped at the cell budget.
+    Bounds<D> box = particleBounds<D>(pool, x);
+    if (n == 0) {
+        box.lo = box.hi = Vec<D>(0.0f);
     }
-    return cell * (1u << D) + quadrant;
+    g.h = h;
+    g.origin = box.lo;
+    const double budget = static_cast<double>(cellBudget(n));
+    const int axisCap = std::max(2, static_cast<int>(std::pow(budget, 1.0 / D)));
+    g.cells = {1, 1, 1};
+    for (int a = 0; a < D; ++a) {
+        const double span = static_cast<double>(box.hi[a]) - static_cast<double>(box.lo[a]);
+        const double needed = span / (2.0 * h) + 1.0;
+        g.cells[a] = static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(axisCap)));
+        if (needed > axisCap) g.origin[a] = cappedOrigin(x, a, box, axisCap * 2.0f * h, g.scratchFloat);
+    }
 }
 
 template <int D>
@@ -91,24 +110,7 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
     const std::size_t n = p.size();
     constexpr std::uint32_t kQuadrants = 1u << D;
 
-    // Bounds: the grid covers the particles' box, capped at the cell budget.
-    {
-        Bounds<D> box = particleBounds<D>(pool, p.position);
-        if (n == 0) {
-            box.lo = box.hi = Vec<D>(0.0f);
-        }
-        g.h = f.h;
-        g.origin = box.lo;
-        const double budget = static_cast<double>(cellBudget(n));
-        const int axisCap = std::max(2, static_cast<int>(std::pow(budget, 1.0 / D)));
-        g.cells = {1, 1, 1};
-        for (int a = 0; a < D; ++a) {
-            const double span = static_cast<double>(box.hi[a]) - static_cast<double>(box.lo[a]);
-            const double needed = span / (2.0 * f.h) + 1.0;
-            g.cells[a] = static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(axisCap)));
-            if (needed > axisCap) g.origin[a] = cappedOrigin(p.position, a, box, axisCap * 2.0f * f.h, g.scratchFloat);
-        }
-    }
+    placeGrid<D>(pool, p.position, f.h, g);
 
     // Keys: cell and quadrant of every particle.
     const float invH = 1.0f / g.h;
@@ -182,6 +184,8 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
     }
 }
 
+template void placeGrid<2>(WorkerPool&, const std::vector<Vec<2>>&, float, Grid<2>&);
+template void placeGrid<3>(WorkerPool&, const std::vector<Vec<3>>&, float, Grid<3>&);
 template void buildGrid<2>(WorkerPool&, FluidState&);
 template void buildGrid<3>(WorkerPool&, FluidState&);
 

@@ -99,14 +99,16 @@ void reserve(GpuSort& s, std::uint32_t count) {
 }
 
 // Points both sets at the input and the scratch; set p reads pair p and
-// writes pair 1 - p.
-void writeSets(GpuSort& s, const SortInput& in) {
-    const Buffer* ages = in.ages != nullptr ? in.ages : in.positions;  // not read without FLAG_AGES
+// writes pair 1 - p. `ages` may be null (not read without FLAG_AGES).
+void writeSets(GpuSort& s, const Buffer* positions, const Buffer* ages) {
+    if (ages == nullptr) {
+        ages = positions;
+    }
     std::array<VkDescriptorBufferInfo, 2 * kBindings> infos{};
     std::array<VkWriteDescriptorSet, 2 * kBindings> writes{};
     for (std::uint32_t p = 0; p < 2; ++p) {
         std::array<const Buffer*, kBindings> buffers{};
-        buffers[kernels::SD_SORT_BINDING_POSITIONS] = in.positions;
+        buffers[kernels::SD_SORT_BINDING_POSITIONS] = positions;
         buffers[kernels::SD_SORT_BINDING_AGES] = ages;
         buffers[kernels::SD_SORT_BINDING_KEYS] = &s.keys[p];
         buffers[kernels::SD_SORT_BINDING_VALUES] = &s.values[p];
@@ -134,6 +136,20 @@ void dispatch(const GpuSort& s, VkCommandBuffer cmd, VkPipeline pipeline, int se
     vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, s.pipelineLayout, 0, 1, &s.sets[set], 0, nullptr);
     vkCmdPushConstants(cmd, s.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
     vkCmdDispatch(cmd, groups, 1, 1);
+}
+
+// Radix passes (one per digit) that sort `count` keys by their low `keyBits` bits.
+std::uint32_t radixPasses(std::uint32_t count, std::uint32_t keyBits) {
+    return count == 0 ? 0u : (keyBits + kernels::SD_SORT_DIGIT_BITS - 1) / kernels::SD_SORT_DIGIT_BITS;
+}
+
+void requireTiles(const GpuSort& s, std::uint32_t n) {
+    const std::uint32_t tiles = tilesFor(n);
+    const std::uint32_t maxGroups = s.device->properties.limits.maxComputeWorkGroupCount[0];
+    if (tiles > maxGroups) {
+        throw Error(fmt::format("gpu sort: {} keys need {} workgroups of {}; this device dispatches at most {}", n,
+                                tiles, kernels::SD_SORT_TILE, maxGroups));
+    }
 }
 
 void requireBytes(const Buffer* b, VkDeviceSize bytes, const char* what) {
@@ -189,17 +205,13 @@ std::unique_ptr<GpuSort> createGpuSort(Device& d) {
 void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& in) {
     const std::uint32_t n = in.count;
     const std::uint32_t tiles = tilesFor(n);
-    const std::uint32_t maxGroups = s.device->properties.limits.maxComputeWorkGroupCount[0];
-    if (tiles > maxGroups) {
-        throw Error(fmt::format("gpu sort: {} keys need {} workgroups of {}; this device dispatches at most {}", n,
-                                tiles, kernels::SD_SORT_TILE, maxGroups));
-    }
+    requireTiles(s, n);
     requireBytes(in.positions, VkDeviceSize{n} * 12, "positions");
     if (in.ages != nullptr) {
         requireBytes(in.ages, VkDeviceSize{n} * 4, "ages");
     }
     reserve(s, n);
-    writeSets(s, in);
+    writeSets(s, in.positions, in.ages);
 
     // The positions' writers (an update pass, an upload) before the keys pass;
     // the header is zeroed by a transfer, then counted into by the keys pass.
@@ -215,22 +227,40 @@ void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& in)
         SortPush push{glm::vec4(in.eye, 0.0f), glm::vec4(in.forward, 0.0f), n, tiles, 0,
                       in.ages != nullptr ? kFlagAges : 0u};
         dispatch(s, cmd, s.keysPipeline, 0, push, tiles);
-        for (std::uint32_t pass = 0; pass < kernels::SD_SORT_PASSES; ++pass) {
-            const int set = static_cast<int>(pass % 2);
-            push.shift = pass * kernels::SD_SORT_DIGIT_BITS;
-            computeToCompute(cmd);
-            dispatch(s, cmd, s.countPipeline, set, push, tiles);
-            computeToCompute(cmd);
-            dispatch(s, cmd, s.scanPipeline, set, push, 1);
-            computeToCompute(cmd);
-            dispatch(s, cmd, s.scatterPipeline, set, push, tiles);
-        }
+        // Every bit of the 32-bit keys; an even number of passes leaves the
+        // result in pair 0 (sortedIndices).
+        recordRadixPasses(s, cmd, n, kernels::SD_SORT_PASSES * kernels::SD_SORT_DIGIT_BITS);
     }
     // The order and the live count for whoever reads them next: a compute pass
     // (the renderer's, or an indirect dispatch) or a copy.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
             VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT | VK_PIPELINE_STAGE_DRAW_INDIRECT_BIT,
             VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT | VK_ACCESS_INDIRECT_COMMAND_READ_BIT);
+}
+
+void bindRadixSort(GpuSort& s, std::uint32_t count, const Buffer& input) {
+    requireTiles(s, count);
+    reserve(s, count);
+    writeSets(s, &input, nullptr);
+}
+
+int radixResultPair(std::uint32_t count, std::uint32_t keyBits) {
+    return static_cast<int>(radixPasses(count, keyBits) % 2);
+}
+
+void recordRadixPasses(GpuSort& s, VkCommandBuffer cmd, std::uint32_t count, std::uint32_t keyBits) {
+    const std::uint32_t passes = radixPasses(count, keyBits);
+    SortPush push{glm::vec4(0.0f), glm::vec4(0.0f), count, tilesFor(count), 0, 0u};
+    for (std::uint32_t pass = 0; pass < passes; ++pass) {
+        const int set = static_cast<int>(pass % 2);
+        push.shift = pass * kernels::SD_SORT_DIGIT_BITS;
+        computeToCompute(cmd);
+        dispatch(s, cmd, s.countPipeline, set, push, push.tiles);
+        computeToCompute(cmd);
+        dispatch(s, cmd, s.scanPipeline, set, push, 1);
+        computeToCompute(cmd);
+        dispatch(s, cmd, s.scatterPipeline, set, push, push.tiles);
+    }
 }
 
 const Buffer& sortedIndices(const GpuSort& s) { return s.values[0]; }

@@ -79,6 +79,23 @@ struct SortInput {
 /// Error for a count above what one dispatch can tile or buffers too small.
 void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& input);
 
+/// The radix passes alone, for (key, value) pairs another pass writes (the
+/// fluid's grid, src/gpu/gpu_fluid_grid.cpp): grows the scratch to `count`
+/// pairs and binds `input` where the keys pass would read positions and ages
+/// (the radix passes read neither). The caller's pass then writes keys[0] and
+/// values[0]. Same rules as recordSortBackToFront: no other sort of `s` may
+/// be pending. Throws Error for a count above what one dispatch can tile.
+void bindRadixSort(GpuSort& s, std::uint32_t count, const Buffer& input);
+/// Records the stable LSD radix passes (count, scan, scatter per 4-bit digit)
+/// over the low `keyBits` bits of the `count` pairs in keys[0], values[0]
+/// (keys must be below 2^keyBits); waits for earlier compute writes. The
+/// sorted pairs are then in pair radixResultPair(count, keyBits). Used by
+/// recordSortBackToFront with every bit.
+void recordRadixPasses(GpuSort& s, VkCommandBuffer cmd, std::uint32_t count, std::uint32_t keyBits);
+/// The pair (0 or 1) recordRadixPasses leaves its result in: one pass per
+/// digit, each writing the other pair.
+int radixResultPair(std::uint32_t count, std::uint32_t keyBits);
+
 /// The sorted indices (uint32, valid for the last recorded count).
 const Buffer& sortedIndices(const GpuSort& s);
 /// The live count (one uint32 at offset 0).

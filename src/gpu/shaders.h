@@ -19,6 +19,8 @@ extern const std::uint32_t kEffectsUpdatePassSubEmit[];
 extern const std::size_t kEffectsUpdatePassSubEmitWords;
 extern const std::uint32_t kBackToFrontSort[];
 extern const std::size_t kBackToFrontSortWords;
+extern const std::uint32_t kFluidGrid[];
+extern const std::size_t kFluidGridWords;
 // The renderer (src/render/shaders/).
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;

@@ -28,6 +28,43 @@
 #include "types.glsl"
 SD_BEGIN
 
+// --- Grid keys (slide 46) ---------------------------------------------------------
+// The uniform grid of src/fluid/grid.cpp and src/gpu/gpu_fluid_grid.cpp: cells
+// 2h wide, each split into 2^D sub-cells h wide; a particle's key is cell *
+// 2^D + quadrant, so a sort by key makes every sub-cell one contiguous range.
+// Both backends sort by this key and must agree bit for bit, so it is written
+// once. Every operation is `precise`: (x - origin) * invH then floor is what
+// the CPU computes (it does not fuse, -ffp-contract=off), and no compiler may
+// rewrite it (as x * invH - origin * invH, say), or a particle on a sub-cell
+// boundary lands in the other sub-cell.
+
+// Sub-cell coordinate of x along one axis (origin in m, invH in 1/m), clamped
+// into [0, subCells - 1]: a particle outside the (capped) grid goes to its
+// edge sub-cell. Clamped as floats before the conversion, so a coordinate
+// far beyond the int range still converts exactly.
+SD_FN int fluidSubCell(float x, float origin, float invH, int subCells) {
+    SD_PRECISE float s = floor((x - origin) * invH);
+    SD_PRECISE float clamped = clamp(s, 0.0f, float(subCells - 1));
+    return int(clamped);
+}
+
+// Key of the particle at x (m; z unused when dimension is 2) in the grid of
+// `cells` cells per axis (z 1 in 2D) whose sub-cell 0 has its corner at origin
+// (m); invH = 1 / h (1/m). Cells are numbered x fastest; the quadrant's bit a
+// is the sub-cell's parity along axis a.
+SD_FN uint fluidGridKey(vec3 x, uint dimension, vec3 origin, float invH, ivec3 cells) {
+    uint cell = 0u;
+    uint quadrant = 0u;
+    uint stride = 1u;
+    for (uint a = 0u; a < dimension; ++a) {
+        int s = fluidSubCell(x[a], origin[a], invH, 2 * cells[a]);
+        cell += uint(s >> 1) * stride;
+        quadrant |= uint(s & 1) << a;
+        stride *= uint(cells[a]);
+    }
+    return cell * (1u << dimension) + quadrant;
+}
+
 // Kernel of slide 35: w = (1 - d^2)^3, d = distance / h; 0 at and beyond h.
 // Takes the squared distance so the caller needs no square root to reject.
 SD_FN float fluidWeight(float distanceSquared, float invHSquared) {

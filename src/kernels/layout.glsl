@@ -190,6 +190,30 @@ struct SortPush {
     uint flags;    // SD_SORT_FLAG_*
 };
 
+// The constraint fluid's grid on the device (src/gpu/shaders/fluid_grid.comp,
+// src/gpu/gpu_fluid_grid.cpp): keys by fluid.glsl's fluidGridKey, sorted by
+// the back-to-front sort's radix passes, then where each key's particles start.
+SD_CONST uint SD_FLUID_GRID_PASS_KEYS = 0u;    // the PASS specialization constant (id 0)
+SD_CONST uint SD_FLUID_GRID_PASS_STARTS = 1u;
+SD_CONST uint SD_FLUID_GRID_WORKGROUP = 64u;
+// Set 0 bindings, in order.
+SD_CONST uint SD_FLUID_GRID_BINDING_POSITIONS = 0u;    // float[dimension n], tightly packed (m), as the CPU's arrays
+SD_CONST uint SD_FLUID_GRID_BINDING_KEYS = 1u;         // uint[n]: the keys pass's keys (the radix sort's first pair)
+SD_CONST uint SD_FLUID_GRID_BINDING_VALUES = 2u;       // uint[n]: particle indices
+SD_CONST uint SD_FLUID_GRID_BINDING_SORTED_KEYS = 3u;  // uint[n]: the keys in grid order (the pair the sort ended in)
+SD_CONST uint SD_FLUID_GRID_BINDING_KEY_START = 4u;    // uint[keyTotal + 1]
+SD_CONST uint SD_FLUID_GRID_BINDINGS = 5u;
+
+// The grid passes' push constants (std430: a vec4, an ivec4, four uints). 48 bytes.
+struct FluidGridPush {
+    vec4 origin;     // xyz corner of sub-cell 0 (m; z 0 in 2D), w = 1 / h (1/m)
+    ivec4 cells;     // xyz cells 2h wide per axis (z 1 in 2D), w unused
+    uint count;      // particles
+    uint dimension;  // 2 or 3
+    uint keyTotal;   // cells x 2^dimension
+    uint pad0;
+};
+
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
 // 592 bytes.
@@ -354,6 +378,10 @@ static_assert(offsetof(StepPush, trailHead) == 20);
 static_assert(offsetof(StepPush, emitterIndex) == 8);
 static_assert(offsetof(StepPush, time) == 12);
 static_assert(sizeof(SortPush) == 48);
+static_assert(sizeof(FluidGridPush) == 48);
+static_assert(offsetof(FluidGridPush, cells) == 16);
+static_assert(offsetof(FluidGridPush, count) == 32);
+static_assert(offsetof(FluidGridPush, keyTotal) == 40);
 static_assert(offsetof(SortPush, count) == 32);
 static_assert(sizeof(SpriteDraw) == 48);
 static_assert(offsetof(SpriteDraw, softDistance) == 36);

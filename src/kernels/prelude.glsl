@@ -19,6 +19,12 @@
 #include <bit>
 #include <cstdint>
 
+// SD_PRECISE marks a GLSL variable `precise` (GLSL 4.00, section 4.7): no
+// contraction of a * b + c into a fused multiply-add, and no other rewriting
+// of the operations that compute it. The CPU build does not fuse
+// (-ffp-contract=off), so a value both backends must agree on bit for bit
+// (sort keys, grid keys) is computed as written on both.
+#define SD_PRECISE
 #define SD_BEGIN                        \
     namespace spindrift::kernels {      \
     using namespace glm;                \
@@ -33,6 +39,7 @@
 #define SD_LET(T) const T&
 #define SD_CONST inline constexpr
 #else
+#define SD_PRECISE precise
 #define SD_BEGIN
 #define SD_END
 #define SD_FN

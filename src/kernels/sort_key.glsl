@@ -12,15 +12,8 @@
 #define SPINDRIFT_KERNELS_SORT_KEY
 #include "prelude.glsl"
 
-// `precise` (GLSL 4.00, section 4.7) forbids contracting a * b + c into a
-// fused multiply-add: the CPU build does not fuse (-ffp-contract=off), so
-// the GPU must not either, or depths differ in the last bit and so may orders.
-#ifdef __cplusplus
-#define SD_PRECISE
-#else
-#define SD_PRECISE precise
-#endif
-
+// SD_PRECISE (prelude.glsl) on the depth: the CPU build does not fuse, so
+// neither may the GPU, or depths differ in the last bit and so may orders.
 SD_BEGIN
 
 // View depth of p: dot(p - eye, forward), with forward already unit length

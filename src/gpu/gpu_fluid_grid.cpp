@@ -1,0 +1,237 @@
+// The constraint fluid's grid on the device: pipelines, scratch and the
+// recorded passes of fluid_grid.comp around the back-to-front sort's radix
+// passes (gpu_sort.cpp).
+#include "gpu/gpu_fluid_grid.h"
+
+#include "fluid/fluid_state.h"
+#include "gpu/shaders.h"
+#include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
+
+#include <spindrift/errors.h>
+
+#include <fmt/format.h>
+
+#include <array>
+#include <bit>
+#include <span>
+#include <utility>
+
+namespace spindrift::gpu {
+namespace {
+
+// Bindings, passes and push constants of fluid_grid.comp: src/kernels/layout.glsl.
+constexpr std::uint32_t kBindings = kernels::SD_FLUID_GRID_BINDINGS;
+constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_GRID_WORKGROUP;
+using kernels::FluidGridPush;
+
+void createLayouts(GpuFluidGrid& g) {
+    Device& d = *g.device;
+    std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
+    for (std::uint32_t i = 0; i < kBindings; ++i) {
+        bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    }
+    auto setInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    setInfo.bindingCount = kBindings;
+    setInfo.pBindings = bindings.data();
+    check(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &g.setLayout),
+          "vkCreateDescriptorSetLayout(fluid grid)");
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FluidGridPush)};
+    auto layoutInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &g.setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    check(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &g.pipelineLayout),
+          "vkCreatePipelineLayout(fluid grid)");
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings};
+    auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    poolInfo.maxSets = 1;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &g.pool), "vkCreateDescriptorPool(fluid grid)");
+    auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    alloc.descriptorPool = g.pool;
+    alloc.descriptorSetCount = 1;
+    alloc.pSetLayouts = &g.setLayout;
+    check(vkAllocateDescriptorSets(d.device, &alloc, &g.set), "vkAllocateDescriptorSets(fluid grid)");
+}
+
+// keyStart for `entries` entries. Only between submissions: the old buffer
+// must be idle.
+void reserveKeyStart(GpuFluidGrid& g, std::uint32_t entries) {
+    if (entries <= g.keyStartCapacity) {
+        return;
+    }
+    destroyBuffer(*g.device, g.keyStart);
+    g.keyStartCapacity = 0;
+    g.keyStart = createStorageBuffer(*g.device, VkDeviceSize{entries} * 4);
+    g.keyStartCapacity = entries;
+}
+
+void writeSet(GpuFluidGrid& g, const Buffer& positions) {
+    std::array<const Buffer*, kBindings> buffers{};
+    buffers[kernels::SD_FLUID_GRID_BINDING_POSITIONS] = &positions;
+    buffers[kernels::SD_FLUID_GRID_BINDING_KEYS] = &g.sort->keys[0];
+    buffers[kernels::SD_FLUID_GRID_BINDING_VALUES] = &g.sort->values[0];
+    buffers[kernels::SD_FLUID_GRID_BINDING_SORTED_KEYS] = &g.sort->keys[g.sortedPair];
+    buffers[kernels::SD_FLUID_GRID_BINDING_KEY_START] = &g.keyStart;
+    std::array<VkDescriptorBufferInfo, kBindings> infos{};
+    std::array<VkWriteDescriptorSet, kBindings> writes{};
+    for (std::uint32_t i = 0; i < kBindings; ++i) {
+        infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+        writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        writes[i].dstSet = g.set;
+        writes[i].dstBinding = i;
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(g.device->device, kBindings, writes.data(), 0, nullptr);
+}
+
+void dispatch(const GpuFluidGrid& g, VkCommandBuffer cmd, VkPipeline pipeline, const FluidGridPush& push,
+              std::uint32_t groups) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout, 0, 1, &g.set, 0, nullptr);
+    vkCmdPushConstants(cmd, g.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
+    vkCmdDispatch(cmd, groups, 1, 1);
+}
+
+// Workgroups for `items` invocations; throws beyond what one dispatch can hold.
+std::uint32_t groupsFor(const GpuFluidGrid& g, std::uint64_t items, const char* what) {
+    const std::uint64_t groups = (items + kWorkgroup - 1) / kWorkgroup;
+    const std::uint32_t maxGroups = g.device->properties.limits.maxComputeWorkGroupCount[0];
+    if (groups > maxGroups) {
+        throw Error(fmt::format("gpu fluid grid: {} {} need {} workgroups of {}; this device dispatches at most {}",
+                                items, what, groups, kWorkgroup, maxGroups));
+    }
+    return static_cast<std::uint32_t>(groups);
+}
+
+template <int D>
+FluidGridParams paramsOf(const fluid::Grid<D>& g) {
+    FluidGridParams p;
+    p.dimension = D;
+    for (int a = 0; a < D; ++a) {
+        p.origin[a] = g.origin[a];
+    }
+    p.invH = 1.0f / g.h;
+    p.cells = glm::ivec3(g.cells[0], g.cells[1], g.cells[2]);
+    return p;
+}
+
+}  // namespace
+
+FluidGridParams fluidGridParams(const fluid::Grid<2>& g) { return paramsOf<2>(g); }
+FluidGridParams fluidGridParams(const fluid::Grid<3>& g) { return paramsOf<3>(g); }
+
+GpuFluidGrid::~GpuFluidGrid() {
+    if (device == nullptr || device->device == VK_NULL_HANDLE) {
+        return;
+    }
+    Device& d = *device;
+    destroyBuffer(d, keyStart);
+    if (pool != VK_NULL_HANDLE) {
+        vkDestroyDescriptorPool(d.device, pool, nullptr);  // frees its set
+    }
+    for (VkPipeline p : {startsPipeline, keysPipeline}) {
+        if (p != VK_NULL_HANDLE) {
+            vkDestroyPipeline(d.device, p, nullptr);
+        }
+    }
+    if (pipelineLayout != VK_NULL_HANDLE) {
+        vkDestroyPipelineLayout(d.device, pipelineLayout, nullptr);
+    }
+    if (setLayout != VK_NULL_HANDLE) {
+        vkDestroyDescriptorSetLayout(d.device, setLayout, nullptr);
+    }
+}
+
+std::unique_ptr<GpuFluidGrid> createGpuFluidGrid(Device& d) {
+    auto g = std::make_unique<GpuFluidGrid>();  // destroys what was made if a step throws
+    g->device = &d;
+    g->sort = createGpuSort(d);
+    createLayouts(*g);
+    for (auto [pipeline, pass] : {std::pair{&g->keysPipeline, kernels::SD_FLUID_GRID_PASS_KEYS},
+                                  std::pair{&g->startsPipeline, kernels::SD_FLUID_GRID_PASS_STARTS}}) {
+        const std::array<std::uint32_t, 1> constants{pass};
+        *pipeline = createComputePipeline(d, g->pipelineLayout, std::span(shaders::kFluidGrid, shaders::kFluidGridWords),
+                                          constants, "fluid_grid");
+    }
+    reserveKeyStart(*g, 1);
+    return g;
+}
+
+void recordFluidGrid(VkCommandBuffer cmd, GpuFluidGrid& g, const Buffer& positions, std::uint32_t count,
+                     const FluidGridParams& params) {
+    const std::uint32_t dimension = params.dimension;
+    if (dimension != 2 && dimension != 3) {
+        throw Error(fmt::format("gpu fluid grid: dimension {} (2 or 3)", dimension));
+    }
+    std::uint64_t keyTotal = std::uint64_t{1} << dimension;  // quadrants per cell
+    for (std::uint32_t a = 0; a < 3; ++a) {
+        if (params.cells[a] < 1 || (a == 2 && dimension == 2 && params.cells[a] != 1)) {
+            throw Error(fmt::format("gpu fluid grid: {} cells along axis {}", params.cells[a], a));
+        }
+        keyTotal *= static_cast<std::uint64_t>(params.cells[a]);
+        if (keyTotal >= 0xFFFFFFFFu) {  // keyStart's keyTotal + 1 entries are counted in a uint
+            throw Error("gpu fluid grid: too many cells for 32-bit keys");
+        }
+    }
+    const VkDeviceSize bytes = VkDeviceSize{count} * dimension * 4;
+    if (positions.buffer == VK_NULL_HANDLE || positions.size < bytes) {
+        throw Error(fmt::format("gpu fluid grid: the positions buffer holds {} bytes, {} needed", positions.size, bytes));
+    }
+    const std::uint32_t keyGroups = groupsFor(g, count, "particles");
+    const std::uint32_t startGroups = groupsFor(g, keyTotal + 1, "keys");
+    // Keys are below keyTotal: the radix passes need only the bits of keyTotal - 1.
+    const auto keyBits = static_cast<std::uint32_t>(std::bit_width(keyTotal - 1));
+
+    bindRadixSort(*g.sort, count, positions);
+    reserveKeyStart(g, static_cast<std::uint32_t>(keyTotal + 1));
+    g.count = count;
+    g.keyTotal = static_cast<std::uint32_t>(keyTotal);
+    // The set is written before the passes are recorded (it may not change
+    // once bound), so it names the pair they will leave the order in.
+    g.sortedPair = radixResultPair(count, keyBits);
+    writeSet(g, positions);
+
+    FluidGridPush push{glm::vec4(params.origin, params.invH), glm::ivec4(params.cells, 0), count, dimension,
+                       g.keyTotal, 0u};
+    // The positions' writers (a step's pass, an upload) before the keys pass.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    if (count > 0) {
+        dispatch(g, cmd, g.keysPipeline, push, keyGroups);
+    }
+    recordRadixPasses(*g.sort, cmd, count, keyBits);  // waits for the keys
+    computeToCompute(cmd);
+    dispatch(g, cmd, g.startsPipeline, push, startGroups);
+    // The order and keyStart for whoever reads them next: a compute pass or a copy.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+const Buffer& gridOrder(const GpuFluidGrid& g) { return g.sort->values[g.sortedPair]; }
+const Buffer& gridKeyStart(const GpuFluidGrid& g) { return g.keyStart; }
+
+std::vector<std::uint32_t> readGridOrder(GpuFluidGrid& g) {
+    std::vector<std::uint32_t> order(g.count);
+    if (g.count > 0) {
+        Transfer t{&g.sort->values[g.sortedPair], order.data(), VkDeviceSize{g.count} * 4};
+        download(*g.device, std::span(&t, 1));
+    }
+    return order;
+}
+
+std::vector<std::uint32_t> readGridKeyStart(GpuFluidGrid& g) {
+    std::vector<std::uint32_t> starts(std::size_t{g.keyTotal} + 1);
+    Transfer t{&g.keyStart, starts.data(), VkDeviceSize{starts.size()} * 4};
+    download(*g.device, std::span(&t, 1));
+    return starts;
+}
+
+}  // namespace spindrift::gpu

@@ -16,10 +16,11 @@
 // solve_ms (fluid passes, which include the body contacts), substeps.
 //
 // BM_Showcase: scenes/showcase.toml as `spindrift render` plays it (9 s of
-// 1/60 s steps, the scene's threads), the whole run once per iteration.
+// 1/60 s steps) on 1 and 2 threads, the whole run once per iteration.
 // Counters: ms_per_step (world step, mean), fluid_ms_late (fluid step, mean
-// over t >= 5.3 s, where the pool behind the gate forms), substeps (mean) and
-// substeps_late, and last_fire_out_s (when the last fire went out; 0: one
+// over t >= 5.3 s, where the pool behind the gate forms; its passes
+// grid_ms_late, integrate_ms_late, contacts_ms_late, setup_ms_late and solve_ms_late, and particles_late),
+// substeps (mean) and substeps_late, and last_fire_out_s (when the last fire went out; 0: one
 // still burns at the end).
 #include <spindrift/fires.h>
 #include <spindrift/scene.h>
@@ -127,14 +128,18 @@ BENCHMARK(BM_CoupledDamBreak)
     ->Unit(benchmark::kMillisecond);
 
 void BM_Showcase(benchmark::State& state) {
-    const SceneDef scene = loadScene(std::string(SPINDRIFT_SOURCE_DIR) + "/scenes/showcase.toml");
+    SceneDef scene = loadScene(std::string(SPINDRIFT_SOURCE_DIR) + "/scenes/showcase.toml");
+    scene.world.threads = static_cast<std::uint32_t>(state.range(0));
     const auto steps = static_cast<int>(std::ceil(scene.render.seconds / scene.run.dt));
     constexpr double kLateFrom = 5.3;  // s
     double ms = 0.0, lateFluidMs = 0.0, substeps = 0.0, lateSubsteps = 0.0, lastOut = 0.0;
+    double lateContactsMs = 0.0, lateSetupMs = 0.0, lateSolveMs = 0.0, lateParticles = 0.0;
+    double lateGridMs = 0.0, lateIntegrateMs = 0.0;
     int late = 0;
     for (auto _ : state) {
         const WorldId w = buildWorld(scene);
         ms = lateFluidMs = substeps = lateSubsteps = lastOut = 0.0;
+        lateContactsMs = lateSetupMs = lateSolveMs = lateParticles = lateGridMs = lateIntegrateMs = 0.0;
         late = 0;
         for (int i = 0; i < steps; ++i) {
             const StepStats s = stepWorld(w, scene.run.dt);
@@ -145,6 +150,12 @@ void BM_Showcase(benchmark::State& state) {
             substeps += f.substeps;
             if (s.time >= kLateFrom) {
                 lateFluidMs += fluidMs;
+                lateGridMs += f.gridMs;
+                lateIntegrateMs += f.integrateMs;
+                lateContactsMs += f.contactsMs;
+                lateSetupMs += f.setupMs;
+                lateSolveMs += f.solveMs;
+                lateParticles += static_cast<double>(f.particles);
                 lateSubsteps += f.substeps;
                 late += 1;
             }
@@ -157,12 +168,18 @@ void BM_Showcase(benchmark::State& state) {
     }
     state.counters["ms_per_step"] = ms / steps;
     state.counters["fluid_ms_late"] = lateFluidMs / std::max(late, 1);
+    state.counters["grid_ms_late"] = lateGridMs / std::max(late, 1);
+    state.counters["integrate_ms_late"] = lateIntegrateMs / std::max(late, 1);
+    state.counters["contacts_ms_late"] = lateContactsMs / std::max(late, 1);
+    state.counters["setup_ms_late"] = lateSetupMs / std::max(late, 1);
+    state.counters["solve_ms_late"] = lateSolveMs / std::max(late, 1);
+    state.counters["particles_late"] = lateParticles / std::max(late, 1);
     state.counters["substeps"] = substeps / steps;
     state.counters["substeps_late"] = lateSubsteps / std::max(late, 1);
     state.counters["last_fire_out_s"] = lastOut;
 }
 
-BENCHMARK(BM_Showcase)->Iterations(1)->Unit(benchmark::kSecond);
+BENCHMARK(BM_Showcase)->ArgNames({"threads"})->Arg(1)->Arg(2)->Iterations(1)->Unit(benchmark::kSecond);
 
 }  // namespace
 

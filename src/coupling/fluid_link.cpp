@@ -88,27 +88,67 @@ fluid::StepJoint stepJointOf(const JointSlot& slot, const fluid::FluidBodyStep& 
     return j;
 }
 
-/// The joints with a gathered body at either end, in creation order. A
-/// partner far from the fluid joins the list as an immovable body without
-/// shapes (its velocity kept: a kinematic partner still moves), so the joint
-/// holds the gathered end where Box2D would; a grab (mouse joint) is left to
-/// Box2D. Calling thread only.
+/// The body slot of a Box2D body (BodyDef user data: the 1-based slot).
+std::uint32_t slotOf(b2Body* body) { return static_cast<std::uint32_t>(body->GetUserData().pointer) - 1; }
+
+/// The index of `slot` among out.bodies; a body not gathered (far from the
+/// fluid) joins as an immovable body without shapes (its velocity kept: a
+/// kinematic partner still moves), so what ties it to a gathered body holds
+/// that one where Box2D would.
+std::uint32_t indexOfPartner(const BodyWorld& world, std::uint32_t slot, std::vector<std::uint32_t>& indexOfSlot,
+                             fluid::FluidBodyStep& out) {
+    if (indexOfSlot[slot] == kNotGathered) {
+        fluid::StepBody partner = stepBodyOf(world.bodies[slot], slot);
+        partner.invMass = 0.0f;
+        partner.invInertia = 0.0f;
+        indexOfSlot[slot] = static_cast<std::uint32_t>(out.bodies.size());
+        out.bodies.push_back(partner);
+    }
+    return indexOfSlot[slot];
+}
+
+/// The joints with a gathered body at either end, in creation order; a grab
+/// (mouse joint) is left to Box2D. Calling thread only.
 void gatherJoints(const BodyWorld& world, std::vector<std::uint32_t>& indexOfSlot, fluid::FluidBodyStep& out) {
-    out.joints.clear();
-    auto slotOf = [](b2Body* body) { return static_cast<std::uint32_t>(body->GetUserData().pointer) - 1; };
     for (const JointSlot& slot : world.joints) {
         if (slot.joint == nullptr) continue;
         const std::uint32_t slotA = slotOf(slot.joint->GetBodyA()), slotB = slotOf(slot.joint->GetBodyB());
         if (indexOfSlot[slotA] == kNotGathered && indexOfSlot[slotB] == kNotGathered) continue;
-        for (std::uint32_t s : {slotA, slotB}) {
-            if (indexOfSlot[s] != kNotGathered) continue;
-            fluid::StepBody partner = stepBodyOf(world.bodies[s], s);
-            partner.invMass = 0.0f;
-            partner.invInertia = 0.0f;
-            indexOfSlot[s] = static_cast<std::uint32_t>(out.bodies.size());
-            out.bodies.push_back(partner);
+        const std::uint32_t a = indexOfPartner(world, slotA, indexOfSlot, out);
+        const std::uint32_t b = indexOfPartner(world, slotB, indexOfSlot, out);
+        out.joints.push_back(stepJointOf(slot, out, a, b));
+    }
+}
+
+/// Box2D's touching contacts of the gathered dynamic bodies (a crate resting
+/// on the floor or on another crate), one non-penetration row per manifold
+/// point, in the order of the bodies and of Box2D's contact lists (the same
+/// for any thread count: Box2D steps on one). No friction: the rows only
+/// keep the copies from sinking into what holds them up. Calling thread only.
+void gatherContacts(const BodyWorld& world, std::vector<std::uint32_t>& indexOfSlot, fluid::FluidBodyStep& out) {
+    const std::size_t gathered = out.bodies.size();
+    for (std::size_t i = 0; i < gathered; ++i) {
+        if (!(out.bodies[i].invMass > 0.0f)) continue;
+        b2Body& body = *world.bodies[out.bodies[i].slot].body;
+        for (b2ContactEdge* edge = body.GetContactList(); edge != nullptr; edge = edge->next) {
+            b2Contact& contact = *edge->contact;
+            if (!contact.IsTouching() || !contact.IsEnabled() || contact.GetFixtureA()->IsSensor() ||
+                contact.GetFixtureB()->IsSensor()) {
+                continue;
+            }
+            // A contact between two gathered dynamic bodies is in both lists: once.
+            const std::uint32_t other = indexOfSlot[slotOf(edge->other)];
+            if (other != kNotGathered && other < i && out.bodies[other].invMass > 0.0f) continue;
+            const std::uint32_t a = indexOfPartner(world, slotOf(contact.GetFixtureA()->GetBody()), indexOfSlot, out);
+            const std::uint32_t b = indexOfPartner(world, slotOf(contact.GetFixtureB()->GetBody()), indexOfSlot, out);
+            b2WorldManifold manifold;
+            contact.GetWorldManifold(&manifold);
+            for (int k = 0; k < contact.GetManifold()->pointCount; ++k) {
+                out.joints.push_back(fluid::contactJoint(out.bodies[a], out.bodies[b], a, b, toGlm(manifold.normal),
+                                                         toGlm(manifold.points[k]),
+                                                         manifold.separations[k] + b2_linearSlop));
+            }
         }
-        out.joints.push_back(stepJointOf(slot, out, indexOfSlot[slotA], indexOfSlot[slotB]));
     }
 }
 
@@ -155,6 +195,7 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid:
         }
     }
     gatherJoints(world, indexOfSlot, out);
+    gatherContacts(world, indexOfSlot, out);
     out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
     out.particleInvMass = 1.0f / out.particleMass;
     return true;

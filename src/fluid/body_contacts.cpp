@@ -15,6 +15,7 @@
 // several chunks.) They are few: a body's surface, not its volume.
 #include "fluid/body_contacts.h"
 
+#include "core/room.h"
 #include "fluid/fluid_state.h"
 
 #include <spindrift/world.h>
@@ -172,7 +173,7 @@ void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float
     }
     // Counting sort of the shapes into the cells their grown boxes cover.
     const std::size_t cells = static_cast<std::size_t>(g.cells[0]) * static_cast<std::size_t>(g.cells[1]);
-    s.cellStart.assign(cells + 1, 0u);
+    assignInRoom(s.cellStart, cells + 1, 0u);
     auto forCells = [&](std::size_t k, auto&& fn) {
         const glm::ivec2 a = cellCoords(g, glm::vec2(s.shapeBox[k].x, s.shapeBox[k].y));
         const glm::ivec2 b = cellCoords(g, glm::vec2(s.shapeBox[k].z, s.shapeBox[k].w));
@@ -183,7 +184,8 @@ void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float
     for (std::size_t k = 0; k < count; ++k) forCells(k, [&](std::size_t c) { s.cellStart[c + 1] += 1; });
     for (std::size_t c = 0; c < cells; ++c) s.cellStart[c + 1] += s.cellStart[c];
     s.cellShapes.resize(s.cellStart[cells]);
-    std::vector<std::uint32_t> fill(s.cellStart.begin(), s.cellStart.end() - 1);
+    std::vector<std::uint32_t>& fill = s.cellFill;
+    assignInRoom(fill, s.cellStart.begin(), s.cellStart.end() - 1);
     for (std::size_t k = 0; k < count; ++k) {
         forCells(k, [&](std::size_t c) { s.cellShapes[fill[c]++] = static_cast<std::uint32_t>(k); });
     }

@@ -80,6 +80,7 @@ struct FluidBodyStep {
     // Shapes per grid cell (2h wide) of the current substep, CSR.
     std::vector<std::uint32_t> cellStart;
     std::vector<std::uint32_t> cellShapes;
+    std::vector<std::uint32_t> cellFill;  // scratch of the counting sort
     // Contacts per chunk of particles: with static or kinematic bodies (solved
     // in parallel, they change no body) and with dynamic ones (solved in one
     // fixed order, see body_contacts.cpp).

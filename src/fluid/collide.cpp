@@ -2,6 +2,7 @@
 // constraints solved after the fluid's, the particle a small rotationless body
 // of radius spacing / 2; then position integration, which puts back any
 // particle whose path still crossed a collider, so none ever passes through.
+#include "core/room.h"
 #include "fluid/body_contacts.h"
 #include "fluid/body_link.h"
 #include "fluid/fluid_state.h"
@@ -82,8 +83,8 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
     Constraints& c = f.constraints;
     f.contacts.resize(WorkerPool::chunkCount(p.size(), kParticleChunk));
     for (auto& list : f.contacts) list.clear();
-    c.wallDensity.assign(p.size(), 0.0f);
-    c.wallGradient.assign(p.size(), glm::vec3(0.0f));
+    assignInRoom(c.wallDensity, p.size(), 0.0f);
+    assignInRoom(c.wallGradient, p.size(), glm::vec3(0.0f));
     if (world.colliders.empty() && f.polygons.empty()) return;
     const float radius = f.radius;
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {

@@ -1,6 +1,7 @@
 // Binning into the uniform grid (slide 46): a counting sort of the particles by
 // cell and quadrant, then every particle array gathered into that order, so
 // that neighbours sit close together in memory for the passes that follow.
+#include "core/room.h"
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
@@ -128,14 +129,14 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
     // Counting sort by key (stable, so equal keys keep their previous order and
     // the result does not depend on anything but the data).
     {
-        g.keyStart.assign(keyTotal + 1, 0);
+        assignInRoom(g.keyStart, keyTotal + 1, 0u);
         for (std::size_t i = 0; i < n; ++i) {
             g.keyStart[g.key[i] + 1] += 1;
         }
         for (std::size_t k = 0; k < keyTotal; ++k) {
             g.keyStart[k + 1] += g.keyStart[k];
         }
-        g.counts.assign(g.keyStart.begin(), g.keyStart.end() - 1);
+        assignInRoom(g.counts, g.keyStart.begin(), g.keyStart.end() - 1);
         g.order.resize(n);
         for (std::size_t i = 0; i < n; ++i) {
             g.order[g.counts[g.key[i]]++] = static_cast<std::uint32_t>(i);

@@ -11,6 +11,7 @@
 // velocity (the slides' form) every density fluctuation of a disordered
 // packing becomes kinetic energy: a tank at rest keeps boiling at about 0.2
 // m/s (measured; docs/performance.md).
+#include "core/room.h"
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
@@ -272,7 +273,7 @@ template <int D>
 void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
     Particles<D>& p = f.particles<D>();
     const std::size_t n = p.size();
-    f.pseudoImpulse.assign(n, 0.0f);
+    assignInRoom(f.pseudoImpulse, n, 0.0f);
     // The working copy of the velocities (Particles::motion), with the warm
     // start the setup gathered (neighbours.cpp) already added.
     const bool gathered = f.constraints.warmGathered && f.def.solver == FluidSolver::Parallel;

@@ -26,35 +26,11 @@ constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_GRID_WORKGROUP;
 using kernels::FluidGridPush;
 
 void createLayouts(GpuFluidGrid& g) {
-    Device& d = *g.device;
-    std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
-    for (std::uint32_t i = 0; i < kBindings; ++i) {
-        bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    }
-    auto setInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-    setInfo.bindingCount = kBindings;
-    setInfo.pBindings = bindings.data();
-    check(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &g.setLayout),
-          "vkCreateDescriptorSetLayout(fluid grid)");
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(FluidGridPush)};
-    auto layoutInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &g.setLayout;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &range;
-    check(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &g.pipelineLayout),
-          "vkCreatePipelineLayout(fluid grid)");
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, kBindings};
-    auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-    poolInfo.maxSets = 1;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &size;
-    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &g.pool), "vkCreateDescriptorPool(fluid grid)");
-    auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-    alloc.descriptorPool = g.pool;
-    alloc.descriptorSetCount = 1;
-    alloc.pSetLayouts = &g.setLayout;
-    check(vkAllocateDescriptorSets(d.device, &alloc, &g.set), "vkAllocateDescriptorSets(fluid grid)");
+    const StorageLayouts l =
+        createStorageLayouts(*g.device, kBindings, sizeof(FluidGridPush), std::span(&g.set, 1), "fluid grid");
+    g.setLayout = l.setLayout;
+    g.pipelineLayout = l.pipelineLayout;
+    g.pool = l.pool;
 }
 
 // keyStart for `entries` entries. Only between submissions: the old buffer
@@ -132,20 +108,7 @@ GpuFluidGrid::~GpuFluidGrid() {
     }
     Device& d = *device;
     destroyBuffer(d, keyStart);
-    if (pool != VK_NULL_HANDLE) {
-        vkDestroyDescriptorPool(d.device, pool, nullptr);  // frees its set
-    }
-    for (VkPipeline p : {startsPipeline, keysPipeline}) {
-        if (p != VK_NULL_HANDLE) {
-            vkDestroyPipeline(d.device, p, nullptr);
-        }
-    }
-    if (pipelineLayout != VK_NULL_HANDLE) {
-        vkDestroyPipelineLayout(d.device, pipelineLayout, nullptr);
-    }
-    if (setLayout != VK_NULL_HANDLE) {
-        vkDestroyDescriptorSetLayout(d.device, setLayout, nullptr);
-    }
+    destroyComputePasses(d, {startsPipeline, keysPipeline}, pool, pipelineLayout, setLayout);
 }
 
 std::unique_ptr<GpuFluidGrid> createGpuFluidGrid(Device& d) {

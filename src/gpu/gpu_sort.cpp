@@ -43,34 +43,10 @@ static_assert(kernels::SD_SORT_WORKGROUP >= kernels::SD_SORT_RADIX);
 static_assert(kernels::SD_SORT_PASSES % 2 == 0);
 
 void createLayouts(GpuSort& s) {
-    Device& d = *s.device;
-    std::array<VkDescriptorSetLayoutBinding, kBindings> bindings{};
-    for (std::uint32_t i = 0; i < kBindings; ++i) {
-        bindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
-    }
-    auto setInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
-    setInfo.bindingCount = kBindings;
-    setInfo.pBindings = bindings.data();
-    check(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &s.setLayout), "vkCreateDescriptorSetLayout(sort)");
-    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(SortPush)};
-    auto layoutInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
-    layoutInfo.setLayoutCount = 1;
-    layoutInfo.pSetLayouts = &s.setLayout;
-    layoutInfo.pushConstantRangeCount = 1;
-    layoutInfo.pPushConstantRanges = &range;
-    check(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &s.pipelineLayout), "vkCreatePipelineLayout(sort)");
-    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 2 * kBindings};
-    auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
-    poolInfo.maxSets = 2;
-    poolInfo.poolSizeCount = 1;
-    poolInfo.pPoolSizes = &size;
-    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &s.pool), "vkCreateDescriptorPool(sort)");
-    std::array<VkDescriptorSetLayout, 2> layouts{s.setLayout, s.setLayout};
-    auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
-    alloc.descriptorPool = s.pool;
-    alloc.descriptorSetCount = 2;
-    alloc.pSetLayouts = layouts.data();
-    check(vkAllocateDescriptorSets(d.device, &alloc, s.sets), "vkAllocateDescriptorSets(sort)");
+    const StorageLayouts l = createStorageLayouts(*s.device, kBindings, sizeof(SortPush), s.sets, "sort");
+    s.setLayout = l.setLayout;
+    s.pipelineLayout = l.pipelineLayout;
+    s.pool = l.pool;
 }
 
 std::uint32_t tilesFor(std::uint32_t count) {
@@ -169,20 +145,8 @@ GpuSort::~GpuSort() {
     for (Buffer* b : {&header, &tileCounts, &values[1], &values[0], &keys[1], &keys[0]}) {
         destroyBuffer(d, *b);
     }
-    if (pool != VK_NULL_HANDLE) {
-        vkDestroyDescriptorPool(d.device, pool, nullptr);  // frees its sets
-    }
-    for (VkPipeline p : {scatterPipeline, scanPipeline, countPipeline, keysPipeline}) {
-        if (p != VK_NULL_HANDLE) {
-            vkDestroyPipeline(d.device, p, nullptr);
-        }
-    }
-    if (pipelineLayout != VK_NULL_HANDLE) {
-        vkDestroyPipelineLayout(d.device, pipelineLayout, nullptr);
-    }
-    if (setLayout != VK_NULL_HANDLE) {
-        vkDestroyDescriptorSetLayout(d.device, setLayout, nullptr);
-    }
+    destroyComputePasses(d, {scatterPipeline, scanPipeline, countPipeline, keysPipeline}, pool, pipelineLayout,
+                         setLayout);
 }
 
 std::unique_ptr<GpuSort> createGpuSort(Device& d) {

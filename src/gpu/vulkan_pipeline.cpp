@@ -37,6 +37,53 @@ VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, std::span<c
     return pipeline;
 }
 
+StorageLayouts createStorageLayouts(Device& d, std::uint32_t bindings, std::uint32_t pushBytes,
+                                    std::span<VkDescriptorSet> sets, const char* name) {
+    auto call = [&](const char* what) { return fmt::format("{}({})", what, name); };
+    StorageLayouts l;
+    std::vector<VkDescriptorSetLayoutBinding> layoutBindings(bindings);
+    for (std::uint32_t i = 0; i < bindings; ++i) {
+        layoutBindings[i] = {i, VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, 1, VK_SHADER_STAGE_COMPUTE_BIT, nullptr};
+    }
+    auto setInfo = vkStruct<VkDescriptorSetLayoutCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_LAYOUT_CREATE_INFO);
+    setInfo.bindingCount = bindings;
+    setInfo.pBindings = layoutBindings.data();
+    check(vkCreateDescriptorSetLayout(d.device, &setInfo, nullptr, &l.setLayout),
+          call("vkCreateDescriptorSetLayout").c_str());
+    VkPushConstantRange range{VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes};
+    auto layoutInfo = vkStruct<VkPipelineLayoutCreateInfo>(VK_STRUCTURE_TYPE_PIPELINE_LAYOUT_CREATE_INFO);
+    layoutInfo.setLayoutCount = 1;
+    layoutInfo.pSetLayouts = &l.setLayout;
+    layoutInfo.pushConstantRangeCount = 1;
+    layoutInfo.pPushConstantRanges = &range;
+    check(vkCreatePipelineLayout(d.device, &layoutInfo, nullptr, &l.pipelineLayout),
+          call("vkCreatePipelineLayout").c_str());
+    const auto count = static_cast<std::uint32_t>(sets.size());
+    VkDescriptorPoolSize size{VK_DESCRIPTOR_TYPE_STORAGE_BUFFER, count * bindings};
+    auto poolInfo = vkStruct<VkDescriptorPoolCreateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_POOL_CREATE_INFO);
+    poolInfo.maxSets = count;
+    poolInfo.poolSizeCount = 1;
+    poolInfo.pPoolSizes = &size;
+    check(vkCreateDescriptorPool(d.device, &poolInfo, nullptr, &l.pool), call("vkCreateDescriptorPool").c_str());
+    const std::vector<VkDescriptorSetLayout> layouts(count, l.setLayout);
+    auto alloc = vkStruct<VkDescriptorSetAllocateInfo>(VK_STRUCTURE_TYPE_DESCRIPTOR_SET_ALLOCATE_INFO);
+    alloc.descriptorPool = l.pool;
+    alloc.descriptorSetCount = count;
+    alloc.pSetLayouts = layouts.data();
+    check(vkAllocateDescriptorSets(d.device, &alloc, sets.data()), call("vkAllocateDescriptorSets").c_str());
+    return l;
+}
+
+void destroyComputePasses(Device& d, std::initializer_list<VkPipeline> pipelines, VkDescriptorPool pool,
+                          VkPipelineLayout pipelineLayout, VkDescriptorSetLayout setLayout) {
+    for (VkPipeline p : pipelines) {
+        if (p != VK_NULL_HANDLE) vkDestroyPipeline(d.device, p, nullptr);
+    }
+    if (pool != VK_NULL_HANDLE) vkDestroyDescriptorPool(d.device, pool, nullptr);
+    if (pipelineLayout != VK_NULL_HANDLE) vkDestroyPipelineLayout(d.device, pipelineLayout, nullptr);
+    if (setLayout != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(d.device, setLayout, nullptr);
+}
+
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
                    VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
     auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);

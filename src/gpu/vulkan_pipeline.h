@@ -5,6 +5,7 @@
 #include "gpu/vulkan_device.h"
 
 #include <cstdint>
+#include <initializer_list>
 #include <span>
 
 namespace spindrift::gpu {
@@ -14,6 +15,24 @@ namespace spindrift::gpu {
 /// Throws Error naming `name` and the failing call.
 VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, std::span<const std::uint32_t> code,
                                  std::span<const std::uint32_t> constants, const char* name);
+
+/// What compute passes that bind storage buffers 0..bindings-1 in set 0 and
+/// push `pushBytes` of constants share: the set layout, the pipeline layout,
+/// and a pool of `sets.size()` descriptor sets, allocated into `sets`.
+/// Throws Error naming `name` and the failing call.
+struct StorageLayouts {
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+};
+StorageLayouts createStorageLayouts(Device& d, std::uint32_t bindings, std::uint32_t pushBytes,
+                                    std::span<VkDescriptorSet> sets, const char* name);
+
+/// Destroys what one set of compute passes owns, each handle possibly null:
+/// its pipelines, the descriptor pool (which frees its sets), the pipeline
+/// layout and the set layout.
+void destroyComputePasses(Device& d, std::initializer_list<VkPipeline> pipelines, VkDescriptorPool pool,
+                          VkPipelineLayout pipelineLayout, VkDescriptorSetLayout setLayout);
 
 /// Execution and memory dependency between commands (a global VkMemoryBarrier).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,

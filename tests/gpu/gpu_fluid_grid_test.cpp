@@ -27,38 +27,9 @@ using Vec = fluid::Vec<D>;
 constexpr float kDt = 1.0f / 60.0f;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
-// One validated device and grid for the whole suite (llvmpipe compiles the
-// pipelines once).
-class GpuFluidGridTest : public GpuTest {
+// One validated device and grid for the whole suite.
+class GpuFluidGridTest : public test::GpuSuiteWith<gpu::GpuFluidGrid, &gpu::createGpuFluidGrid> {
 protected:
-    struct Shared {
-        std::unique_ptr<gpu::Device> device;
-        std::unique_ptr<gpu::GpuFluidGrid> grid;
-    };
-    static Shared& shared() {
-        static Shared s;
-        return s;
-    }
-    static void TearDownTestSuite() {
-        Shared& s = shared();
-        s.grid.reset();
-        if (s.device) {
-            gpu::destroyDevice(*s.device);
-            s.device.reset();
-        }
-    }
-    void SetUp() override {
-        GpuTest::SetUp();
-        if (IsSkipped()) {
-            return;
-        }
-        Shared& s = shared();
-        if (!s.device) {
-            s.device = gpu::createDevice({true, &gpu::worldDebugLog(), {}});
-            s.grid = gpu::createGpuFluidGrid(*s.device);
-        }
-    }
-
     struct Result {
         std::vector<std::uint32_t> order;
         std::vector<std::uint32_t> keyStart;
@@ -93,8 +64,8 @@ protected:
             gpu::Transfer up{&p, const_cast<Vec<D>*>(x.data()), bytes};
             gpu::upload(d, std::span(&up, 1));
         }
-        gpu::submitOnce(d, [&](VkCommandBuffer cmd) { gpu::recordFluidGrid(cmd, *s.grid, p, n, params); });
-        Result r{gpu::readGridOrder(*s.grid), gpu::readGridKeyStart(*s.grid), params};
+        gpu::submitOnce(d, [&](VkCommandBuffer cmd) { gpu::recordFluidGrid(cmd, *s.part, p, n, params); });
+        Result r{gpu::readGridOrder(*s.part), gpu::readGridKeyStart(*s.part), params};
         gpu::destroyBuffer(d, p);
         return r;
     }

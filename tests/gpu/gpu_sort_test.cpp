@@ -22,38 +22,9 @@ using test::hardPositions;
 constexpr float kInf = std::numeric_limits<float>::infinity();
 constexpr float kNaN = std::numeric_limits<float>::quiet_NaN();
 
-// One validated device and sort for the whole suite: creating the pipelines
-// (llvmpipe compiles them) once keeps the suite fast.
-class GpuSortTest : public GpuTest {
+// One validated device and sort for the whole suite.
+class GpuSortTest : public test::GpuSuiteWith<gpu::GpuSort, &gpu::createGpuSort> {
 protected:
-    struct Shared {
-        std::unique_ptr<gpu::Device> device;
-        std::unique_ptr<gpu::GpuSort> sort;
-    };
-    static Shared& shared() {
-        static Shared s;
-        return s;
-    }
-    static void TearDownTestSuite() {
-        Shared& s = shared();
-        s.sort.reset();
-        if (s.device) {
-            gpu::destroyDevice(*s.device);
-            s.device.reset();
-        }
-    }
-    void SetUp() override {
-        GpuTest::SetUp();
-        if (IsSkipped()) {
-            return;
-        }
-        Shared& s = shared();
-        if (!s.device) {
-            s.device = gpu::createDevice({true, &gpu::worldDebugLog(), {}});
-            s.sort = gpu::createGpuSort(*s.device);
-        }
-    }
-
     struct Result {
         std::vector<std::uint32_t> order;  // all count indices
         std::uint32_t live = 0;
@@ -73,8 +44,8 @@ protected:
         }
         gpu::upload(d, up);
         gpu::SortInput in{&p, ages != nullptr ? &a : nullptr, n, eye, normalizeViewDirection(forward)};
-        gpu::submitOnce(d, [&](VkCommandBuffer cmd) { gpu::recordSortBackToFront(*s.sort, cmd, in); });
-        Result r{gpu::readSortedIndices(*s.sort, n), gpu::readLiveCount(*s.sort)};
+        gpu::submitOnce(d, [&](VkCommandBuffer cmd) { gpu::recordSortBackToFront(*s.part, cmd, in); });
+        Result r{gpu::readSortedIndices(*s.part, n), gpu::readLiveCount(*s.part)};
         gpu::destroyBuffer(d, p);
         gpu::destroyBuffer(d, a);
         return r;

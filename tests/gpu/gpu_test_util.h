@@ -11,6 +11,8 @@
 
 #include <gtest/gtest.h>
 
+#include <memory>
+
 namespace spindrift::test {
 
 class GpuTest : public ::testing::Test {
@@ -27,6 +29,41 @@ protected:
     void TearDown() override {
         gpu::DebugLog& log = gpu::worldDebugLog();
         EXPECT_EQ(log.total(), 0u) << log.text();
+    }
+};
+
+/// GpuTest with one validated device and one thing made on it (`create`:
+/// pipelines, which llvmpipe compiles at creation, so once per suite keeps it
+/// fast), shared by the whole suite and destroyed after it.
+template <class Part, std::unique_ptr<Part> (*create)(gpu::Device&)>
+class GpuSuiteWith : public GpuTest {
+protected:
+    struct Shared {
+        std::unique_ptr<gpu::Device> device;
+        std::unique_ptr<Part> part;
+    };
+    static Shared& shared() {
+        static Shared s;
+        return s;
+    }
+    static void TearDownTestSuite() {
+        Shared& s = shared();
+        s.part.reset();
+        if (s.device) {
+            gpu::destroyDevice(*s.device);
+            s.device.reset();
+        }
+    }
+    void SetUp() override {
+        GpuTest::SetUp();
+        if (IsSkipped()) {
+            return;
+        }
+        Shared& s = shared();
+        if (!s.device) {
+            s.device = gpu::createDevice({true, &gpu::worldDebugLog(), {}});
+            s.part = create(*s.device);
+        }
     }
 };
 

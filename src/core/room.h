@@ -4,7 +4,8 @@
 // substep (a fluid's grid while a stream falls off a level) reallocated on
 // every one, and at a megabyte each allocation was fresh memory from the
 // kernel: a page fault per 4 KB, 18 % of the showcase's time in the grid's
-// counting sort (perf, seventh session of 2026-12-05; docs/fluid.md).
+// counting sort (perf; docs/performance.md, "Seventh session of
+// 2026-12-05").
 #pragma once
 
 #include <cstddef>

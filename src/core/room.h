@@ -2,10 +2,10 @@
 // when it runs out, never given back. `std::vector::assign` allocates exactly
 // what is asked for (libstdc++'s `resize` grows by half or more), so a size
 // that creeps up a little each substep (a fluid's grid while a stream falls
-// off a level) reallocated on every one, and at a megabyte each allocation was fresh memory from the
-// kernel: a page fault per 4 KB, 18 % of the showcase's time in the grid's
-// counting sort (perf; docs/performance.md, "Seventh session of
-// 2026-12-05").
+// off a level) reallocated on every one, and at a megabyte each allocation
+// was fresh memory from the kernel: a page fault per 4 KB, 18 % of the
+// showcase's time in the grid's counting sort (perf; docs/performance.md,
+// "Seventh session of 2026-12-05").
 #pragma once
 
 #include <cstddef>

@@ -3,7 +3,6 @@
 // passes (gpu_sort.cpp).
 #include "gpu/gpu_fluid_grid.h"
 
-#include "fluid/fluid_state.h"
 #include "gpu/shaders.h"
 #include "gpu/vulkan_pipeline.h"
 #include "kernels/layout.glsl"
@@ -85,22 +84,8 @@ std::uint32_t groupsFor(const GpuFluidGrid& g, std::uint64_t items, const char* 
     return static_cast<std::uint32_t>(groups);
 }
 
-template <int D>
-FluidGridParams paramsOf(const fluid::Grid<D>& g) {
-    FluidGridParams p;
-    p.dimension = D;
-    for (int a = 0; a < D; ++a) {
-        p.origin[a] = g.origin[a];
-    }
-    p.invH = 1.0f / g.h;
-    p.cells = glm::ivec3(g.cells[0], g.cells[1], g.cells[2]);
-    return p;
-}
-
 }  // namespace
 
-FluidGridParams fluidGridParams(const fluid::Grid<2>& g) { return paramsOf<2>(g); }
-FluidGridParams fluidGridParams(const fluid::Grid<3>& g) { return paramsOf<3>(g); }
 
 GpuFluidGrid::~GpuFluidGrid() {
     if (device == nullptr || device->device == VK_NULL_HANDLE) {

@@ -19,23 +19,16 @@
 #include <memory>
 #include <vector>
 
-namespace spindrift::fluid {
-template <int D>
-struct Grid;
-}
-
 namespace spindrift::gpu {
 
-/// Where the grid lies, as Grid<D> holds it.
+/// Where the grid lies, as fluid::Grid<D> holds it (the caller, above both
+/// src/fluid and src/gpu, converts: origin, 1.0f / h, cells).
 struct FluidGridParams {
     std::uint32_t dimension = 2;
     glm::vec3 origin{0.0f};       // m, corner of sub-cell 0 (z 0 in 2D)
     float invH = 1.0f;            // 1/m: 1.0f / h, as buildGrid computes it
     glm::ivec3 cells{1, 1, 1};    // cells 2h wide per axis (z 1 in 2D)
 };
-/// The place of a CPU grid (after placeGrid or buildGrid).
-FluidGridParams fluidGridParams(const fluid::Grid<2>& g);
-FluidGridParams fluidGridParams(const fluid::Grid<3>& g);
 
 /// Pipelines and scratch of the grid, for one Device. Scratch grows on demand
 /// and never shrinks.

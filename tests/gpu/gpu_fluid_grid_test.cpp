@@ -25,6 +25,17 @@ template <int D>
 using Vec = fluid::Vec<D>;
 
 constexpr float kDt = 1.0f / 60.0f;
+
+/// The place of a CPU grid as the device grid takes it.
+template <int D>
+gpu::FluidGridParams paramsOf(const fluid::Grid<D>& g) {
+    gpu::FluidGridParams p;
+    p.dimension = D;
+    for (int a = 0; a < D; ++a) p.origin[a] = g.origin[a];
+    p.invH = 1.0f / g.h;
+    p.cells = glm::ivec3(g.cells[0], g.cells[1], g.cells[2]);
+    return p;
+}
 constexpr float kInf = std::numeric_limits<float>::infinity();
 
 // One validated device and grid for the whole suite.
@@ -48,7 +59,7 @@ protected:
         WorkerPool pool(2);
         fluid::buildGrid<D>(pool, f);
         const fluid::Grid<D>& g = f.grid<D>();
-        return {g.order, g.keyStart, gpu::fluidGridParams(g)};
+        return {g.order, g.keyStart, paramsOf<D>(g)};
     }
 
     // The device's grid of the same particles in the same place.

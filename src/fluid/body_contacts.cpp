@@ -271,48 +271,6 @@ void advanceBodies(FluidBodyStep& s, float dt) {
     }
 }
 
-std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s) {
-    const std::size_t count = s.shapeBody.size();
-    s.shapes.resize(count);
-    s.shapeBox.resize(count);
-    for (std::size_t k = 0; k < count; ++k) {
-        s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
-        s.shapeBox[k] = boundsOf(s.shapes[k]);
-    }
-    // Each body's pose at the end of the fluid's step (bodiesAtEnd is by slot).
-    std::vector<BodyEndPose> was(s.bodies.size());
-    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
-        const auto it = std::lower_bound(f.bodiesAtEnd.begin(), f.bodiesAtEnd.end(), s.bodies[b].slot,
-                                         [](const BodyEndPose& e, std::uint32_t slot) { return e.slot < slot; });
-        was[b] = it != f.bodiesAtEnd.end() && it->slot == s.bodies[b].slot
-                     ? *it
-                     : BodyEndPose{s.bodies[b].slot, s.bodies[b].centre, s.bodies[b].angle};
-    }
-    Particles<2>& p = f.p2;
-    std::vector<std::uint64_t> moved(WorkerPool::chunkCount(p.size(), kParticleChunk), 0);
-    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
-        for (std::size_t i = begin; i < end; ++i) {
-            glm::vec2 x = p.position[i];
-            for (std::size_t k = 0; k < count; ++k) {
-                const glm::vec4 box = s.shapeBox[k];
-                if (x.x < box.x || x.y < box.y || x.x > box.z || x.y > box.w) continue;
-                const kernels::FluidBodyShape& shape = s.shapes[k];
-                if (kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f)).distance >= 0.0f) continue;
-                const StepBody& now = s.bodies[shape.body];
-                const BodyEndPose& then = was[shape.body];
-                x = now.centre + rotate(now.angle - then.angle, x - then.centre);
-                const kernels::FluidSurface out = kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f));
-                if (out.distance < 0.0f) x += glm::vec2(out.normal) * (kSkin - out.distance);
-                moved[chunk] += 1;
-            }
-            p.position[i] = x;
-        }
-    });
-    std::uint64_t total = 0;
-    for (std::uint64_t m : moved) total += m;
-    return total;
-}
-
 namespace {
 
 /// The path x0 -> x1 stopped before the segment a-b if it crosses it (an end
@@ -409,6 +367,77 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
     // crate instead, it is pushed out by the contacts' pseudo velocity once
     // there is room.
     return x1 == stopped ? x1 : stopBeforeStillEdges(s, cell, binnedReach, x0, stopped, x1, v);
+}
+
+namespace {
+
+/// Whether moving a particle from x0 to x1 outside the fluid's step would
+/// pass through a wall: a still body's edge (of `s`, every shape tested) or
+/// a collider.
+bool blocked(const FluidBodyStep& s, std::span<const kernels::ColliderParams> colliders, const FluidState& f,
+             glm::vec2 x0, glm::vec2 x1) {
+    if (x0 == x1) return false;
+    glm::vec2 v(0.0f);  // binned reach 0: a path that moves at all tests every shape (no cell lists here)
+    return stopBeforeStillEdges(s, 0, 0.0f, x0, x0, x1, v) != x1 ||
+           crossesCollider(colliders, f, glm::vec3(x0, 0.0f), glm::vec3(x1, 0.0f));
+}
+
+}  // namespace
+
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
+                                    std::span<const kernels::ColliderParams> colliders) {
+    const std::size_t count = s.shapeBody.size();
+    s.shapes.resize(count);
+    s.shapeBox.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
+        s.shapeBox[k] = boundsOf(s.shapes[k]);
+    }
+    // Each body's pose at the end of the fluid's step (bodiesAtEnd is by slot).
+    std::vector<BodyEndPose> was(s.bodies.size());
+    for (std::size_t b = 0; b < s.bodies.size(); ++b) {
+        const auto it = std::lower_bound(f.bodiesAtEnd.begin(), f.bodiesAtEnd.end(), s.bodies[b].slot,
+                                         [](const BodyEndPose& e, std::uint32_t slot) { return e.slot < slot; });
+        was[b] = it != f.bodiesAtEnd.end() && it->slot == s.bodies[b].slot
+                     ? *it
+                     : BodyEndPose{s.bodies[b].slot, s.bodies[b].centre, s.bodies[b].angle};
+    }
+    Particles<2>& p = f.p2;
+    std::vector<std::uint64_t> moved(WorkerPool::chunkCount(p.size(), kParticleChunk), 0);
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) {
+            const glm::vec2 x = p.position[i];
+            for (std::size_t k = 0; k < count; ++k) {
+                const glm::vec4 box = s.shapeBox[k];
+                const kernels::FluidBodyShape& shape = s.shapes[k];
+                if (x.x < box.x || x.y < box.y || x.x > box.z || x.y > box.w ||
+                    !(s.bodies[shape.body].invMass > 0.0f) ||
+                    kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f)).distance >= 0.0f) {
+                    continue;
+                }
+                // With the body, from where its copy ended to where Box2D put
+                // it; then, if that is still inside, out through the nearest
+                // surface. Neither through a wall: a particle wedged between a
+                // crate and a wall stays in the crate, and the contacts push
+                // it out once there is room (as pushOutOfBodies does).
+                const StepBody& now = s.bodies[shape.body];
+                const BodyEndPose& then = was[shape.body];
+                glm::vec2 carried = now.centre + rotate(now.angle - then.angle, x - then.centre);
+                if (blocked(s, colliders, f, x, carried)) break;
+                const kernels::FluidSurface out = kernels::fluidBodyShapeSurface(shape, glm::vec3(carried, 0.0f));
+                if (out.distance < 0.0f) {
+                    const glm::vec2 pushed = carried + glm::vec2(out.normal) * (kSkin - out.distance);
+                    if (!blocked(s, colliders, f, carried, pushed)) carried = pushed;
+                }
+                p.position[i] = carried;
+                moved[chunk] += 1;
+                break;
+            }
+        }
+    });
+    std::uint64_t total = 0;
+    for (std::uint64_t m : moved) total += m;
+    return total;
 }
 
 }  // namespace spindrift::fluid

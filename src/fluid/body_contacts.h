@@ -11,6 +11,7 @@
 #include "kernels/fluid.glsl"
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace spindrift::fluid {
@@ -107,12 +108,15 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const G
 void solveBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, float dt);
 /// Moves the local poses on by dt with their velocities and updates the shapes.
 void advanceBodies(FluidBodyStep& s, float dt);
-/// After Box2D's step: a particle inside a body at the pose Box2D left it
-/// (`s`: the bodies of f.bodiesAtEnd at their new poses, with their shapes)
-/// moves with the body from where the fluid's copy ended (f.bodiesAtEnd),
-/// which puts it back on the side it was on; if that is still inside, out
-/// through the nearest surface. Returns how many moved.
-std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s);
+/// After Box2D's step: a particle inside a dynamic body at the pose Box2D
+/// left it (`s`: the bodies of f.bodiesAtEnd at their new poses, with their
+/// shapes) moves with the body from where the fluid's copy ended
+/// (f.bodiesAtEnd), which puts it back on the side it was on; if that is
+/// still inside, out through the nearest surface. Never through a still
+/// body's edge or a collider (`colliders`, the world's): such a particle
+/// stays. Returns how many moved.
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
+                                    std::span<const kernels::ColliderParams> colliders);
 /// Ends a path x0 -> x1 that crosses an edge of a still shape (edges and
 /// chains have no inside to test) on x0's side of it, with no velocity v
 /// left toward it; then puts an end point that lies inside a body shape back

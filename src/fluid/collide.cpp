@@ -52,6 +52,13 @@ bool isFluidCollider(const kernels::ColliderParams& c) {
            c.kind == kernels::SD_COLLIDER_BOX;
 }
 
+/// Where the path x0 -> x1 first meets collider c, if it does.
+kernels::Hit pathHit(const kernels::ColliderParams& c, glm::vec3 x0, glm::vec3 x1) {
+    return c.kind == kernels::SD_COLLIDER_PLANE    ? kernels::intersectPlane(c, x0, x1)
+           : c.kind == kernels::SD_COLLIDER_SPHERE ? kernels::intersectSphere(c, x0, x1)
+                                                   : kernels::intersectBox(c, x0, x1);
+}
+
 /// In 2D a normal with a z part (a sphere's or a box's seen off-centre) is
 /// projected into the plane, so the fluid stays in it.
 template <int D>
@@ -233,9 +240,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             // plane, sphere or box ends at the contact, moving no further in.
             for (const kernels::ColliderParams& c : world.colliders) {
                 if (!isFluidCollider(c)) continue;
-                kernels::Hit hit = c.kind == kernels::SD_COLLIDER_PLANE    ? kernels::intersectPlane(c, x0, x1)
-                                   : c.kind == kernels::SD_COLLIDER_SPHERE ? kernels::intersectSphere(c, x0, x1)
-                                                                           : kernels::intersectBox(c, x0, x1);
+                const kernels::Hit hit = pathHit(c, x0, x1);
                 if (hit.hit != 0u) {
                     const glm::vec3 n = flatten<D>(kernels::makeSurface(0.0f, hit.normal)).normal;
                     x1 = hit.point + n * kSkin;
@@ -273,6 +278,17 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
         p.keepIf([&](std::size_t i) { return finite(to3<D>(p.position[i])); });
         stats.nonFinite += removed;
     }
+}
+
+bool crossesCollider(std::span<const kernels::ColliderParams> colliders, const FluidState& f, glm::vec3 x0,
+                     glm::vec3 x1) {
+    for (const kernels::ColliderParams& c : colliders) {
+        if (isFluidCollider(c) && pathHit(c, x0, x1).hit != 0u) return true;
+    }
+    for (const kernels::FluidPolygon& poly : f.polygons) {
+        if (kernels::fluidPolygonSurface(poly, x1).distance < 0.0f) return true;
+    }
+    return false;
 }
 
 template void findContacts<2>(WorkerPool&, FluidState&, const StepContext&, float);

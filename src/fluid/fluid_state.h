@@ -275,7 +275,7 @@ struct FluidState {
     /// The rigid bodies near this 2D fluid during its step (body_contacts.h,
     /// filled by src/coupling); null outside stepFluid or when none are near.
     FluidBodyStep* bodies = nullptr;
-    /// Where the step's copies of the dynamic bodies ended it, by slot:
+    /// Where the step's copies of the bodies ended it, by slot:
     /// Box2D's step then moves the real ones, which the copies may not have
     /// followed (carryOutOfMovedBodies).
     std::vector<BodyEndPose> bodiesAtEnd;
@@ -344,6 +344,10 @@ template <int D> void findContacts(WorkerPool& pool, FluidState& f, const StepCo
 /// the walls' reactions reach the fluid within the step.
 template <int D> void solveConstraints(WorkerPool& pool, FluidState& f, float dt);
 template <int D> void solveContacts(WorkerPool& pool, FluidState& f, float dt);
+/// Whether the path x0 -> x1 crosses one of the colliders the fluid meets
+/// (plane, sphere, box) or ends inside one of its polygons.
+bool crossesCollider(std::span<const kernels::ColliderParams> colliders, const FluidState& f, glm::vec3 x0,
+                     glm::vec3 x1);
 template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt,
                                          FluidStepStats& stats);
 

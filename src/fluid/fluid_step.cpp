@@ -241,9 +241,10 @@ FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float 
     }
     f.bodiesAtEnd.clear();
     if (f.bodies != nullptr) {
-        for (const StepBody& b : f.bodies->bodies) {
-            if (b.invMass > 0.0f) f.bodiesAtEnd.push_back({b.slot, b.centre, b.angle});
-        }
+        // Still bodies too: the carry may not pass through their edges.
+        for (const StepBody& b : f.bodies->bodies) f.bodiesAtEnd.push_back({b.slot, b.centre, b.angle});
+        std::sort(f.bodiesAtEnd.begin(), f.bodiesAtEnd.end(),
+                  [](const BodyEndPose& a, const BodyEndPose& b) { return a.slot < b.slot; });
         addImpactEvents(w, f, *f.bodies, id);
         w.bodies.exchange(*f.bodies);
         stats.bodyContacts = f.bodies->contactCount;

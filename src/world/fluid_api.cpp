@@ -57,7 +57,9 @@ void settleFluids(World& w) {
     if (!w.bodies) return;
     coupling::FluidLink bodies(w.bodies.get());
     for (const auto& f : w.fluids) {
-        if (fluid::FluidBodyStep* moved = bodies.gatherMoved(*f)) fluid::carryOutOfMovedBodies(w.pool, *f, *moved);
+        if (fluid::FluidBodyStep* moved = bodies.gatherMoved(*f)) {
+            fluid::carryOutOfMovedBodies(w.pool, *f, *moved, w.colliders);
+        }
     }
 }
 

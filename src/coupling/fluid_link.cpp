@@ -120,38 +120,6 @@ void gatherJoints(const BodyWorld& world, std::vector<std::uint32_t>& indexOfSlo
     }
 }
 
-/// Box2D's touching contacts of the gathered dynamic bodies (a crate resting
-/// on the floor or on another crate), one non-penetration row per manifold
-/// point, in the order of the bodies and of Box2D's contact lists (the same
-/// for any thread count: Box2D steps on one). No friction: the rows only
-/// keep the copies from sinking into what holds them up. Calling thread only.
-void gatherContacts(const BodyWorld& world, std::vector<std::uint32_t>& indexOfSlot, fluid::FluidBodyStep& out) {
-    const std::size_t gathered = out.bodies.size();
-    for (std::size_t i = 0; i < gathered; ++i) {
-        if (!(out.bodies[i].invMass > 0.0f)) continue;
-        b2Body& body = *world.bodies[out.bodies[i].slot].body;
-        for (b2ContactEdge* edge = body.GetContactList(); edge != nullptr; edge = edge->next) {
-            b2Contact& contact = *edge->contact;
-            if (!contact.IsTouching() || !contact.IsEnabled() || contact.GetFixtureA()->IsSensor() ||
-                contact.GetFixtureB()->IsSensor()) {
-                continue;
-            }
-            // A contact between two gathered dynamic bodies is in both lists: once.
-            const std::uint32_t other = indexOfSlot[slotOf(edge->other)];
-            if (other != kNotGathered && other < i && out.bodies[other].invMass > 0.0f) continue;
-            const std::uint32_t a = indexOfPartner(world, slotOf(contact.GetFixtureA()->GetBody()), indexOfSlot, out);
-            const std::uint32_t b = indexOfPartner(world, slotOf(contact.GetFixtureB()->GetBody()), indexOfSlot, out);
-            b2WorldManifold manifold;
-            contact.GetWorldManifold(&manifold);
-            for (int k = 0; k < contact.GetManifold()->pointCount; ++k) {
-                out.joints.push_back(fluid::contactJoint(out.bodies[a], out.bodies[b], a, b, toGlm(manifold.normal),
-                                                         toGlm(manifold.points[k]),
-                                                         manifold.separations[k] + b2_linearSlop));
-            }
-        }
-    }
-}
-
 /// Gathers the bodies whose fixtures overlap the fluid's particles (grown by
 /// what they can travel in dt) through b2World::QueryAABB. Calling thread
 /// only. False when there are none (then the fluid ignores bodies this step).
@@ -195,7 +163,6 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid:
         }
     }
     gatherJoints(world, indexOfSlot, out);
-    gatherContacts(world, indexOfSlot, out);
     out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
     out.particleInvMass = 1.0f / out.particleMass;
     return true;

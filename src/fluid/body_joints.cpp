@@ -1,7 +1,6 @@
-// The joints and resting contacts of the fluid's body copies as velocity rows
-// (body_joints.h), in the form of Box2D 2.4's revolute, prismatic and weld
-// joints and its contacts (b2_*_joint.cpp, b2_contact_solver.cpp: the same
-// Jacobians, speculative limits), solved after each sweep of the
+// The joints of the fluid's body copies as velocity rows (body_joints.h), in
+// the form of Box2D 2.4's revolute, prismatic and weld joints (b2_*_joint.cpp:
+// the same Jacobians, speculative limits), solved after each sweep of the
 // particle-body contacts so that a contact's push on a held body answers with
 // what holds it.
 #include "fluid/body_joints.h"
@@ -76,13 +75,6 @@ void addRows(RowBuilder& rb, float dt) {
     const glm::vec2 rB = rotate(b.angle, j.anchorB);
     const glm::vec2 d = (b.centre + rB) - (a.centre + rA);
     const float angle = b.angle - a.angle - j.referenceAngle;
-    if (j.kind == StepJointKind::Contact) {
-        // The normal turns with A; d . n is how far the anchors have parted
-        // along it since Box2D's step (Box2D's polygon contacts, linearised).
-        const glm::vec2 n = rotate(a.angle, j.axisA);
-        rb.limit(n, cross(d + rA, n), cross(rB, n), j.gap + glm::dot(d, n));
-        return;
-    }
     if (j.kind == StepJointKind::Prismatic) {
         // Off the axis, no travel; along it, the limits and the motor.
         const glm::vec2 axis = rotate(a.angle, j.axisA);
@@ -117,19 +109,6 @@ void addRows(RowBuilder& rb, float dt) {
 constexpr int kJointPasses = 2;
 
 }  // namespace
-
-StepJoint contactJoint(const StepBody& a, const StepBody& b, std::uint32_t ia, std::uint32_t ib, glm::vec2 normal,
-                       glm::vec2 point, float gap) {
-    StepJoint j;
-    j.kind = StepJointKind::Contact;
-    j.bodyA = ia;
-    j.bodyB = ib;
-    j.anchorA = rotate(-a.angle, point - a.centre);
-    j.anchorB = rotate(-b.angle, point - b.centre);
-    j.axisA = rotate(-a.angle, normal);
-    j.gap = gap;
-    return j;
-}
 
 void setUpJointRows(const std::vector<StepJoint>& joints, const std::vector<StepBody>& bodies, float dt,
                     std::vector<JointRow>& rows) {

@@ -1,11 +1,9 @@
-// Joints, and Box2D's touching contacts between bodies, as the fluid's body
-// copies see them during one 2D fluid step. Box2D solves both in its own
-// step, after the fluid's; without them here a body Box2D holds (a hinged
-// gate on its limit, a shelf on a hinge, a crate resting on the floor) was a
-// free body within the fluid's substeps, which the water drove where Box2D
-// then did not let it go, and the particles that followed it ended the step
-// inside the real body or squeezed against it (docs/fluid.md, "Bodies that
-// joints hold").
+// Joints as the fluid's body copies see them during one 2D fluid step. Box2D
+// solves the joints in its own step, after the fluid's; without them here a
+// body Box2D holds (a hinged gate on its limit, a shelf on a hinge) was a free
+// body within the fluid's substeps, which the water drove where Box2D then did
+// not let it go, and the particles that followed it ended the step inside the
+// real body (docs/fluid.md, "Bodies that joints hold").
 #pragma once
 
 #include <glm/glm.hpp>
@@ -17,9 +15,7 @@ namespace spindrift::fluid {
 
 struct StepBody;
 
-/// Contact: Box2D's touching contact between two bodies at one manifold
-/// point, which keeps them from sinking into each other.
-enum class StepJointKind : std::uint32_t { Revolute, Prismatic, Weld, Contact };
+enum class StepJointKind : std::uint32_t { Revolute, Prismatic, Weld };
 
 /// One joint between two of FluidBodyStep::bodies (src/coupling copies it from
 /// Box2D's joint; a partner far from the fluid is in the list too, with no
@@ -30,8 +26,7 @@ struct StepJoint {
     std::uint32_t bodyB = 0;
     glm::vec2 anchorA{0.0f};          // m, from A's centre of mass, in A's frame
     glm::vec2 anchorB{0.0f};          // m, from B's centre of mass, in B's frame
-    glm::vec2 axisA{1.0f, 0.0f};      // Prismatic: unit, in A's frame; Contact: the normal, A to B
-    float gap = 0.0f;                 // Contact: m, the separation allowed at the anchors (Box2D's slop)
+    glm::vec2 axisA{1.0f, 0.0f};      // Prismatic: unit, in A's frame
     float referenceAngle = 0.0f;      // rad, B's angle minus A's at rest
     bool limit = false;
     float lower = 0.0f;               // rad (Revolute) or m (Prismatic)
@@ -57,11 +52,6 @@ struct JointRow {
     float impulse = 0.0f;
 };
 
-/// The row of a contact between a and b (indices in FluidBodyStep::bodies,
-/// at their current poses): the world normal from a to b, the contact point
-/// and the separation there that is at rest (m).
-StepJoint contactJoint(const StepBody& a, const StepBody& b, std::uint32_t ia, std::uint32_t ib, glm::vec2 normal,
-                       glm::vec2 point, float gap);
 /// The rows of every joint at the bodies' poses of this substep (dt, s).
 void setUpJointRows(const std::vector<StepJoint>& joints, const std::vector<StepBody>& bodies, float dt,
                     std::vector<JointRow>& rows);

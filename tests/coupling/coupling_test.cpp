@@ -313,57 +313,6 @@ TEST_P(JointHeldShelf, WaterStaysOnIt) {
 INSTANTIATE_TEST_SUITE_P(CouplingContainment, JointHeldShelf,
                          ::testing::Values(JointKind::Revolute, JointKind::Weld, JointKind::Prismatic));
 
-// (d'') Water on a crate resting on the floor is not pressed into it: a crate
-// of 1.5 times the water's density on a tank's floor under 0.8 m of water.
-// Box2D's contact holds it on the floor; the fluid's copy of the crate must
-// see that contact too, or the water's weight drives the copy into the floor
-// within each fluid step, the water above follows it, and the carry after
-// Box2D's step lifts only what ended inside. Measured over the last second,
-// in the columns above the crate: the particles of the first layer sit one
-// particle radius (1 cm) above its top, where the contacts put them and
-// where they sit on a static crate in the same place (1.000 cm); without
-// the contact rows they sat 0.30 cm above it. And the water there is not
-// squeezed: its mean kernel density within 6 cm of the crate is within 3 %
-// of rest (a static crate: 1.002; without the rows 1.071; docs/fluid.md,
-// "Bodies that joints hold").
-TEST(CouplingContainment, WaterOnACrateOnTheFloorIsNotPressedIntoIt) {
-    test::BodyTestWorld w(2);
-    test::staticTank(w.id, 1.0f, 2.0f);
-    const BodyId crate = createBody(w.id, test::crate("crate", {0.5f, 0.1f}, {0.1f, 0.1f}, 1500.0f));
-    const FluidDef def = test::waterBlock(0.02f, {0.0f, 0.22f}, {1.0f, 1.2f});
-    const FluidId water = createFluid(w.id, def);
-    const float radius = 0.5f * def.spacing;
-    double gapSum = 0.0, densitySum = 0.0;
-    std::size_t gaps = 0, densities = 0;
-    for (int step = 0; step < 300; ++step) {
-        stepWorld(w.id, kDt);
-        if (step < 240) continue;
-        const BodySnapshot b = test::findBody(w.id, crate);
-        float top = -1.0f;
-        for (const glm::vec2& v : b.shapes[0].vertices) top = std::max(top, v.y);
-        const FluidSnapshot s = readFluid(w.id, water);
-        for (std::size_t i = 0; i < s.count(); ++i) {
-            const glm::vec3 x = s.position[i];
-            if (!(x.x > 0.42f && x.x < 0.58f && x.y > top)) continue;
-            if (x.y < top + def.spacing) {
-                gapSum += x.y - top;
-                gaps += 1;
-            }
-            if (x.y < top + 3.0f * def.spacing) {
-                densitySum += s.density[i];
-                densities += 1;
-            }
-        }
-    }
-    ASSERT_GT(gaps, 0u);
-    const double gap = gapSum / static_cast<double>(gaps);
-    const double density = densitySum / static_cast<double>(densities);
-    RecordProperty("first_layer_gap", std::to_string(gap));
-    RecordProperty("density_above", std::to_string(density));
-    EXPECT_GT(gap, 0.8 * radius);
-    EXPECT_LT(density, 1.03);
-}
-
 // (e) Bit-identical particles and bodies for 1 and 2 threads: contacts with
 // dynamic bodies are solved in one fixed order and the exchange sums in it;
 // a flap hinged to the tank's wall (its joint's rows in the fluid's step, and

@@ -88,6 +88,19 @@ fluid::StepJoint stepJointOf(const JointSlot& slot, const fluid::FluidBodyStep& 
     return j;
 }
 
+/// Appends the body of `slotIndex` and its shapes to the fluid step's lists;
+/// returns its index there.
+std::uint32_t addBody(const BodyWorld& world, std::uint32_t slotIndex, fluid::FluidBodyStep& out) {
+    const BodySlot& slot = world.bodies[slotIndex];
+    const auto index = static_cast<std::uint32_t>(out.bodies.size());
+    out.bodies.push_back(stepBodyOf(slot, slotIndex));
+    for (const LocalShape& s : slot.fluidShapes) {
+        out.shapeBody.push_back(index);
+        out.shapeSource.push_back(&s);
+    }
+    return index;
+}
+
 /// The body slot of a Box2D body (BodyDef user data: the 1-based slot).
 std::uint32_t slotOf(b2Body* body) { return static_cast<std::uint32_t>(body->GetUserData().pointer) - 1; }
 
@@ -152,16 +165,7 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid:
     std::sort(query.slots.begin(), query.slots.end());
     query.slots.erase(std::unique(query.slots.begin(), query.slots.end()), query.slots.end());
     std::vector<std::uint32_t> indexOfSlot(world.bodies.size(), kNotGathered);
-    for (std::uint32_t slot1 : query.slots) {
-        const BodySlot& slot = world.bodies[slot1 - 1];
-        const auto index = static_cast<std::uint32_t>(out.bodies.size());
-        indexOfSlot[slot1 - 1] = index;
-        out.bodies.push_back(stepBodyOf(slot, slot1 - 1));
-        for (const LocalShape& s : slot.fluidShapes) {
-            out.shapeBody.push_back(index);
-            out.shapeSource.push_back(&s);
-        }
-    }
+    for (std::uint32_t slot1 : query.slots) indexOfSlot[slot1 - 1] = addBody(world, slot1 - 1, out);
     gatherJoints(world, indexOfSlot, out);
     out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
     out.particleInvMass = 1.0f / out.particleMass;
@@ -189,14 +193,7 @@ fluid::FluidBodyStep* FluidLink::gatherMoved(const fluid::FluidState& f) {
     out.shapeBody.clear();
     out.shapeSource.clear();
     for (const fluid::BodyEndPose& end : f.bodiesAtEnd) {
-        const BodySlot& slot = bodies_->bodies[end.slot];
-        if (slot.body == nullptr) continue;
-        const auto index = static_cast<std::uint32_t>(out.bodies.size());
-        out.bodies.push_back(stepBodyOf(slot, end.slot));
-        for (const LocalShape& s : slot.fluidShapes) {
-            out.shapeBody.push_back(index);
-            out.shapeSource.push_back(&s);
-        }
+        if (bodies_->bodies[end.slot].body != nullptr) addBody(*bodies_, end.slot, out);
     }
     return out.bodies.empty() ? nullptr : &out;
 }

@@ -77,6 +77,17 @@ glm::vec4 boundsOf(const kernels::FluidBodyShape& s) {
     return glm::vec4(lo, hi);
 }
 
+/// Every shape at its body's current pose, with its bounding box (m).
+void placeShapes(FluidBodyStep& s) {
+    const std::size_t count = s.shapeBody.size();
+    s.shapes.resize(count);
+    s.shapeBox.resize(count);
+    for (std::size_t k = 0; k < count; ++k) {
+        s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
+        s.shapeBox[k] = boundsOf(s.shapes[k]);
+    }
+}
+
 /// A coordinate clamped into [0, cells - 1]; NaN goes to 0 (std::clamp
 /// passes NaN through, and casting it to int is undefined: a body with
 /// infinite bounds overflowed the cell arrays).
@@ -155,13 +166,11 @@ std::uint32_t cellOf(const Grid<2>& g, glm::vec2 x) {
 }
 
 void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float dt) {
+    placeShapes(s);
     const std::size_t count = s.shapeBody.size();
-    s.shapes.resize(count);
-    s.shapeBox.resize(count);
     for (std::size_t k = 0; k < count; ++k) {
         const StepBody& b = s.bodies[s.shapeBody[k]];
-        s.shapes[k] = place(*s.shapeSource[k], b, s.shapeBody[k]);
-        glm::vec4 box = boundsOf(s.shapes[k]);
+        const glm::vec4 box = s.shapeBox[k];
         // Reach: a particle this far from the shape can touch it within the
         // substep (its speed and the body's, the rotation's at the box's far
         // corner), plus a spacing for what the solve adds.
@@ -384,15 +393,15 @@ bool blocked(const FluidBodyStep& s, std::span<const kernels::ColliderParams> co
 
 }  // namespace
 
-std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
-                                    std::span<const kernels::ColliderParams> colliders) {
-    const std::size_t count = s.shapeBody.size();
-    s.shapes.resize(count);
-    s.shapeBox.resize(count);
-    for (std::size_t k = 0; k < count; ++k) {
-        s.shapes[k] = place(*s.shapeSource[k], s.bodies[s.shapeBody[k]], s.shapeBody[k]);
-        s.shapeBox[k] = boundsOf(s.shapes[k]);
+void carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
+                           std::span<const kernels::ColliderParams> colliders) {
+    placeShapes(s);
+    // Only a dynamic body's shapes hold particles to carry.
+    std::vector<std::uint32_t> moving;
+    for (std::uint32_t k = 0; k < s.shapes.size(); ++k) {
+        if (s.bodies[s.shapes[k].body].invMass > 0.0f) moving.push_back(k);
     }
+    if (moving.empty()) return;
     // Each body's pose at the end of the fluid's step (bodiesAtEnd is by slot).
     std::vector<BodyEndPose> was(s.bodies.size());
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
@@ -403,15 +412,13 @@ std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodySt
                      : BodyEndPose{s.bodies[b].slot, s.bodies[b].centre, s.bodies[b].angle};
     }
     Particles<2>& p = f.p2;
-    std::vector<std::uint64_t> moved(WorkerPool::chunkCount(p.size(), kParticleChunk), 0);
-    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             const glm::vec2 x = p.position[i];
-            for (std::size_t k = 0; k < count; ++k) {
+            for (std::uint32_t k : moving) {
                 const glm::vec4 box = s.shapeBox[k];
                 const kernels::FluidBodyShape& shape = s.shapes[k];
                 if (x.x < box.x || x.y < box.y || x.x > box.z || x.y > box.w ||
-                    !(s.bodies[shape.body].invMass > 0.0f) ||
                     kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f)).distance >= 0.0f) {
                     continue;
                 }
@@ -430,14 +437,10 @@ std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodySt
                     if (!blocked(s, colliders, f, carried, pushed)) carried = pushed;
                 }
                 p.position[i] = carried;
-                moved[chunk] += 1;
                 break;
             }
         }
     });
-    std::uint64_t total = 0;
-    for (std::uint64_t m : moved) total += m;
-    return total;
 }
 
 }  // namespace spindrift::fluid

@@ -30,25 +30,17 @@ struct ChunkStats {
     std::uint64_t overflows = 0;
 };
 
-/// Sub-cell coordinates of a key (see Grid).
+/// Sub-cell coordinates of a key (fluid.glsl's fluidKeySubCell).
 template <int D>
 std::array<int, 3> subCellOf(const Grid<D>& g, std::uint32_t key) {
-    const std::uint32_t cell = key >> D;
-    const std::uint32_t quadrant = key & ((1u << D) - 1u);
-    const int cx = static_cast<int>(cell % static_cast<std::uint32_t>(g.cells[0]));
-    const int cy = static_cast<int>((cell / static_cast<std::uint32_t>(g.cells[0])) % static_cast<std::uint32_t>(g.cells[1]));
-    const int cz = static_cast<int>(cell / static_cast<std::uint32_t>(g.cells[0] * g.cells[1]));
-    return {2 * cx + static_cast<int>(quadrant & 1u), 2 * cy + static_cast<int>((quadrant >> 1) & 1u),
-            2 * cz + static_cast<int>((quadrant >> 2) & 1u)};
+    const glm::ivec3 s = kernels::fluidKeySubCell(key, D, glm::ivec3(g.cells[0], g.cells[1], g.cells[2]));
+    return {s.x, s.y, s.z};
 }
 
 template <int D>
 std::uint32_t keyOfSubCell(const Grid<D>& g, int sx, int sy, int sz) {
-    const auto cell = static_cast<std::uint32_t>((sx >> 1) + g.cells[0] * ((sy >> 1) + g.cells[1] * (sz >> 1)));
-    const auto quadrant = static_cast<std::uint32_t>((sx & 1) | ((sy & 1) << 1) | ((sz & 1) << 2));
-    return (cell << D) | quadrant;
+    return kernels::fluidSubCellKey(glm::ivec3(sx, sy, sz), D, glm::ivec3(g.cells[0], g.cells[1], g.cells[2]));
 }
-
 
 /// The particles within h of the one being set up (phase 1 of the setup), as
 /// structure of arrays: offset (m, from the particle to it) per axis, squared
@@ -283,21 +275,14 @@ template <int D>
     const bool apart = r2 > 0.0f;
     const float invR = apart ? 1.0f / r : 0.0f;
     t.w = kernels::fluidWeight(r2, a.invH2);
-    // The direction to a neighbour on top of i (r = 0): along x, away from
-    // the higher index, the opposite of its direction to i, so that the
-    // pair's constraints push them apart. In a crushed corner several
-    // particles end on one point (equal coordinates in float); W's slope
-    // there is w(0) = 1 along any direction. When such a pair counted in the
-    // density only, a particle among several on one point was over-dense with
-    // almost nothing to push against: effective mass 3e-6, impulses of 8e4
-    // m/s a visit, and a 50 m/s launch into a tank of edges blew up
-    // (docs/fluid.md, "Launches into tanks").
-    const float side = j > a.i ? 1.0f : -1.0f;
+    // A neighbour on top of i (r = 0) pushes along x (fluidPairGradient).
+    const float side = kernels::fluidCoincidentSide(a.i, j);
+    const float wOverR = t.w * invR;
     float closing = 0.0f;  // glm::dot(vi - v_j, offset), in glm's order
 #pragma GCC unroll 3  // unrolled before the vectoriser sees the lane loop
     for (int axis = 0; axis < D; ++axis) {
         const float offset = a.offset[axis][k];
-        t.g[axis] = apart ? offset * (t.w * invR) : (axis == 0 ? side : 0.0f) * t.w;
+        t.g[axis] = kernels::fluidPairGradient(offset, t.w, wOverR, apart, axis == 0, side);
         const float approach = (a.vi[axis] - a.velocity[D * j + axis]) * offset;
         closing = axis == 0 ? approach : closing + approach;
     }
@@ -538,14 +523,10 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             glm::vec3 warm3(0.0f);
             for (int a = 0; a < D; ++a) warm3[a] = sums.warm[a];
             c.warmVelocity[i] = warm3;
-            // Effective mass of the Jacobian (g_n for each neighbour, -sum g for
-            // the particle itself): sum |g|^2 + |sum g|^2. The slides' A =
-            // sum 2 w^2 is exact for one neighbour only; at a wall or a free
-            // surface, where the g do not cancel, it under-estimates the
-            // particle's own response several times and the solver
-            // over-corrects and diverges (measured: a 20-layer tank collapsed).
-            const float mass = sums.mass + glm::dot(sums.gSum, sums.gSum);
-            c.invMass[i] = mass > 0.0f ? 1.0f / mass : 0.0f;
+            // Effective mass of the Jacobian (fluid.glsl).
+            glm::vec3 gSum3(0.0f);
+            for (int a = 0; a < D; ++a) gSum3[a] = sums.gSum[a];
+            c.invMass[i] = kernels::fluidInverseMass(sums.mass, gSum3);
             c.bias[i] = kernels::fluidBias(density, f.restDensity, f.def.baumgarte, f.h, invDt);
             const float relative = density * invRest;
             p.density[i] = relative;

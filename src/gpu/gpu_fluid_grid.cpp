@@ -51,37 +51,16 @@ void writeSet(GpuFluidGrid& g, const Buffer& positions) {
     buffers[kernels::SD_FLUID_GRID_BINDING_VALUES] = &g.sort->values[0];
     buffers[kernels::SD_FLUID_GRID_BINDING_SORTED_KEYS] = &g.sort->keys[g.sortedPair];
     buffers[kernels::SD_FLUID_GRID_BINDING_KEY_START] = &g.keyStart;
-    std::array<VkDescriptorBufferInfo, kBindings> infos{};
-    std::array<VkWriteDescriptorSet, kBindings> writes{};
-    for (std::uint32_t i = 0; i < kBindings; ++i) {
-        infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
-        writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
-        writes[i].dstSet = g.set;
-        writes[i].dstBinding = i;
-        writes[i].descriptorCount = 1;
-        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
-        writes[i].pBufferInfo = &infos[i];
-    }
-    vkUpdateDescriptorSets(g.device->device, kBindings, writes.data(), 0, nullptr);
+    writeStorageSet(*g.device, g.set, buffers);
 }
 
 void dispatch(const GpuFluidGrid& g, VkCommandBuffer cmd, VkPipeline pipeline, const FluidGridPush& push,
               std::uint32_t groups) {
-    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
-    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, g.pipelineLayout, 0, 1, &g.set, 0, nullptr);
-    vkCmdPushConstants(cmd, g.pipelineLayout, VK_SHADER_STAGE_COMPUTE_BIT, 0, sizeof(push), &push);
-    vkCmdDispatch(cmd, groups, 1, 1);
+    dispatchCompute(cmd, pipeline, g.pipelineLayout, g.set, &push, sizeof(push), groups);
 }
 
-// Workgroups for `items` invocations; throws beyond what one dispatch can hold.
 std::uint32_t groupsFor(const GpuFluidGrid& g, std::uint64_t items, const char* what) {
-    const std::uint64_t groups = (items + kWorkgroup - 1) / kWorkgroup;
-    const std::uint32_t maxGroups = g.device->properties.limits.maxComputeWorkGroupCount[0];
-    if (groups > maxGroups) {
-        throw Error(fmt::format("gpu fluid grid: {} {} need {} workgroups of {}; this device dispatches at most {}",
-                                items, what, groups, kWorkgroup, maxGroups));
-    }
-    return static_cast<std::uint32_t>(groups);
+    return workgroupsFor(*g.device, items, kWorkgroup, "gpu fluid grid", what);
 }
 
 }  // namespace

@@ -21,6 +21,8 @@ extern const std::uint32_t kBackToFrontSort[];
 extern const std::size_t kBackToFrontSortWords;
 extern const std::uint32_t kFluidGrid[];
 extern const std::size_t kFluidGridWords;
+extern const std::uint32_t kFluidSetup[];
+extern const std::size_t kFluidSetupWords;
 // The renderer (src/render/shaders/).
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;

@@ -1,6 +1,8 @@
 // Compute pipelines and barriers shared by the GPU passes.
 #include "gpu/vulkan_pipeline.h"
 
+#include <spindrift/errors.h>
+
 #include <fmt/format.h>
 
 #include <string>
@@ -95,6 +97,40 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
 void computeToCompute(VkCommandBuffer cmd) {
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+}
+
+void writeStorageSet(Device& d, VkDescriptorSet set, std::span<const Buffer* const> buffers) {
+    std::vector<VkDescriptorBufferInfo> infos(buffers.size());
+    std::vector<VkWriteDescriptorSet> writes(buffers.size());
+    for (std::size_t i = 0; i < buffers.size(); ++i) {
+        infos[i] = {buffers[i]->buffer, 0, VK_WHOLE_SIZE};
+        writes[i] = vkStruct<VkWriteDescriptorSet>(VK_STRUCTURE_TYPE_WRITE_DESCRIPTOR_SET);
+        writes[i].dstSet = set;
+        writes[i].dstBinding = static_cast<std::uint32_t>(i);
+        writes[i].descriptorCount = 1;
+        writes[i].descriptorType = VK_DESCRIPTOR_TYPE_STORAGE_BUFFER;
+        writes[i].pBufferInfo = &infos[i];
+    }
+    vkUpdateDescriptorSets(d.device, static_cast<std::uint32_t>(writes.size()), writes.data(), 0, nullptr);
+}
+
+void dispatchCompute(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
+                     const void* push, std::uint32_t pushBytes, std::uint32_t groups) {
+    vkCmdBindPipeline(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, pipeline);
+    vkCmdBindDescriptorSets(cmd, VK_PIPELINE_BIND_POINT_COMPUTE, layout, 0, 1, &set, 0, nullptr);
+    vkCmdPushConstants(cmd, layout, VK_SHADER_STAGE_COMPUTE_BIT, 0, pushBytes, push);
+    vkCmdDispatch(cmd, groups, 1, 1);
+}
+
+std::uint32_t workgroupsFor(const Device& d, std::uint64_t items, std::uint32_t workgroup, const char* pass,
+                            const char* what) {
+    const std::uint64_t groups = (items + workgroup - 1) / workgroup;
+    const std::uint32_t maxGroups = d.properties.limits.maxComputeWorkGroupCount[0];
+    if (groups > maxGroups) {
+        throw Error(fmt::format("{}: {} {} need {} workgroups of {}; this device dispatches at most {}", pass, items,
+                                what, groups, workgroup, maxGroups));
+    }
+    return static_cast<std::uint32_t>(groups);
 }
 
 }  // namespace spindrift::gpu

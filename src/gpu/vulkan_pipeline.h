@@ -2,6 +2,7 @@
 // back-to-front sort): plain free functions in the zeux/niagara style.
 #pragma once
 
+#include "gpu/vulkan_buffer.h"
 #include "gpu/vulkan_device.h"
 
 #include <cstdint>
@@ -40,5 +41,18 @@ void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessF
 
 /// Compute writes made visible to the next compute dispatch's reads and writes.
 void computeToCompute(VkCommandBuffer cmd);
+
+/// Points storage binding i of `set` at the whole of buffers[i].
+void writeStorageSet(Device& d, VkDescriptorSet set, std::span<const Buffer* const> buffers);
+
+/// Binds `pipeline` and `set`, pushes `pushBytes` of `push` and dispatches
+/// `groups` workgroups along x.
+void dispatchCompute(VkCommandBuffer cmd, VkPipeline pipeline, VkPipelineLayout layout, VkDescriptorSet set,
+                     const void* push, std::uint32_t pushBytes, std::uint32_t groups);
+
+/// Workgroups of `workgroup` invocations for `items` items. Throws Error
+/// naming `pass` and `what` beyond what one dispatch holds on `d`.
+std::uint32_t workgroupsFor(const Device& d, std::uint64_t items, std::uint32_t workgroup, const char* pass,
+                            const char* what);
 
 }  // namespace spindrift::gpu

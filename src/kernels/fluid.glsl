@@ -65,6 +65,25 @@ SD_FN uint fluidGridKey(vec3 x, uint dimension, vec3 origin, float invH, ivec3 c
     return cell * (1u << dimension) + quadrant;
 }
 
+// Sub-cell coordinates of a key (the inverse of fluidGridKey's numbering; z 0
+// in 2D): the neighbour search's start.
+SD_FN ivec3 fluidKeySubCell(uint key, uint dimension, ivec3 cells) {
+    uint cell = key >> dimension;
+    uint quadrant = key & ((1u << dimension) - 1u);
+    uint cx = cell % uint(cells.x);
+    uint cy = (cell / uint(cells.x)) % uint(cells.y);
+    uint cz = cell / uint(cells.x * cells.y);
+    return ivec3(2 * int(cx) + int(quadrant & 1u), 2 * int(cy) + int((quadrant >> 1) & 1u),
+                 2 * int(cz) + int((quadrant >> 2) & 1u));
+}
+
+// Key of sub-cell s (inside the grid; z 0 in 2D).
+SD_FN uint fluidSubCellKey(ivec3 s, uint dimension, ivec3 cells) {
+    uint cell = uint((s.x >> 1) + cells.x * ((s.y >> 1) + cells.y * (s.z >> 1)));
+    uint quadrant = uint((s.x & 1) | ((s.y & 1) << 1) | ((s.z & 1) << 2));
+    return (cell << dimension) | quadrant;
+}
+
 // Kernel of slide 35: w = (1 - d^2)^3, d = distance / h; 0 at and beyond h.
 // Takes the squared distance so the caller needs no square root to reject.
 SD_FN float fluidWeight(float distanceSquared, float invHSquared) {
@@ -98,6 +117,37 @@ SD_CONST float SD_FLUID_RATE_PER_DENSITY = 0.45714286f;
 // alone has density 1; h in m).
 SD_FN float fluidBias(float density, float restDensity, float baumgarte, float h, float invDt) {
     return (restDensity - density) * baumgarte * SD_FLUID_RATE_PER_DENSITY * h * invDt;
+}
+
+// --- Constraint setup (slide 35) ---------------------------------------------
+// One pair's Jacobian entry g = w * direction from particle i to neighbour j,
+// along one axis: offset (m) is x_j - x_i along it, wOverR = w / r (1/m).
+// For a neighbour on top of i (r = 0, `apart` false) the direction is along
+// x, away from the higher index (fluidCoincidentSide): the opposite of j's
+// direction to i, so the pair's constraints push them apart. In a crushed
+// corner several particles end on one point; W's slope there is w(0) = 1
+// along any direction. When such a pair counted in the density only, a
+// particle among several on one point was over-dense with almost nothing to
+// push against: effective mass 3e-6, impulses of 8e4 m/s a visit, and a 50
+// m/s launch into a tank of edges blew up (docs/fluid.md, "Launches into
+// tanks").
+SD_FN float fluidCoincidentSide(uint i, uint j) {
+    return j > i ? 1.0f : -1.0f;
+}
+SD_FN float fluidPairGradient(float offset, float w, float wOverR, bool apart, bool xAxis, float side) {
+    return apart ? offset * wOverR : (xAxis ? side : 0.0f) * w;
+}
+
+// 1 / A, the effective mass of the Jacobian (g_n for each neighbour, -sum g
+// for the particle itself; the colliders' motionless ghosts in gSum):
+// A = sum |g|^2 + |sum g|^2, from sumW2 = sum w^2 and gSum (z 0 in 2D). The
+// slides' A = sum 2 w^2 is exact for one neighbour only; at a wall or a free
+// surface, where the g do not cancel, it under-estimates the particle's own
+// response several times and the solver over-corrects and diverges
+// (measured: a 20-layer tank collapsed). 0 for a particle alone.
+SD_FN float fluidInverseMass(float sumW2, vec3 gSum) {
+    float mass = sumW2 + (gSum.x * gSum.x + gSum.y * gSum.y + gSum.z * gSum.z);
+    return mass > 0.0f ? 1.0f / mass : 0.0f;
 }
 
 // One visit of the solver to particle p's constraint.

@@ -214,6 +214,68 @@ struct FluidGridPush {
     uint pad0;
 };
 
+// The constraint fluid's setup on the device (src/gpu/shaders/fluid_setup.comp,
+// src/gpu/gpu_fluid_setup.cpp): the particles gathered into the grid's order,
+// then every particle's neighbours within h counted, the counts' prefix sum,
+// and the lists, density, bias and effective mass, as the CPU's
+// setupConstraints (src/fluid/neighbours.cpp) computes them.
+SD_CONST uint SD_FLUID_SETUP_PASS_GATHER = 0u;  // the PASS specialization constant (id 0)
+SD_CONST uint SD_FLUID_SETUP_PASS_COUNT = 1u;   // neighbours per particle, and per workgroup (tile)
+SD_CONST uint SD_FLUID_SETUP_PASS_TILES = 2u;   // the tiles' exclusive prefix sum (one invocation)
+SD_CONST uint SD_FLUID_SETUP_PASS_SETUP = 3u;   // lists and constraints
+SD_CONST uint SD_FLUID_SETUP_WORKGROUP = 64u;   // particles per tile of the prefix sum
+// Set 0 bindings, in order. "Grid order": place i of the grid's sort.
+SD_CONST uint SD_FLUID_SETUP_BINDING_ORDER = 0u;        // uint[n]: grid order -> particle index
+SD_CONST uint SD_FLUID_SETUP_BINDING_SORTED_KEYS = 1u;  // uint[n]: keys in grid order
+SD_CONST uint SD_FLUID_SETUP_BINDING_KEY_START = 2u;    // uint[keyTotal + 1]
+SD_CONST uint SD_FLUID_SETUP_BINDING_POSITIONS = 3u;    // float[dimension n] (m), particle order
+SD_CONST uint SD_FLUID_SETUP_BINDING_VELOCITIES = 4u;   // float[dimension n] (m/s), particle order
+SD_CONST uint SD_FLUID_SETUP_BINDING_PRESSURES = 5u;    // float[n] (m/s), particle order: last accumulated impulse
+SD_CONST uint SD_FLUID_SETUP_BINDING_X = 6u;            // float[dimension n]: positions in grid order
+SD_CONST uint SD_FLUID_SETUP_BINDING_V = 7u;            // float[dimension n]: velocities in grid order
+SD_CONST uint SD_FLUID_SETUP_BINDING_P = 8u;            // float[n]: pressures in grid order
+SD_CONST uint SD_FLUID_SETUP_BINDING_WALL = 9u;         // vec4[n], grid order: colliders' density, xyz their g sum
+SD_CONST uint SD_FLUID_SETUP_BINDING_COUNTS = 10u;      // uint[n]: neighbours stored per particle
+SD_CONST uint SD_FLUID_SETUP_BINDING_TILES = 11u;       // uint[tiles]: neighbours per tile, then the tile's first
+SD_CONST uint SD_FLUID_SETUP_BINDING_HEADER = 12u;      // FluidSetupHeader
+SD_CONST uint SD_FLUID_SETUP_BINDING_FIRST = 13u;       // uint[n]: first list entry of each particle
+SD_CONST uint SD_FLUID_SETUP_BINDING_LIST_G = 14u;      // float[dimension entries]: g = w dir of each entry
+SD_CONST uint SD_FLUID_SETUP_BINDING_LIST_INDEX = 15u;  // uint[entries]: the neighbour (grid order)
+SD_CONST uint SD_FLUID_SETUP_BINDING_CONSTRAINTS = 16u; // vec4[n]: bias (m/s), 1 / A, rho / rho0, fastest closing (m/s)
+SD_CONST uint SD_FLUID_SETUP_BINDING_WARM = 17u;        // vec4[n]: xyz the gathered warm start (m/s)
+SD_CONST uint SD_FLUID_SETUP_BINDINGS = 18u;
+
+// What the setup reports (std430, 16 bytes).
+struct FluidSetupHeader {
+    uint entries;    // list entries of all particles (those past the lists' capacity not written)
+    uint overflows;  // neighbours left out: crushed sub-cells' and lists' caps (FluidStepStats)
+    uint pad0;
+    uint pad1;
+};
+
+// The setup passes' push constants (std430: an ivec4, four uints, eight
+// floats, four uints). 80 bytes. The floats are the CPU setup's, computed
+// the same way on the host (h2 = h h, invH2 = 1 / h2, ...).
+struct FluidSetupPush {
+    ivec4 cells;          // xyz cells 2h wide per axis (z 1 in 2D), w = dimension
+    uint count;           // particles
+    uint readLimit;       // most particles read from one sub-cell (FluidState::subCellReadLimit)
+    uint cap;             // most neighbours stored per particle (FluidState::maxNeighbours)
+    uint listCapacity;    // entries the lists hold
+    float h;              // m
+    float h2;             // m^2
+    float invH;           // 1/m
+    float invH2;          // 1/m^2
+    float restDensity;    // kernel-sum units
+    float baumgarte;
+    float invDt;          // 1/s, of the substep
+    float warmFraction;   // of the last pressure the warm start applies
+    float invRest;        // 1 / restDensity
+    uint tiles;           // workgroups of the count pass
+    uint pad0;
+    uint pad1;
+};
+
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
 // 592 bytes.
@@ -382,6 +444,12 @@ static_assert(sizeof(FluidGridPush) == 48);
 static_assert(offsetof(FluidGridPush, cells) == 16);
 static_assert(offsetof(FluidGridPush, count) == 32);
 static_assert(offsetof(FluidGridPush, keyTotal) == 40);
+static_assert(sizeof(FluidSetupPush) == 80);
+static_assert(offsetof(FluidSetupPush, count) == 16);
+static_assert(offsetof(FluidSetupPush, h) == 32);
+static_assert(offsetof(FluidSetupPush, restDensity) == 48);
+static_assert(offsetof(FluidSetupPush, invRest) == 64);
+static_assert(sizeof(FluidSetupHeader) == 16);
 static_assert(offsetof(SortPush, count) == 32);
 static_assert(sizeof(SpriteDraw) == 48);
 static_assert(offsetof(SpriteDraw, softDistance) == 36);

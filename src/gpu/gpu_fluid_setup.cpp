@@ -1,0 +1,218 @@
+// The constraint fluid's setup on the device: pipelines, buffers and the
+// recorded passes of fluid_setup.comp.
+#include "gpu/gpu_fluid_setup.h"
+
+#include "gpu/shaders.h"
+#include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
+
+#include <spindrift/errors.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <span>
+
+namespace spindrift::gpu {
+namespace {
+
+// Bindings, passes and push constants of fluid_setup.comp: src/kernels/layout.glsl.
+constexpr std::uint32_t kBindings = kernels::SD_FLUID_SETUP_BINDINGS;
+constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_SETUP_WORKGROUP;
+using kernels::FluidSetupHeader;
+using kernels::FluidSetupPush;
+
+/// List entries per particle the lists hold at least: a particle at rest has
+/// about 28 neighbours within h = 3 spacings in 2D and 113 in 3D; a
+/// compressed fluid more.
+constexpr std::uint32_t kEntriesPerParticle2D = 64;
+constexpr std::uint32_t kEntriesPerParticle3D = 256;
+
+void replace(Device& d, Buffer& b, VkDeviceSize bytes) {
+    destroyBuffer(d, b);
+    b = createStorageBuffer(d, std::max<VkDeviceSize>(bytes, 16u));
+}
+
+// Per-particle buffers for `count` particles. Only between submissions.
+void reserveParticles(GpuFluidSetup& s, std::uint32_t count) {
+    if (count <= s.capacity && s.header.buffer != VK_NULL_HANDLE) {
+        return;
+    }
+    Device& d = *s.device;
+    const std::uint32_t n = std::max(count, std::max(2 * s.capacity, kWorkgroup));
+    const VkDeviceSize floats = VkDeviceSize{n} * 4;
+    for (Buffer* b : {&s.x, &s.v}) replace(d, *b, 3 * floats);  // room for 3D
+    for (Buffer* b : {&s.p, &s.counts, &s.first}) replace(d, *b, floats);
+    for (Buffer* b : {&s.constraints, &s.warm}) replace(d, *b, 4 * floats);
+    replace(d, s.tiles, (VkDeviceSize{n} + kWorkgroup - 1) / kWorkgroup * 4);
+    replace(d, s.header, sizeof(FluidSetupHeader));
+    s.capacity = n;
+}
+
+void writeSet(GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in) {
+    std::array<const Buffer*, kBindings> buffers{};
+    buffers[kernels::SD_FLUID_SETUP_BINDING_ORDER] = &gridOrder(grid);
+    buffers[kernels::SD_FLUID_SETUP_BINDING_SORTED_KEYS] = &grid.sort->keys[grid.sortedPair];
+    buffers[kernels::SD_FLUID_SETUP_BINDING_KEY_START] = &gridKeyStart(grid);
+    buffers[kernels::SD_FLUID_SETUP_BINDING_POSITIONS] = in.positions;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_VELOCITIES] = in.velocities;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_PRESSURES] = in.pressures;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_X] = &s.x;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_V] = &s.v;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_P] = &s.p;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_WALL] = in.wall;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_COUNTS] = &s.counts;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_TILES] = &s.tiles;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_HEADER] = &s.header;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_FIRST] = &s.first;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_LIST_G] = &s.listG;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_LIST_INDEX] = &s.listIndex;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_CONSTRAINTS] = &s.constraints;
+    buffers[kernels::SD_FLUID_SETUP_BINDING_WARM] = &s.warm;
+    writeStorageSet(*s.device, s.set, buffers);
+}
+
+// Throws unless `b` holds `bytes`.
+void checkInput(const Buffer* b, VkDeviceSize bytes, const char* what) {
+    if (b == nullptr || b->buffer == VK_NULL_HANDLE || b->size < bytes) {
+        throw Error(fmt::format("gpu fluid setup: the {} buffer holds {} bytes, {} needed", what,
+                                b == nullptr ? VkDeviceSize{0} : b->size, bytes));
+    }
+}
+
+template <class T>
+std::vector<T> readBack(Device& d, Buffer& b, std::size_t count) {
+    std::vector<T> out(count);
+    if (count > 0) {
+        Transfer t{&b, out.data(), VkDeviceSize{count} * sizeof(T)};
+        download(d, std::span(&t, 1));
+    }
+    return out;
+}
+
+}  // namespace
+
+GpuFluidSetup::~GpuFluidSetup() {
+    if (device == nullptr || device->device == VK_NULL_HANDLE) {
+        return;
+    }
+    Device& d = *device;
+    for (Buffer* b : {&x, &v, &p, &counts, &first, &constraints, &warm, &tiles, &header, &listG, &listIndex}) {
+        destroyBuffer(d, *b);
+    }
+    destroyComputePasses(d, {pipelines[0], pipelines[1], pipelines[2], pipelines[3]}, pool, pipelineLayout,
+                         setLayout);
+}
+
+std::unique_ptr<GpuFluidSetup> createGpuFluidSetup(Device& d) {
+    auto s = std::make_unique<GpuFluidSetup>();  // destroys what was made if a step throws
+    s->device = &d;
+    const StorageLayouts l =
+        createStorageLayouts(d, kBindings, sizeof(FluidSetupPush), std::span(&s->set, 1), "fluid setup");
+    s->setLayout = l.setLayout;
+    s->pipelineLayout = l.pipelineLayout;
+    s->pool = l.pool;
+    for (std::uint32_t pass = 0; pass < 4; ++pass) {
+        const std::array<std::uint32_t, 1> constants{pass};
+        s->pipelines[pass] = createComputePipeline(
+            d, s->pipelineLayout, std::span(shaders::kFluidSetup, shaders::kFluidSetupWords), constants, "fluid_setup");
+    }
+    reserveParticles(*s, 1);
+    reserveFluidLists(*s, kWorkgroup);
+    return s;
+}
+
+void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries) {
+    if (entries <= s.listCapacity) {
+        return;
+    }
+    replace(*s.device, s.listG, VkDeviceSize{entries} * 3 * 4);  // room for 3D
+    replace(*s.device, s.listIndex, VkDeviceSize{entries} * 4);
+    s.listCapacity = entries;
+}
+
+void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
+                      const FluidSetupParams& params) {
+    const std::uint32_t n = in.count;
+    const std::uint32_t dimension = params.dimension;
+    if (dimension != 2 && dimension != 3) {
+        throw Error(fmt::format("gpu fluid setup: dimension {} (2 or 3)", dimension));
+    }
+    if (n != grid.count) {
+        throw Error(fmt::format("gpu fluid setup: {} particles, but the grid holds {}", n, grid.count));
+    }
+    checkInput(in.positions, VkDeviceSize{n} * dimension * 4, "positions");
+    checkInput(in.velocities, VkDeviceSize{n} * dimension * 4, "velocities");
+    checkInput(in.pressures, VkDeviceSize{n} * 4, "pressures");
+    checkInput(in.wall, VkDeviceSize{n} * 16, "wall");
+    const std::uint32_t groups = workgroupsFor(*s.device, n, kWorkgroup, "gpu fluid setup", "particles");
+    reserveParticles(s, n);
+    const std::uint64_t room = std::uint64_t{n} * (dimension == 2 ? kEntriesPerParticle2D : kEntriesPerParticle3D);
+    reserveFluidLists(s, static_cast<std::uint32_t>(std::min<std::uint64_t>(room, 0x3FFFFFFFu)));
+    s.count = n;
+    s.dimension = dimension;
+    writeSet(s, grid, in);
+
+    // The constants as the CPU's setupConstraints computes them.
+    FluidSetupPush push{};
+    push.cells = glm::ivec4(params.cells, static_cast<int>(dimension));
+    push.count = n;
+    push.readLimit = params.readLimit;
+    push.cap = params.cap;
+    push.listCapacity = s.listCapacity;
+    push.h = params.h;
+    push.h2 = params.h * params.h;
+    push.invH = 1.0f / params.h;
+    push.invH2 = 1.0f / push.h2;
+    push.restDensity = params.restDensity;
+    push.baumgarte = params.baumgarte;
+    push.invDt = 1.0f / params.dt;
+    push.warmFraction = params.warmFraction;
+    push.invRest = 1.0f / params.restDensity;
+    push.tiles = groups;
+
+    // The inputs' writers (a step's pass, an upload) and the last reader of
+    // the header, before the header is cleared and the gather reads.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT |
+                      VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, s.header.buffer, 0, sizeof(FluidSetupHeader), 0u);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    if (n > 0) {
+        for (std::uint32_t pass = 0; pass < 4; ++pass) {
+            const std::uint32_t passGroups = pass == kernels::SD_FLUID_SETUP_PASS_TILES ? 1u : groups;
+            dispatchCompute(cmd, s.pipelines[pass], s.pipelineLayout, s.set, &push, sizeof(push), passGroups);
+            computeToCompute(cmd);
+        }
+    }
+    // The results for whoever reads them next: a compute pass or a copy.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+FluidSetupReadback readFluidSetup(GpuFluidSetup& s) {
+    Device& d = *s.device;
+    FluidSetupReadback r;
+    const std::vector<FluidSetupHeader> header = readBack<FluidSetupHeader>(d, s.header, 1);
+    r.entries = header[0].entries;
+    r.overflows = header[0].overflows;
+    const std::size_t n = s.count;
+    r.x = readBack<float>(d, s.x, n * s.dimension);
+    r.v = readBack<float>(d, s.v, n * s.dimension);
+    r.p = readBack<float>(d, s.p, n);
+    r.counts = readBack<std::uint32_t>(d, s.counts, n);
+    r.first = readBack<std::uint32_t>(d, s.first, n);
+    r.constraints = readBack<glm::vec4>(d, s.constraints, n);
+    r.warm = readBack<glm::vec4>(d, s.warm, n);
+    const std::size_t written = std::min(r.entries, s.listCapacity);
+    r.listG = readBack<float>(d, s.listG, written * s.dimension);
+    r.listIndex = readBack<std::uint32_t>(d, s.listIndex, written);
+    return r;
+}
+
+}  // namespace spindrift::gpu

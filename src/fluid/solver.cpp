@@ -7,7 +7,7 @@
 // Split impulses (FluidDef::splitImpulse, on by default): most of the
 // Baumgarte bias (slide 34) is solved on a second, pseudo velocity that moves
 // particles this step and is then forgotten, as rigid-body solvers do for
-// penetration; the real velocity keeps a quarter of it (kRealBiasShare). With the bias in the real
+// penetration; the real velocity keeps a quarter of it (fluid.glsl). With the bias in the real
 // velocity (the slides' form) every density fluctuation of a disordered
 // packing becomes kinetic energy: a tank at rest keeps boiling at about 0.2
 // m/s (measured; docs/performance.md).
@@ -19,24 +19,6 @@
 
 namespace spindrift::fluid {
 namespace {
-
-/// Split impulses: density deficit (fraction of rho0) below which an
-/// under-dense particle gets no approach allowance in the real velocity.
-/// Inside the fluid the density of a disordered packing fluctuates by a few
-/// per cent; letting gravity pull neighbours toward every slightly
-/// under-dense particle kept a resting tank moving at 0.16 m/s (measured),
-/// while surface and splash particles, far below rest density, still fall
-/// together.
-constexpr float kAllowanceSlop = 0.1f;
-/// Split impulses: share of an over-dense particle's bias kept in the real
-/// velocity (the rest goes to the pseudo velocity). All in the pseudo one
-/// leaves a resting tank quietest but lets a falling column compress: the
-/// real velocity then has nothing that pushes back and the positional
-/// correction lags (dam break of 10k particles, 0.5 s: 1.8 % mean density
-/// error); all in the real one is the slides' form (0.35 %, but a resting tank
-/// jitters at 0.25 m/s). A quarter (measured, baumgarte 0.05): 0.56 % and
-/// 0.11 m/s.
-constexpr float kRealBiasShare = 0.25f;
 
 /// Four floats in one SIMD register (GCC's and Clang's vector extension;
 /// plain float operations lane by lane, so the same results as four scalar
@@ -210,16 +192,16 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
     const float bias = s.bias[i];
     if (bias >= 0.0f) {
         const kernels::FluidImpulse r = kernels::fluidSolveImpulse(
-            rateOf<D>(s, i), std::max(bias - s.allowanceSlop, 0.0f), s.invMass[i], s.pressure[i]);
+            rateOf<D>(s, i), kernels::fluidAllowance(bias, s.allowanceSlop), s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;
         if (r.delta != 0.0f) applyImpulse<D>(s, i, r.delta);
         return;
     }
     const SplitRates rates = splitRates<D>(s, i);
     const kernels::FluidImpulse r =
-        kernels::fluidSolveImpulse(rates.rate, bias * kRealBiasShare, s.invMass[i], s.pressure[i]);
+        kernels::fluidSolveImpulse(rates.rate, kernels::fluidRealBias(bias), s.invMass[i], s.pressure[i]);
     const kernels::FluidImpulse q =
-        kernels::fluidSolveImpulse(rates.pseudoRate, bias * (1.0f - kRealBiasShare), s.invMass[i], s.pseudoImpulse[i]);
+        kernels::fluidSolveImpulse(rates.pseudoRate, kernels::fluidPseudoBias(bias), s.invMass[i], s.pseudoImpulse[i]);
     s.pressure[i] = r.accumulated;
     s.pseudoImpulse[i] = q.accumulated;
     applySplitImpulses<D>(s, i, r.delta, q.delta);
@@ -294,7 +276,7 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
                           f.constraints.bias.data(),
                           f.constraints.invMass.data(),
                           f.constraints.count.data(),
-                          kAllowanceSlop * f.restDensity * f.def.baumgarte * f.h / dt};
+                          kernels::fluidAllowanceSlop(f.restDensity, f.def.baumgarte, f.h, dt)};
     // The pressure is an impulse per (sub)step: when the substep length
     // changes, the warm start scales with it, or a switch from 1 to 8
     // substeps would apply 8 times the support per unit time and blow up.

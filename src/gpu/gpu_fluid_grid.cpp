@@ -119,6 +119,8 @@ void recordFluidGrid(VkCommandBuffer cmd, GpuFluidGrid& g, const Buffer& positio
     reserveKeyStart(g, static_cast<std::uint32_t>(keyTotal + 1));
     g.count = count;
     g.keyTotal = static_cast<std::uint32_t>(keyTotal);
+    g.dimension = dimension;
+    g.cells = params.cells;
     // The set is written before the passes are recorded (it may not change
     // once bound), so it names the pair they will leave the order in.
     g.sortedPair = radixResultPair(count, keyBits);
@@ -146,19 +148,11 @@ const Buffer& gridOrder(const GpuFluidGrid& g) { return g.sort->values[g.sortedP
 const Buffer& gridKeyStart(const GpuFluidGrid& g) { return g.keyStart; }
 
 std::vector<std::uint32_t> readGridOrder(GpuFluidGrid& g) {
-    std::vector<std::uint32_t> order(g.count);
-    if (g.count > 0) {
-        Transfer t{&g.sort->values[g.sortedPair], order.data(), VkDeviceSize{g.count} * 4};
-        download(*g.device, std::span(&t, 1));
-    }
-    return order;
+    return downloadArray<std::uint32_t>(*g.device, g.sort->values[g.sortedPair], g.count);
 }
 
 std::vector<std::uint32_t> readGridKeyStart(GpuFluidGrid& g) {
-    std::vector<std::uint32_t> starts(std::size_t{g.keyTotal} + 1);
-    Transfer t{&g.keyStart, starts.data(), VkDeviceSize{starts.size()} * 4};
-    download(*g.device, std::span(&t, 1));
-    return starts;
+    return downloadArray<std::uint32_t>(*g.device, g.keyStart, std::size_t{g.keyTotal} + 1);
 }
 
 }  // namespace spindrift::gpu

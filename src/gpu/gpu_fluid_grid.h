@@ -48,6 +48,8 @@ struct GpuFluidGrid {
     // Of the last recorded grid.
     std::uint32_t count = 0;
     std::uint32_t keyTotal = 0;
+    std::uint32_t dimension = 2;
+    glm::ivec3 cells{1, 1, 1};
     int sortedPair = 0;  // the sort's pair that holds the grid order
 
     GpuFluidGrid() = default;

@@ -29,11 +29,6 @@ using kernels::FluidSetupPush;
 constexpr std::uint32_t kEntriesPerParticle2D = 64;
 constexpr std::uint32_t kEntriesPerParticle3D = 256;
 
-void replace(Device& d, Buffer& b, VkDeviceSize bytes) {
-    destroyBuffer(d, b);
-    b = createStorageBuffer(d, std::max<VkDeviceSize>(bytes, 16u));
-}
-
 // Per-particle buffers for `count` particles. Only between submissions.
 void reserveParticles(GpuFluidSetup& s, std::uint32_t count) {
     if (count <= s.capacity && s.header.buffer != VK_NULL_HANDLE) {
@@ -42,11 +37,11 @@ void reserveParticles(GpuFluidSetup& s, std::uint32_t count) {
     Device& d = *s.device;
     const std::uint32_t n = std::max(count, std::max(2 * s.capacity, kWorkgroup));
     const VkDeviceSize floats = VkDeviceSize{n} * 4;
-    for (Buffer* b : {&s.x, &s.v}) replace(d, *b, 3 * floats);  // room for 3D
-    for (Buffer* b : {&s.p, &s.counts, &s.first}) replace(d, *b, floats);
-    for (Buffer* b : {&s.constraints, &s.warm}) replace(d, *b, 4 * floats);
-    replace(d, s.tiles, (VkDeviceSize{n} + kWorkgroup - 1) / kWorkgroup * 4);
-    replace(d, s.header, sizeof(FluidSetupHeader));
+    for (Buffer* b : {&s.x, &s.v}) recreateStorageBuffer(d, *b, 3 * floats);  // room for 3D
+    for (Buffer* b : {&s.p, &s.counts, &s.first}) recreateStorageBuffer(d, *b, floats);
+    for (Buffer* b : {&s.constraints, &s.warm}) recreateStorageBuffer(d, *b, 4 * floats);
+    recreateStorageBuffer(d, s.tiles, (VkDeviceSize{n} + kWorkgroup - 1) / kWorkgroup * 4);
+    recreateStorageBuffer(d, s.header, sizeof(FluidSetupHeader));
     s.capacity = n;
 }
 
@@ -79,16 +74,6 @@ void checkInput(const Buffer* b, VkDeviceSize bytes, const char* what) {
         throw Error(fmt::format("gpu fluid setup: the {} buffer holds {} bytes, {} needed", what,
                                 b == nullptr ? VkDeviceSize{0} : b->size, bytes));
     }
-}
-
-template <class T>
-std::vector<T> readBack(Device& d, Buffer& b, std::size_t count) {
-    std::vector<T> out(count);
-    if (count > 0) {
-        Transfer t{&b, out.data(), VkDeviceSize{count} * sizeof(T)};
-        download(d, std::span(&t, 1));
-    }
-    return out;
 }
 
 }  // namespace
@@ -127,18 +112,15 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries) {
     if (entries <= s.listCapacity) {
         return;
     }
-    replace(*s.device, s.listG, VkDeviceSize{entries} * 3 * 4);  // room for 3D
-    replace(*s.device, s.listIndex, VkDeviceSize{entries} * 4);
+    recreateStorageBuffer(*s.device, s.listG, VkDeviceSize{entries} * 3 * 4);  // room for 3D
+    recreateStorageBuffer(*s.device, s.listIndex, VkDeviceSize{entries} * 4);
     s.listCapacity = entries;
 }
 
 void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
                       const FluidSetupParams& params) {
     const std::uint32_t n = in.count;
-    const std::uint32_t dimension = params.dimension;
-    if (dimension != 2 && dimension != 3) {
-        throw Error(fmt::format("gpu fluid setup: dimension {} (2 or 3)", dimension));
-    }
+    const std::uint32_t dimension = grid.dimension;
     if (n != grid.count) {
         throw Error(fmt::format("gpu fluid setup: {} particles, but the grid holds {}", n, grid.count));
     }
@@ -156,7 +138,7 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
 
     // The constants as the CPU's setupConstraints computes them.
     FluidSetupPush push{};
-    push.cells = glm::ivec4(params.cells, static_cast<int>(dimension));
+    push.cells = glm::ivec4(grid.cells, static_cast<int>(dimension));
     push.count = n;
     push.readLimit = params.readLimit;
     push.cap = params.cap;
@@ -198,20 +180,20 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
 FluidSetupReadback readFluidSetup(GpuFluidSetup& s) {
     Device& d = *s.device;
     FluidSetupReadback r;
-    const std::vector<FluidSetupHeader> header = readBack<FluidSetupHeader>(d, s.header, 1);
+    const std::vector<FluidSetupHeader> header = downloadArray<FluidSetupHeader>(d, s.header, 1);
     r.entries = header[0].entries;
     r.overflows = header[0].overflows;
     const std::size_t n = s.count;
-    r.x = readBack<float>(d, s.x, n * s.dimension);
-    r.v = readBack<float>(d, s.v, n * s.dimension);
-    r.p = readBack<float>(d, s.p, n);
-    r.counts = readBack<std::uint32_t>(d, s.counts, n);
-    r.first = readBack<std::uint32_t>(d, s.first, n);
-    r.constraints = readBack<glm::vec4>(d, s.constraints, n);
-    r.warm = readBack<glm::vec4>(d, s.warm, n);
+    r.x = downloadArray<float>(d, s.x, n * s.dimension);
+    r.v = downloadArray<float>(d, s.v, n * s.dimension);
+    r.p = downloadArray<float>(d, s.p, n);
+    r.counts = downloadArray<std::uint32_t>(d, s.counts, n);
+    r.first = downloadArray<std::uint32_t>(d, s.first, n);
+    r.constraints = downloadArray<glm::vec4>(d, s.constraints, n);
+    r.warm = downloadArray<glm::vec4>(d, s.warm, n);
     const std::size_t written = std::min(r.entries, s.listCapacity);
-    r.listG = readBack<float>(d, s.listG, written * s.dimension);
-    r.listIndex = readBack<std::uint32_t>(d, s.listIndex, written);
+    r.listG = downloadArray<float>(d, s.listG, written * s.dimension);
+    r.listIndex = downloadArray<std::uint32_t>(d, s.listIndex, written);
     return r;
 }
 

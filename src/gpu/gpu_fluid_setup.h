@@ -28,8 +28,6 @@ namespace spindrift::gpu {
 /// The fluid's constants of one setup, as fluid::FluidState holds them (the
 /// caller, above both src/fluid and src/gpu, converts).
 struct FluidSetupParams {
-    std::uint32_t dimension = 2;
-    glm::ivec3 cells{1, 1, 1};        // the grid's (FluidGridParams::cells)
     std::uint32_t readLimit = 1;      // FluidState::subCellReadLimit
     std::uint32_t cap = 0xFFFFFFFFu;  // FluidState::maxNeighbours
     float h = 1.0f;                   // m
@@ -86,14 +84,15 @@ std::unique_ptr<GpuFluidSetup> createGpuFluidSetup(Device& d);
 void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries);
 
 /// Records the setup of the particles of `in`, whose grid `grid` holds (its
-/// last recorded grid, of the same positions and count), into `cmd`. The
+/// last recorded grid, of the same positions and count; the dimension and
+/// cells are the grid's), into `cmd`. The
 /// lists hold at least count x 64 entries (2D) or count x 256 (3D) unless
 /// reserved larger; entries past the capacity are counted, not written
 /// (readFluidSetupHeader). Waits for earlier compute and transfer writes; its
 /// results are visible to later compute and transfer commands. Rewrites the
 /// descriptor set, so no other setup of `s` may be pending or recorded in the
-/// same command buffer. Throws Error for a count or dimension that does not
-/// match the grid, or buffers too small.
+/// same command buffer. Throws Error for a count that does not match the
+/// grid, or buffers too small.
 void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
                       const FluidSetupParams& params);
 

@@ -23,6 +23,8 @@ extern const std::uint32_t kFluidGrid[];
 extern const std::size_t kFluidGridWords;
 extern const std::uint32_t kFluidSetup[];
 extern const std::size_t kFluidSetupWords;
+extern const std::uint32_t kFluidSolve[];
+extern const std::size_t kFluidSolveWords;
 // The renderer (src/render/shaders/).
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;

@@ -211,6 +211,11 @@ Buffer createHostStorageBuffer(Device& d, VkDeviceSize size) {
                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
 }
 
+void recreateStorageBuffer(Device& d, Buffer& b, VkDeviceSize bytes) {
+    destroyBuffer(d, b);
+    b = createStorageBuffer(d, bytes < 16 ? VkDeviceSize{16} : bytes);
+}
+
 void destroyBuffer(Device& d, Buffer& b) {
     // Unmapping is implicit in vkFreeMemory (Vulkan spec, vkFreeMemory).
     if (b.buffer != VK_NULL_HANDLE) {

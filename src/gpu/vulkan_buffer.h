@@ -5,7 +5,9 @@
 
 #include "gpu/vulkan_device.h"
 
+#include <cstddef>
 #include <span>
+#include <vector>
 
 namespace spindrift::gpu {
 
@@ -23,6 +25,9 @@ Buffer createStorageBuffer(Device& d, VkDeviceSize size);
 /// Host-visible, host-coherent storage buffer, mapped (small counters read by the CPU).
 Buffer createHostStorageBuffer(Device& d, VkDeviceSize size);
 void destroyBuffer(Device& d, Buffer& b);
+/// Destroys `b` and creates a device-local storage buffer of at least `bytes`
+/// (16 at least) in its place. Only while nothing pending uses `b`.
+void recreateStorageBuffer(Device& d, Buffer& b, VkDeviceSize bytes);
 
 /// One copy between host memory and a device buffer, at offset 0.
 struct Transfer {
@@ -91,5 +96,16 @@ void imageBarrier(VkCommandBuffer cmd, VkImage image, VkImageSubresourceRange ra
 /// Waits for earlier compute writes, copies every buffer into its host range
 /// through one staging buffer and one submission. Counts the bytes.
 void download(Device& d, std::span<const Transfer> transfers);
+
+/// The first `count` elements of `b` (download; tests and read-backs).
+template <class T>
+std::vector<T> downloadArray(Device& d, Buffer& b, std::size_t count) {
+    std::vector<T> out(count);
+    if (count > 0) {
+        const Transfer t{&b, out.data(), VkDeviceSize{count} * sizeof(T)};
+        download(d, std::span(&t, 1));
+    }
+    return out;
+}
 
 }  // namespace spindrift::gpu

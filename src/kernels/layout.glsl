@@ -276,6 +276,44 @@ struct FluidSetupPush {
     uint pad1;
 };
 
+// The constraint fluid's solve on the device (src/gpu/shaders/fluid_solve.comp,
+// src/gpu/gpu_fluid_solve.cpp): the CPU's solveConstraints (src/fluid/
+// solver.cpp) in its Parallel order, on the setup's lists.
+SD_CONST uint SD_FLUID_SOLVE_PASS_START = 0u;   // the PASS specialization constant (id 0)
+SD_CONST uint SD_FLUID_SOLVE_PASS_WARM = 1u;    // one colour's scattered warm start (lists that overflowed)
+SD_CONST uint SD_FLUID_SOLVE_PASS_SWEEP = 2u;   // one colour's visits
+SD_CONST uint SD_FLUID_SOLVE_PASS_FINISH = 3u;  // the velocities back from the working copy
+SD_CONST uint SD_FLUID_SOLVE_WORKGROUP = 64u;
+// Set 0 bindings, in order; per particle in grid order.
+SD_CONST uint SD_FLUID_SOLVE_BINDING_KEY_START = 0u;       // uint[keyTotal + 1], the grid's
+SD_CONST uint SD_FLUID_SOLVE_BINDING_FIRST = 1u;           // uint[n], the setup's
+SD_CONST uint SD_FLUID_SOLVE_BINDING_COUNTS = 2u;          // uint[n]
+SD_CONST uint SD_FLUID_SOLVE_BINDING_LIST_G = 3u;          // float[dimension entries]
+SD_CONST uint SD_FLUID_SOLVE_BINDING_LIST_INDEX = 4u;      // uint[entries]
+SD_CONST uint SD_FLUID_SOLVE_BINDING_CONSTRAINTS = 5u;     // vec4[n]: bias (m/s), 1 / A, ...
+SD_CONST uint SD_FLUID_SOLVE_BINDING_WARM = 6u;            // vec4[n]: xyz the gathered warm start (m/s)
+SD_CONST uint SD_FLUID_SOLVE_BINDING_WALL = 7u;            // vec4[n]: yzw the colliders' g sum
+SD_CONST uint SD_FLUID_SOLVE_BINDING_V = 8u;               // float[dimension n] (m/s): in, and out after FINISH
+SD_CONST uint SD_FLUID_SOLVE_BINDING_P = 9u;               // float[n] (m/s): last pressure in, accumulated out
+SD_CONST uint SD_FLUID_SOLVE_BINDING_PSEUDO_IMPULSE = 10u; // float[n] (m/s): accumulated pseudo impulse
+SD_CONST uint SD_FLUID_SOLVE_BINDING_MOTION = 11u;         // float[2 dimension n]: velocity, pseudo velocity (m/s)
+SD_CONST uint SD_FLUID_SOLVE_BINDING_HEADER = 12u;         // FluidSetupHeader: overflows pick the warm start
+SD_CONST uint SD_FLUID_SOLVE_BINDINGS = 13u;
+
+// The solve passes' push constants (std430: an ivec4, four uints, four
+// floats). 48 bytes.
+struct FluidSolvePush {
+    ivec4 cells;          // xyz cells 2h wide per axis (z 1 in 2D), w = dimension
+    uint count;           // particles
+    uint colour;          // of a WARM or SWEEP pass: cell parities x | y << 1 | z << 2
+    uint split;           // 1: split impulses (FluidDef::splitImpulse)
+    uint pad0;
+    float warmFraction;   // of the last pressure the warm start applies
+    float allowanceSlop;  // m/s (fluidAllowanceSlop)
+    float pad1;
+    float pad2;
+};
+
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
 // 592 bytes.
@@ -450,6 +488,9 @@ static_assert(offsetof(FluidSetupPush, h) == 32);
 static_assert(offsetof(FluidSetupPush, restDensity) == 48);
 static_assert(offsetof(FluidSetupPush, invRest) == 64);
 static_assert(sizeof(FluidSetupHeader) == 16);
+static_assert(sizeof(FluidSolvePush) == 48);
+static_assert(offsetof(FluidSolvePush, count) == 16);
+static_assert(offsetof(FluidSolvePush, warmFraction) == 32);
 static_assert(offsetof(SortPush, count) == 32);
 static_assert(sizeof(SpriteDraw) == 48);
 static_assert(offsetof(SpriteDraw, softDistance) == 36);

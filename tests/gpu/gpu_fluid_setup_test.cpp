@@ -20,11 +20,7 @@
 // which is at most the sum of the terms' sizes S: so a sum of n terms
 // may differ by at most about (n + 4) x 4 ulp x S, the bound used below with
 // S computed from the CPU's lists (relative ulp 2^-23).
-#include "fluid/fluid_state.h"
-#include "fluid/fluid_test_util.h"
-#include "gpu/gpu_fluid_grid.h"
-#include "gpu/gpu_fluid_setup.h"
-#include "gpu/vulkan_buffer.h"
+#include "gpu_fluid_test_util.h"
 #include "gpu_test_util.h"
 
 #include <spindrift/fluid.h>
@@ -42,121 +38,24 @@ using test::GpuTest;
 template <int D>
 using Vec = fluid::Vec<D>;
 
-constexpr float kDt = 1.0f / 60.0f;
+using test::kFluidDt;
 constexpr double kUlp = 1.0 / 8388608.0;  // 2^-23
 
-/// One device's grid and setup.
-struct GridAndSetup {
-    std::unique_ptr<gpu::GpuFluidGrid> grid;
-    std::unique_ptr<gpu::GpuFluidSetup> setup;
-};
-std::unique_ptr<GridAndSetup> createGridAndSetup(gpu::Device& d) {
-    auto parts = std::make_unique<GridAndSetup>();
-    parts->grid = gpu::createGpuFluidGrid(d);
-    parts->setup = gpu::createGpuFluidSetup(d);
-    return parts;
-}
-
-/// A fluid's particles in particle order, as a setup takes them.
-template <int D>
-struct Particles {
-    std::vector<Vec<D>> x, v;
-    std::vector<float> pressure;  // m/s
-};
-
-/// The CPU's setup of `in`: the state after its grid and setupConstraints,
-/// with the colliders' share (`wall`, grid order) an input.
-template <int D>
-struct CpuSetup {
-    fluid::FluidState f;
-    FluidStepStats stats;
-    std::vector<glm::vec4> wall;  // density, g sum (grid order)
-};
-
-/// A colliders' share for every particle in grid order: not the contacts'
-/// (they are the next slice), but values of their size, different per
-/// particle, so that the setup's use of them is compared too.
-glm::vec4 syntheticWall(std::size_t i, int dimension) {
-    if (i % 3 != 0) return glm::vec4(0.0f);
-    return {0.4f * static_cast<float>(i % 7) / 7.0f, 0.3f * static_cast<float>(i % 5) / 5.0f - 0.1f,
-            0.25f * static_cast<float>(i % 4) / 4.0f, dimension == 3 ? 0.2f * static_cast<float>(i % 3) / 3.0f : 0.0f};
-}
-
-template <int D>
-void runCpu(CpuSetup<D>& c, const FluidDef& def, const Particles<D>& in) {
-    c.f.def = def;
-    fluid::initialiseFluid(c.f);
-    fluid::Particles<D>& p = c.f.template particles<D>();
-    for (std::size_t i = 0; i < in.x.size(); ++i) {
-        p.push(in.x[i], in.v[i], static_cast<std::uint32_t>(i));
-        p.pressure[i] = in.pressure[i];
-    }
-    WorkerPool pool(2);
-    fluid::buildGrid<D>(pool, c.f);
-    const std::size_t n = p.size();
-    c.wall.resize(n);
-    c.f.constraints.wallDensity.resize(n);
-    c.f.constraints.wallGradient.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        c.wall[i] = syntheticWall(i, D);
-        c.f.constraints.wallDensity[i] = c.wall[i].x;
-        c.f.constraints.wallGradient[i] = glm::vec3(c.wall[i].y, c.wall[i].z, c.wall[i].w);
-    }
-    c.f.lastSubstep = 2.0f * kDt;  // a warm start scaled by a half, as after a change of substeps
-    fluid::setupConstraints<D>(pool, c.f, kDt, c.stats);
-}
-
-class GpuFluidSetupTest : public test::GpuSuiteWith<GridAndSetup, &createGridAndSetup> {
+class GpuFluidSetupTest : public test::GpuSuiteWith<test::FluidParts, &test::createFluidParts> {
 protected:
     template <int D>
-    static gpu::FluidSetupReadback runDevice(CpuSetup<D>& c, const Particles<D>& in) {
+    static gpu::FluidSetupReadback runDevice(test::CpuSetup<D>& c, const test::FluidParticles<D>& in) {
         Shared& s = shared();
-        gpu::Device& d = *s.device;
-        const auto n = static_cast<std::uint32_t>(in.x.size());
-        const fluid::Grid<D>& g = c.f.template grid<D>();
-        gpu::FluidGridParams gridParams;
-        gridParams.dimension = D;
-        for (int a = 0; a < D; ++a) gridParams.origin[a] = g.origin[a];
-        gridParams.invH = 1.0f / g.h;
-        gridParams.cells = glm::ivec3(g.cells[0], g.cells[1], g.cells[2]);
-        gpu::FluidSetupParams params;
-        params.dimension = D;
-        params.cells = gridParams.cells;
-        params.readLimit = c.f.subCellReadLimit;
-        params.cap = c.f.maxNeighbours;
-        params.h = c.f.h;
-        params.restDensity = c.f.restDensity;
-        params.baumgarte = c.f.def.baumgarte;
-        params.dt = kDt;
-        params.warmFraction = c.f.constraints.warmFraction;
-
-        static_assert(sizeof(Vec<D>) == D * sizeof(float));  // tightly packed, as the device reads them
-        const auto bytes = [](std::size_t b) { return std::max<VkDeviceSize>(b, 16u); };
-        gpu::Buffer x = gpu::createStorageBuffer(d, bytes(n * sizeof(Vec<D>)));
-        gpu::Buffer v = gpu::createStorageBuffer(d, bytes(n * sizeof(Vec<D>)));
-        gpu::Buffer p = gpu::createStorageBuffer(d, bytes(n * sizeof(float)));
-        gpu::Buffer wall = gpu::createStorageBuffer(d, bytes(n * sizeof(glm::vec4)));
-        if (n > 0) {
-            std::vector<gpu::Transfer> up{{&x, const_cast<Vec<D>*>(in.x.data()), n * sizeof(Vec<D>)},
-                                          {&v, const_cast<Vec<D>*>(in.v.data()), n * sizeof(Vec<D>)},
-                                          {&p, const_cast<float*>(in.pressure.data()), n * sizeof(float)},
-                                          {&wall, const_cast<glm::vec4*>(c.wall.data()), n * sizeof(glm::vec4)}};
-            gpu::upload(d, up);
-        }
-        gpu::submitOnce(d, [&](VkCommandBuffer cmd) {
-            gpu::recordFluidGrid(cmd, *s.part->grid, x, n, gridParams);
-            gpu::recordFluidSetup(cmd, *s.part->setup, *s.part->grid, {&x, &v, &p, &wall, n}, params);
-        });
-        gpu::FluidSetupReadback r = gpu::readFluidSetup(*s.part->setup);
-        for (gpu::Buffer* b : {&x, &v, &p, &wall}) gpu::destroyBuffer(d, *b);
-        return r;
+        test::DeviceFluid<D> device(*s.device, c, in);
+        gpu::submitOnce(*s.device, [&](VkCommandBuffer cmd) { device.recordSetup(cmd, *s.part); });
+        return gpu::readFluidSetup(*s.part->setup);
     }
 
     // The CPU's and the device's setups of `in` under `def`, compared.
     template <int D>
-    static void expectSameSetup(const FluidDef& def, const Particles<D>& in, const std::string& what) {
-        CpuSetup<D> c;
-        runCpu<D>(c, def, in);
+    static void expectSameSetup(const FluidDef& def, const test::FluidParticles<D>& in, const std::string& what) {
+        test::CpuSetup<D> c;
+        test::runCpuSetup<D>(c, def, in);
         const gpu::FluidSetupReadback r = runDevice<D>(c, in);
         const fluid::Particles<D>& p = c.f.template particles<D>();
         const fluid::Constraints& k = c.f.constraints;
@@ -191,7 +90,7 @@ protected:
         }
         std::vector<double> fastestTolerance(n, 0.0);
         const fluid::NeighbourChunks<D>& lists = c.f.template neighbours<D>();
-        const double scale = def.baumgarte * kernels::SD_FLUID_RATE_PER_DENSITY * c.f.h / kDt;  // bias per density
+        const double scale = def.baumgarte * kernels::SD_FLUID_RATE_PER_DENSITY * c.f.h / kFluidDt;  // bias per density
         std::size_t countDiffs = 0, indexDiffs = 0, gDiffs = 0, densityDiffs = 0, massDiffs = 0, biasDiffs = 0,
                     warmDiffs = 0;
         std::string first;
@@ -286,38 +185,9 @@ protected:
     }
 };
 
-/// A dam break's particles after `steps` steps: moving, disordered, under
-/// pressure, with the pressures the CPU solver left (the warm start's input).
-template <int D>
-Particles<D> damBreak(const FluidDef& def, glm::vec3 box, int steps) {
-    test::FluidWorld world;
-    test::closedBox(world.id, glm::vec3(0.0f), box, D);
-    const FluidId id = createFluid(world.id, def);
-    for (int i = 0; i < steps; ++i) {
-        stepWorld(world.id, kDt);
-    }
-    const FluidSnapshot s = readFluid(world.id, id);
-    Particles<D> p;
-    for (std::size_t i = 0; i < s.count(); ++i) {
-        p.x.push_back(Vec<D>(s.position[i]));
-        p.v.push_back(Vec<D>(s.velocity[i]));
-        p.pressure.push_back(s.pressure[i]);
-    }
-    return p;
-}
-
-FluidDef damBreakDef(int dimension, float spacing, glm::vec3 column) {
-    FluidDef def;
-    def.name = "water";
-    def.dimension = static_cast<std::uint32_t>(dimension);
-    def.spacing = spacing;
-    def.blocks.push_back({glm::vec3(0.0f), column, glm::vec3(0.0f)});
-    return def;
-}
-
 TEST_F(GpuFluidSetupTest, DamBreak2DMatchesTheCpuSetup) {
-    const FluidDef def = damBreakDef(2, 0.02f, {1.0f, 1.2f, 0.0f});
-    const Particles<2> p = damBreak<2>(def, {3.0f, 2.0f, 0.0f}, 30);
+    const FluidDef def = test::damBreakDef(2, 0.02f, {1.0f, 1.2f, 0.0f});
+    const test::FluidParticles<2> p = test::damBreakParticles<2>(def, {3.0f, 2.0f, 0.0f}, 30);
     ASSERT_GT(p.x.size(), 2500u);  // dozens of tiles of the prefix sum
     expectSameSetup<2>(def, p, "2D dam break");
     // The lists capped: the stored neighbours are the first `cap`, the
@@ -328,8 +198,8 @@ TEST_F(GpuFluidSetupTest, DamBreak2DMatchesTheCpuSetup) {
 }
 
 TEST_F(GpuFluidSetupTest, DamBreak3DMatchesTheCpuSetup) {
-    const FluidDef def = damBreakDef(3, 0.04f, {0.4f, 0.5f, 0.4f});
-    const Particles<3> p = damBreak<3>(def, {1.2f, 0.8f, 0.6f}, 20);
+    const FluidDef def = test::damBreakDef(3, 0.04f, {0.4f, 0.5f, 0.4f});
+    const test::FluidParticles<3> p = test::damBreakParticles<3>(def, {1.2f, 0.8f, 0.6f}, 20);
     ASSERT_GT(p.x.size(), 1000u);
     expectSameSetup<3>(def, p, "3D dam break");
 }
@@ -338,8 +208,8 @@ TEST_F(GpuFluidSetupTest, DamBreak3DMatchesTheCpuSetup) {
 // setup's read limit (kCrushedSubCell), so the coincident pairs' direction
 // rule and the crushed sub-cells' overflows are compared too.
 TEST_F(GpuFluidSetupTest, CrushedPileMatchesTheCpuSetup) {
-    const FluidDef def = damBreakDef(2, 0.02f, {0.1f, 0.1f, 0.0f});
-    Particles<2> p;
+    const FluidDef def = test::damBreakDef(2, 0.02f, {0.1f, 0.1f, 0.0f});
+    test::FluidParticles<2> p;
     std::mt19937 rng(11u);
     std::uniform_real_distribution<float> unit(0.0f, 1.0f);
     for (int i = 0; i < 900; ++i) {
@@ -352,14 +222,14 @@ TEST_F(GpuFluidSetupTest, CrushedPileMatchesTheCpuSetup) {
         }
     }
     expectSameSetup<2>(def, p, "crushed pile");
-    CpuSetup<2> c;
-    runCpu<2>(c, def, p);
+    test::CpuSetup<2> c;
+    test::runCpuSetup<2>(c, def, p);
     EXPECT_GT(c.stats.neighbourOverflows, 0u) << "the pile should crush its sub-cells past the read limit";
 }
 
 TEST_F(GpuFluidSetupTest, NoParticles) {
-    const FluidDef def = damBreakDef(2, 0.02f, {0.1f, 0.1f, 0.0f});
-    expectSameSetup<2>(def, Particles<2>{}, "no particle");
+    const FluidDef def = test::damBreakDef(2, 0.02f, {0.1f, 0.1f, 0.0f});
+    expectSameSetup<2>(def, test::FluidParticles<2>{}, "no particle");
 }
 
 }  // namespace

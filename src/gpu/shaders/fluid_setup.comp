@@ -125,8 +125,13 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     // The CPU's filter: glm's x_j - x_i, then dot without
                     // fused multiply-adds, so both keep the same particles.
                     precise vec3 offset = xj - xi;
-                    precise float r2 = offset.x * offset.x + offset.y * offset.y;
-                    if (d == 3u) r2 = r2 + offset.z * offset.z;
+                    precise float r2x = offset.x * offset.x;
+                    precise float r2y = offset.y * offset.y;
+                    precise float r2 = r2x + r2y;
+                    if (d == 3u) {
+                        precise float r2z = offset.z * offset.z;
+                        r2 = r2 + r2z;
+                    }
                     if (!(r2 < args.h2) || j == i) continue;
                     s.near += 1u;
                     if (!write) continue;
@@ -139,14 +144,20 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     precise float wOverR = w * invR;
                     float side = fluidCoincidentSide(i, j);
                     vec3 vj = vAt(j);
-                    precise vec3 g = vec3(0.0f);
-                    precise float closing = 0.0f;
-                    for (uint a = 0u; a < d; ++a) {
-                        g[a] = fluidPairGradient(offset[a], w, wOverR, apart, a == 0u, side);
-                        precise float approach = (vi[a] - vj[a]) * offset[a];
-                        closing = a == 0u ? approach : closing + approach;
+                    // One variable per component, no vector indexed by the
+                    // axis (see fluid_solve.comp, applyImpulse).
+                    precise float gx = fluidPairGradient(offset.x, w, wOverR, apart, true, side);
+                    precise float gy = fluidPairGradient(offset.y, w, wOverR, apart, false, side);
+                    precise float gz = d == 3u ? fluidPairGradient(offset.z, w, wOverR, apart, false, side) : 0.0f;
+                    precise float approachX = (vi.x - vj.x) * offset.x;
+                    precise float approachY = (vi.y - vj.y) * offset.y;
+                    precise float closing = approachX + approachY;
+                    if (d == 3u) {
+                        precise float approachZ = (vi.z - vj.z) * offset.z;
+                        closing = closing + approachZ;
                     }
                     closing = closing * invR;
+                    vec3 g = vec3(gx, gy, gz);
                     precise float warmPressure = lambdaI + ps[j] * args.warmFraction;
                     s.gSum += g;
                     s.warm -= g * warmPressure;
@@ -154,7 +165,9 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     s.mass += w * w;
                     uint e = entry + s.paired;
                     if (e < args.listCapacity) {
-                        for (uint a = 0u; a < d; ++a) listG[d * e + a] = g[a];
+                        listG[d * e] = gx;
+                        listG[d * e + 1u] = gy;
+                        if (d == 3u) listG[d * e + 2u] = gz;
                         listIndex[e] = j;
                     }
                     s.paired += 1u;

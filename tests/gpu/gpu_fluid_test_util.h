@@ -1,0 +1,169 @@
+// What the device fluid's tests share (gpu_fluid_setup_test.cpp,
+// gpu_fluid_solve_test.cpp): one device's passes, a fluid's state run through
+// the CPU's grid and setup, and the same state uploaded for the device.
+#pragma once
+
+#include "fluid/fluid_state.h"
+#include "fluid/fluid_test_util.h"
+#include "gpu/gpu_fluid_grid.h"
+#include "gpu/gpu_fluid_setup.h"
+#include "gpu/gpu_fluid_solve.h"
+#include "gpu/vulkan_buffer.h"
+
+#include <spindrift/fluid.h>
+#include <spindrift/world.h>
+
+#include <algorithm>
+#include <memory>
+#include <vector>
+
+namespace spindrift::test {
+
+inline constexpr float kFluidDt = 1.0f / 60.0f;
+
+/// One device's fluid passes.
+struct FluidParts {
+    std::unique_ptr<gpu::GpuFluidGrid> grid;
+    std::unique_ptr<gpu::GpuFluidSetup> setup;
+    std::unique_ptr<gpu::GpuFluidSolve> solve;
+};
+inline std::unique_ptr<FluidParts> createFluidParts(gpu::Device& d) {
+    auto parts = std::make_unique<FluidParts>();
+    parts->grid = gpu::createGpuFluidGrid(d);
+    parts->setup = gpu::createGpuFluidSetup(d);
+    parts->solve = gpu::createGpuFluidSolve(d);
+    return parts;
+}
+
+/// A fluid's particles in particle order, as a setup takes them.
+template <int D>
+struct FluidParticles {
+    std::vector<fluid::Vec<D>> x, v;
+    std::vector<float> pressure;  // m/s
+};
+
+/// A colliders' share for every particle in grid order: not the contacts'
+/// (they are a later slice), but values of their size, different per
+/// particle, so that the setup's and the solve's use of them is compared too.
+inline glm::vec4 syntheticWall(std::size_t i, int dimension) {
+    if (i % 3 != 0) return glm::vec4(0.0f);
+    return {0.4f * static_cast<float>(i % 7) / 7.0f, 0.3f * static_cast<float>(i % 5) / 5.0f - 0.1f,
+            0.25f * static_cast<float>(i % 4) / 4.0f, dimension == 3 ? 0.2f * static_cast<float>(i % 3) / 3.0f : 0.0f};
+}
+
+/// The CPU's setup of some particles: the state after its grid and
+/// setupConstraints, with the colliders' share (`wall`, grid order) an input.
+template <int D>
+struct CpuSetup {
+    fluid::FluidState f;
+    FluidStepStats stats;
+    std::vector<glm::vec4> wall;  // density, g sum (grid order)
+};
+
+template <int D>
+void runCpuSetup(CpuSetup<D>& c, const FluidDef& def, const FluidParticles<D>& in) {
+    c.f.def = def;
+    fluid::initialiseFluid(c.f);
+    fluid::Particles<D>& p = c.f.template particles<D>();
+    for (std::size_t i = 0; i < in.x.size(); ++i) {
+        p.push(in.x[i], in.v[i], static_cast<std::uint32_t>(i));
+        p.pressure[i] = in.pressure[i];
+    }
+    WorkerPool pool(2);
+    fluid::buildGrid<D>(pool, c.f);
+    const std::size_t n = p.size();
+    c.wall.resize(n);
+    c.f.constraints.wallDensity.resize(n);
+    c.f.constraints.wallGradient.resize(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        c.wall[i] = syntheticWall(i, D);
+        c.f.constraints.wallDensity[i] = c.wall[i].x;
+        c.f.constraints.wallGradient[i] = glm::vec3(c.wall[i].y, c.wall[i].z, c.wall[i].w);
+    }
+    c.f.lastSubstep = 2.0f * kFluidDt;  // a warm start scaled by a half, as after a change of substeps
+    fluid::setupConstraints<D>(pool, c.f, kFluidDt, c.stats);
+}
+
+/// The particles of a CPU setup on the device: the inputs (particle order,
+/// the wall in grid order) uploaded, and the grid and setup recorded in the
+/// CPU grid's place.
+template <int D>
+struct DeviceFluid {
+    gpu::Device& d;
+    std::uint32_t n;
+    gpu::FluidGridParams gridParams;
+    gpu::FluidSetupParams setupParams;
+    gpu::Buffer x, v, p, wall;
+
+    DeviceFluid(gpu::Device& device, CpuSetup<D>& c, const FluidParticles<D>& in)
+        : d(device), n(static_cast<std::uint32_t>(in.x.size())) {
+        const fluid::Grid<D>& g = c.f.template grid<D>();
+        gridParams.dimension = D;
+        for (int a = 0; a < D; ++a) gridParams.origin[a] = g.origin[a];
+        gridParams.invH = 1.0f / g.h;
+        gridParams.cells = glm::ivec3(g.cells[0], g.cells[1], g.cells[2]);
+        setupParams.readLimit = c.f.subCellReadLimit;
+        setupParams.cap = c.f.maxNeighbours;
+        setupParams.h = c.f.h;
+        setupParams.restDensity = c.f.restDensity;
+        setupParams.baumgarte = c.f.def.baumgarte;
+        setupParams.dt = kFluidDt;
+        setupParams.warmFraction = c.f.constraints.warmFraction;
+        static_assert(sizeof(fluid::Vec<D>) == D * sizeof(float));  // tightly packed, as the device reads them
+        const auto bytes = [](std::size_t b) { return std::max<VkDeviceSize>(b, 16u); };
+        x = gpu::createStorageBuffer(d, bytes(n * sizeof(fluid::Vec<D>)));
+        v = gpu::createStorageBuffer(d, bytes(n * sizeof(fluid::Vec<D>)));
+        p = gpu::createStorageBuffer(d, bytes(n * sizeof(float)));
+        wall = gpu::createStorageBuffer(d, bytes(n * sizeof(glm::vec4)));
+        if (n > 0) {
+            std::vector<gpu::Transfer> up{
+                {&x, const_cast<fluid::Vec<D>*>(in.x.data()), n * sizeof(fluid::Vec<D>)},
+                {&v, const_cast<fluid::Vec<D>*>(in.v.data()), n * sizeof(fluid::Vec<D>)},
+                {&p, const_cast<float*>(in.pressure.data()), n * sizeof(float)},
+                {&wall, c.wall.data(), n * sizeof(glm::vec4)}};
+            gpu::upload(d, up);
+        }
+    }
+    DeviceFluid(const DeviceFluid&) = delete;
+    DeviceFluid& operator=(const DeviceFluid&) = delete;
+    ~DeviceFluid() {
+        for (gpu::Buffer* b : {&x, &v, &p, &wall}) gpu::destroyBuffer(d, *b);
+    }
+
+    void recordSetup(VkCommandBuffer cmd, FluidParts& parts) {
+        gpu::recordFluidGrid(cmd, *parts.grid, x, n, gridParams);
+        gpu::recordFluidSetup(cmd, *parts.setup, *parts.grid, {&x, &v, &p, &wall, n}, setupParams);
+    }
+};
+
+/// A dam break's particles after `steps` steps: moving, disordered, under
+/// pressure, with the pressures the CPU solver left (the warm start's input).
+template <int D>
+FluidParticles<D> damBreakParticles(const FluidDef& def, glm::vec3 box, int steps) {
+    FluidWorld world;
+    closedBox(world.id, glm::vec3(0.0f), box, D);
+    const FluidId id = createFluid(world.id, def);
+    for (int i = 0; i < steps; ++i) {
+        stepWorld(world.id, kFluidDt);
+    }
+    const FluidSnapshot s = readFluid(world.id, id);
+    FluidParticles<D> p;
+    for (std::size_t i = 0; i < s.count(); ++i) {
+        p.x.push_back(fluid::Vec<D>(s.position[i]));
+        p.v.push_back(fluid::Vec<D>(s.velocity[i]));
+        p.pressure.push_back(s.pressure[i]);
+    }
+    return p;
+}
+
+/// A column of water in a box's corner, at `spacing` (m).
+inline FluidDef damBreakDef(int dimension, float spacing, glm::vec3 column) {
+    FluidDef def;
+    def.name = "water";
+    def.dimension = static_cast<std::uint32_t>(dimension);
+    def.spacing = spacing;
+    def.blocks.push_back({glm::vec3(0.0f), column, glm::vec3(0.0f)});
+    return def;
+}
+
+}  // namespace spindrift::test

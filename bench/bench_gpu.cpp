@@ -19,15 +19,25 @@
 // Vulkan backend runs on Mesa's lavapipe, a CPU implementation, so the numbers
 // here measure the path, not a GPU; 1M particles on lavapipe take about a
 // second per step, too long to repeat here, so the Vulkan case is 100k only.
-// BM_SubEmit: see its comment.
+// BM_SubEmit, BM_FluidDeviceSubstep: see their comments.
+#include "core/parallel.h"
 #include "effects/batch_update.h"
+#include "fluid/fluid_state.h"
+#include "gpu/gpu_fluid_grid.h"
+#include "gpu/gpu_fluid_setup.h"
+#include "gpu/gpu_fluid_solve.h"
+#include "gpu/vulkan_buffer.h"
+#include "gpu/vulkan_device.h"
 
 #include <spindrift/world.h>
 
 #include <benchmark/benchmark.h>
 
+#include <cmath>
 #include <cstdint>
+#include <cstring>
 #include <exception>
+#include <random>
 #include <string>
 
 namespace {
@@ -168,7 +178,103 @@ void BM_SubEmit(benchmark::State& state) {
     destroyWorld(w);
 }
 
+/// The constraint fluid's passes on the device (issue 16; grid, setup, then
+/// the solve's warm start and 4 Gauss-Seidel iterations, colour by colour):
+/// one substep of a block of water at rest on the lattice with velocities of
+/// up to 0.5 m/s at random, the CPU's FluidState placing the grid, every
+/// substep recorded and waited for. Argument 0: particles; 1: dimension.
+/// Counters: list entries per particle. Not yet a whole substep: the contacts
+/// with colliders and the integration stay on the CPU (docs/performance.md,
+/// "The fluid on the device"). On lavapipe the time measures the path only.
+void BM_FluidDeviceSubstep(benchmark::State& state) {
+    using namespace spindrift;
+    const auto n = static_cast<std::uint32_t>(state.range(0));
+    const int dimension = static_cast<int>(state.range(1));
+    try {
+        fluid::FluidState f;
+        f.def.dimension = static_cast<std::uint32_t>(dimension);
+        f.def.spacing = dimension == 2 ? 0.01f : 0.02f;
+        f.def.capacity = 2 * n;
+        fluid::initialiseFluid(f);
+        // A square (cube) block of about n particles.
+        const float side = f.def.spacing * std::pow(static_cast<float>(n), 1.0f / static_cast<float>(dimension));
+        fluid::addBlock(f, {glm::vec3(0.0f), glm::vec3(side, side, dimension == 3 ? side : 0.0f), glm::vec3(0.0f)});
+        const std::size_t count = f.size();
+        std::vector<float> x(count * dimension), v(count * dimension), p(count, 0.0f);
+        std::vector<glm::vec4> wall(count, glm::vec4(0.0f));
+        std::mt19937 rng(3u);
+        std::uniform_real_distribution<float> speed(-0.5f, 0.5f);
+        if (dimension == 2) {
+            std::memcpy(x.data(), f.p2.position.data(), x.size() * 4);
+        } else {
+            std::memcpy(x.data(), f.p3.position.data(), x.size() * 4);
+        }
+        for (float& c : v) c = speed(rng);
+        WorkerPool pool(1);
+        gpu::FluidGridParams grid;
+        grid.dimension = static_cast<std::uint32_t>(dimension);
+        if (dimension == 2) {
+            fluid::placeGrid<2>(pool, f.p2.position, f.h, f.g2);
+            grid.origin = glm::vec3(f.g2.origin, 0.0f);
+            grid.cells = glm::ivec3(f.g2.cells[0], f.g2.cells[1], f.g2.cells[2]);
+        } else {
+            fluid::placeGrid<3>(pool, f.p3.position, f.h, f.g3);
+            grid.origin = f.g3.origin;
+            grid.cells = glm::ivec3(f.g3.cells[0], f.g3.cells[1], f.g3.cells[2]);
+        }
+        grid.invH = 1.0f / f.h;
+        const float dt = 1.0f / 60.0f / 4.0f;  // a substep of four
+        gpu::FluidSetupParams setup{f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, dt,
+                                    f.def.warmStart};
+        gpu::FluidSolveParams solve{f.def.iterations, f.def.splitImpulse, f.def.warmStart, f.restDensity,
+                                    f.def.baumgarte, f.h, dt};
+
+        std::unique_ptr<gpu::Device> d = gpu::createDevice({});
+        {
+            auto gridPasses = gpu::createGpuFluidGrid(*d);
+            auto setupPasses = gpu::createGpuFluidSetup(*d);
+            auto solvePasses = gpu::createGpuFluidSolve(*d);
+            gpu::Buffer xs = gpu::createStorageBuffer(*d, x.size() * 4);
+            gpu::Buffer vs = gpu::createStorageBuffer(*d, v.size() * 4);
+            gpu::Buffer ps = gpu::createStorageBuffer(*d, p.size() * 4);
+            gpu::Buffer walls = gpu::createStorageBuffer(*d, wall.size() * 16);
+            const std::vector<gpu::Transfer> up{{&xs, x.data(), x.size() * 4},
+                                                {&vs, v.data(), v.size() * 4},
+                                                {&ps, p.data(), p.size() * 4},
+                                                {&walls, wall.data(), wall.size() * 16}};
+            gpu::upload(*d, up);
+            const auto substep = [&] {
+                gpu::submitOnce(*d, [&](VkCommandBuffer cmd) {
+                    gpu::recordFluidGrid(cmd, *gridPasses, xs, static_cast<std::uint32_t>(count), grid);
+                    gpu::recordFluidSetup(cmd, *setupPasses, *gridPasses,
+                                          {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)}, setup);
+                    gpu::recordFluidSolve(cmd, *solvePasses, *gridPasses, *setupPasses, walls, solve);
+                });
+            };
+            substep();  // the first allocates
+            const gpu::FluidSetupReadback r = gpu::readFluidSetup(*setupPasses);
+            for (auto _ : state) {
+                substep();
+            }
+            state.counters["particles"] = static_cast<double>(count);
+            state.counters["entries_per_particle"] = static_cast<double>(r.entries) / static_cast<double>(count);
+            for (gpu::Buffer* b : {&xs, &vs, &ps, &walls}) gpu::destroyBuffer(*d, *b);
+        }
+        gpu::destroyDevice(*d);
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+    }
+}
+
 }  // namespace
+
+BENCHMARK(BM_FluidDeviceSubstep)
+    ->ArgNames({"particles", "dimension"})
+    ->Args({100'000, 2})
+    ->Args({100'000, 3})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK(BM_SubEmit)
     ->ArgNames({"vulkan", "child"})

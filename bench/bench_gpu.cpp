@@ -23,11 +23,13 @@
 #include "core/parallel.h"
 #include "effects/batch_update.h"
 #include "fluid/fluid_state.h"
+#include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/gpu_fluid_setup.h"
 #include "gpu/gpu_fluid_solve.h"
 #include "gpu/vulkan_buffer.h"
 #include "gpu/vulkan_device.h"
+#include "particles/params.h"
 
 #include <spindrift/world.h>
 
@@ -38,6 +40,7 @@
 #include <cstring>
 #include <exception>
 #include <random>
+#include <utility>
 #include <string>
 
 namespace {
@@ -178,13 +181,14 @@ void BM_SubEmit(benchmark::State& state) {
     destroyWorld(w);
 }
 
-/// The constraint fluid's passes on the device (issue 16; grid, setup, then
-/// the solve's warm start and 4 Gauss-Seidel iterations, colour by colour):
-/// one substep of a block of water at rest on the lattice with velocities of
-/// up to 0.5 m/s at random, the CPU's FluidState placing the grid, every
-/// substep recorded and waited for. Argument 0: particles; 1: dimension.
-/// Counters: list entries per particle. Not yet a whole substep: the contacts
-/// with colliders and the integration stay on the CPU (docs/performance.md,
+/// The constraint fluid's passes on the device (issue 16; grid, gather, the
+/// contacts with a floor and two walls, the constraints, then the solve's
+/// warm start and 4 Gauss-Seidel iterations colour by colour with the
+/// contacts after each): one substep of a block of water at rest on the
+/// lattice with velocities of up to 0.5 m/s at random, the CPU's FluidState
+/// placing the grid, every substep recorded and waited for. Argument 0:
+/// particles; 1: dimension. Counters: list entries per particle. Not yet a
+/// whole substep: the integration stays on the CPU (docs/performance.md,
 /// "The fluid on the device"). On lavapipe the time measures the path only.
 void BM_FluidDeviceSubstep(benchmark::State& state) {
     using namespace spindrift;
@@ -234,6 +238,24 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
             auto gridPasses = gpu::createGpuFluidGrid(*d);
             auto setupPasses = gpu::createGpuFluidSetup(*d);
             auto solvePasses = gpu::createGpuFluidSolve(*d);
+            auto contactPasses = gpu::createGpuFluidContacts(*d);
+            // A floor under the block and a wall on each side of it.
+            std::vector<kernels::ColliderParams> walls3;
+            for (const auto& [point, normal] : {std::pair{glm::vec3(0.0f), glm::vec3(0, 1, 0)},
+                                                std::pair{glm::vec3(0.0f), glm::vec3(1, 0, 0)},
+                                                std::pair{glm::vec3(side), glm::vec3(-1, 0, 0)}}) {
+                ColliderDef c;
+                c.position = point - normal * (0.5f * f.def.spacing);  // half a spacing from the lattice
+                c.normal = normal;
+                walls3.push_back(makeColliderParams(c, 0));
+            }
+            std::vector<glm::vec2> table(fluid::WallTable::kSize);
+            for (int e = 0; e < fluid::WallTable::kSize; ++e) {
+                table[e] = glm::vec2(f.wallTable.density[e], f.wallTable.push[e]);
+            }
+            gpu::setFluidSurfaces(*contactPasses, {walls3, {}, table, f.wallTable.start, f.wallTable.step});
+            const gpu::FluidContactParams contactParams{f.radius, f.def.spacing, dt, f.def.friction,
+                                                        f.def.splitImpulse};
             gpu::Buffer xs = gpu::createStorageBuffer(*d, x.size() * 4);
             gpu::Buffer vs = gpu::createStorageBuffer(*d, v.size() * 4);
             gpu::Buffer ps = gpu::createStorageBuffer(*d, p.size() * 4);
@@ -246,9 +268,12 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
             const auto substep = [&] {
                 gpu::submitOnce(*d, [&](VkCommandBuffer cmd) {
                     gpu::recordFluidGrid(cmd, *gridPasses, xs, static_cast<std::uint32_t>(count), grid);
-                    gpu::recordFluidSetup(cmd, *setupPasses, *gridPasses,
-                                          {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)}, setup);
-                    gpu::recordFluidSolve(cmd, *solvePasses, *gridPasses, *setupPasses, walls, solve);
+                    gpu::recordFluidGather(cmd, *setupPasses, *gridPasses,
+                                           {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)});
+                    gpu::recordFluidContactsFind(cmd, *contactPasses, *setupPasses, walls, contactParams);
+                    gpu::recordFluidConstraints(cmd, *setupPasses, *gridPasses, setup);
+                    gpu::recordFluidSolve(cmd, *solvePasses, *gridPasses, *setupPasses, walls, solve,
+                                          contactPasses.get());
                 });
             };
             substep();  // the first allocates

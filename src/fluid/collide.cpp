@@ -15,9 +15,8 @@
 namespace spindrift::fluid {
 namespace {
 
-/// Fraction of an overlap removed per step (m per m): a gentle push, so a
-/// particle that starts inside a wall does not shoot out.
-constexpr float kOverlapPush = 0.2f;
+/// Fraction of an overlap removed per step (fluid.glsl).
+constexpr float kOverlapPush = kernels::SD_FLUID_OVERLAP_PUSH;
 /// Distance (m) a put-back particle keeps from the surface, so rounding does
 /// not leave it inside for the next step.
 constexpr float kSkin = 1e-5f;
@@ -59,14 +58,11 @@ kernels::Hit pathHit(const kernels::ColliderParams& c, glm::vec3 x0, glm::vec3 x
                                                    : kernels::intersectBox(c, x0, x1);
 }
 
-/// In 2D a normal with a z part (a sphere's or a box's seen off-centre) is
-/// projected into the plane, so the fluid stays in it.
+/// In 2D a surface's normal is projected into the plane (fluid.glsl).
 template <int D>
 kernels::FluidSurface flatten(kernels::FluidSurface s) {
     if constexpr (D == 2) {
-        const glm::vec2 n(s.normal.x, s.normal.y);
-        const float len = glm::length(n);
-        s.normal = len > 0.0f ? glm::vec3(n / len, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
+        return kernels::fluidFlatSurface(s);
     }
     return s;
 }

@@ -57,14 +57,12 @@ void buildWallTable(FluidState& f) {
 }
 
 WallTerm wallTerm(const WallTable& t, float distance) {
-    const float u = (distance - t.start) / t.step;
-    if (!(u < static_cast<float>(WallTable::kSize - 1))) return WallTerm{};  // also NaN
-    const float c = u > 0.0f ? u : 0.0f;
-    const int e = static_cast<int>(c);
-    const float a = c - static_cast<float>(e);
+    const kernels::FluidWallPlace w = kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize);
+    if (w.entry < 0) return WallTerm{};
+    const auto e = static_cast<std::size_t>(w.entry);
     WallTerm r;
-    r.density = t.density[e] + (t.density[e + 1] - t.density[e]) * a;
-    r.push = t.push[e] + (t.push[e + 1] - t.push[e]) * a;
+    r.density = kernels::fluidWallLerp(t.density[e], t.density[e + 1], w.fraction);
+    r.push = kernels::fluidWallLerp(t.push[e], t.push[e + 1], w.fraction);
     return r;
 }
 

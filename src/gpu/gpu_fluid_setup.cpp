@@ -117,8 +117,7 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries) {
     s.listCapacity = entries;
 }
 
-void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
-                      const FluidSetupParams& params) {
+void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in) {
     const std::uint32_t n = in.count;
     const std::uint32_t dimension = grid.dimension;
     if (n != grid.count) {
@@ -134,12 +133,35 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
     reserveFluidLists(s, static_cast<std::uint32_t>(std::min<std::uint64_t>(room, 0x3FFFFFFFu)));
     s.count = n;
     s.dimension = dimension;
+    s.groups = groups;
     writeSet(s, grid, in);
 
-    // The constants as the CPU's setupConstraints computes them.
     FluidSetupPush push{};
     push.cells = glm::ivec4(grid.cells, static_cast<int>(dimension));
     push.count = n;
+    // The inputs' writers (a step's pass, an upload) and the last reader of
+    // the header, before the header is cleared and the gather reads.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT |
+                      VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, s.header.buffer, 0, sizeof(FluidSetupHeader), 0u);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    if (n > 0) {
+        dispatchCompute(cmd, s.pipelines[kernels::SD_FLUID_SETUP_PASS_GATHER], s.pipelineLayout, s.set, &push,
+                        sizeof(push), groups);
+    }
+    computeToCompute(cmd);
+}
+
+void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid,
+                            const FluidSetupParams& params) {
+    // The constants as the CPU's setupConstraints computes them.
+    FluidSetupPush push{};
+    push.cells = glm::ivec4(grid.cells, static_cast<int>(s.dimension));
+    push.count = s.count;
     push.readLimit = params.readLimit;
     push.cap = params.cap;
     push.listCapacity = s.listCapacity;
@@ -152,21 +174,11 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
     push.invDt = 1.0f / params.dt;
     push.warmFraction = params.warmFraction;
     push.invRest = 1.0f / params.restDensity;
-    push.tiles = groups;
-
-    // The inputs' writers (a step's pass, an upload) and the last reader of
-    // the header, before the header is cleared and the gather reads.
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT |
-                      VK_ACCESS_TRANSFER_READ_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
-                  VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT);
-    vkCmdFillBuffer(cmd, s.header.buffer, 0, sizeof(FluidSetupHeader), 0u);
-    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
-                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
-    if (n > 0) {
-        for (std::uint32_t pass = 0; pass < 4; ++pass) {
-            const std::uint32_t passGroups = pass == kernels::SD_FLUID_SETUP_PASS_TILES ? 1u : groups;
+    push.tiles = s.groups;
+    computeToCompute(cmd);  // the gather's and the contacts' writes
+    if (s.count > 0) {
+        for (std::uint32_t pass = kernels::SD_FLUID_SETUP_PASS_COUNT; pass < 4; ++pass) {
+            const std::uint32_t passGroups = pass == kernels::SD_FLUID_SETUP_PASS_TILES ? 1u : s.groups;
             dispatchCompute(cmd, s.pipelines[pass], s.pipelineLayout, s.set, &push, sizeof(push), passGroups);
             computeToCompute(cmd);
         }
@@ -175,6 +187,12 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT);
+}
+
+void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
+                      const FluidSetupParams& params) {
+    recordFluidGather(cmd, s, grid, in);
+    recordFluidConstraints(cmd, s, grid, params);
 }
 
 FluidSetupReadback readFluidSetup(GpuFluidSetup& s) {

@@ -70,6 +70,7 @@ struct GpuFluidSetup {
     // Of the last recorded setup.
     std::uint32_t count = 0;
     std::uint32_t dimension = 2;
+    std::uint32_t groups = 0;  // workgroups of the per-particle passes
 
     GpuFluidSetup() = default;
     GpuFluidSetup(const GpuFluidSetup&) = delete;
@@ -95,6 +96,14 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries);
 /// grid, or buffers too small.
 void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
                       const FluidSetupParams& params);
+
+/// recordFluidSetup in two halves, for a pass between them that reads the
+/// gathered particles and writes `wall` (the contacts' find pass,
+/// gpu_fluid_contacts.h): the gather into grid order (it binds `in`, wall
+/// included), then the constraints (passes count, tiles and setup).
+void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in);
+void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid,
+                            const FluidSetupParams& params);
 
 /// The last setup's results, read back (tests): waits for the device.
 struct FluidSetupReadback {

@@ -92,7 +92,7 @@ std::unique_ptr<GpuFluidSolve> createGpuFluidSolve(Device& d) {
 }
 
 void recordFluidSolve(VkCommandBuffer cmd, GpuFluidSolve& s, const GpuFluidGrid& grid, GpuFluidSetup& setup,
-                      const Buffer& wall, const FluidSolveParams& params) {
+                      const Buffer& wall, const FluidSolveParams& params, GpuFluidContacts* contacts) {
     const std::uint32_t n = setup.count;
     const std::uint32_t dimension = setup.dimension;
     if (n != grid.count) {
@@ -135,7 +135,11 @@ void recordFluidSolve(VkCommandBuffer cmd, GpuFluidSolve& s, const GpuFluidGrid&
     };
     pass(kernels::SD_FLUID_SOLVE_PASS_START, 0u, groups);
     colourPasses(kernels::SD_FLUID_SOLVE_PASS_WARM);  // does nothing when the warm start was gathered
-    for (std::uint32_t it = 0; it < params.iterations; ++it) colourPasses(kernels::SD_FLUID_SOLVE_PASS_SWEEP);
+    if (contacts != nullptr) recordFluidContactsSolve(cmd, *contacts, s.motion, true);
+    for (std::uint32_t it = 0; it < params.iterations; ++it) {
+        colourPasses(kernels::SD_FLUID_SOLVE_PASS_SWEEP);
+        if (contacts != nullptr) recordFluidContactsSolve(cmd, *contacts, s.motion, false);
+    }
     pass(kernels::SD_FLUID_SOLVE_PASS_FINISH, 0u, groups);
     // The results for whoever reads them next: a compute pass or a copy.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,

@@ -5,10 +5,11 @@
 // (src/gpu/shaders/fluid_solve.comp). On a device that rounds to nearest the
 // velocities and pressures are the CPU's bit for bit, given the same setup.
 //
-// Not yet here (issue 16's next slices): the contacts with colliders and
-// bodies between the sweeps (solveContacts), and the Sequential order.
+// Not yet here (issue 16's next slices): the contacts with bodies between the
+// sweeps, and the Sequential order.
 #pragma once
 
+#include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/gpu_fluid_setup.h"
 #include "gpu/vulkan_buffer.h"
@@ -61,8 +62,11 @@ std::unique_ptr<GpuFluidSolve> createGpuFluidSolve(Device& d);
 /// the setup's input of the colliders' share. Waits for earlier compute
 /// writes; its results are visible to later compute and transfer commands.
 /// Rewrites the descriptor set: no other solve of `s` may be pending.
+/// With `contacts` (its find recorded before the setup's constraints), the
+/// contacts are solved after the warm start and after every sweep, as the
+/// CPU's solveConstraints does (slide 51).
 void recordFluidSolve(VkCommandBuffer cmd, GpuFluidSolve& s, const GpuFluidGrid& grid, GpuFluidSetup& setup,
-                      const Buffer& wall, const FluidSolveParams& params);
+                      const Buffer& wall, const FluidSolveParams& params, GpuFluidContacts* contacts = nullptr);
 
 /// The last solve's results, read back (tests): waits for the device.
 struct FluidSolveReadback {

@@ -25,6 +25,8 @@ extern const std::uint32_t kFluidSetup[];
 extern const std::size_t kFluidSetupWords;
 extern const std::uint32_t kFluidSolve[];
 extern const std::size_t kFluidSolveWords;
+extern const std::uint32_t kFluidContacts[];
+extern const std::size_t kFluidContactsWords;
 // The renderer (src/render/shaders/).
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;

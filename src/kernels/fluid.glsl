@@ -233,23 +233,27 @@ SD_FN FluidSurface makeSurface(float distance, vec3 normal) {
 SD_FN FluidSurface fluidColliderSurface(SD_IN(ColliderParams) c, vec3 p) {
     if (c.kind == SD_COLLIDER_PLANE) {
         vec3 n = vec3(c.normal);
-        return makeSurface(dot(p - vec3(c.position), n), n);
+        SD_PRECISE float d = dot(p - vec3(c.position), n);
+        return makeSurface(d, n);
     }
     if (c.kind == SD_COLLIDER_SPHERE) {
-        vec3 offset = p - vec3(c.position);
-        float len = length(offset);
-        vec3 n = len > 0.0f ? offset / len : vec3(0.0f, 1.0f, 0.0f);
+        SD_PRECISE vec3 offset = p - vec3(c.position);
+        SD_PRECISE float len = length(offset);
+        SD_PRECISE vec3 n = len > 0.0f ? offset / len : vec3(0.0f, 1.0f, 0.0f);
         return makeSurface(len - c.position.w, n);
     }
     if (c.kind == SD_COLLIDER_BOX) {
-        vec3 offset = p - vec3(c.position);
-        vec3 q = vec3(dot(offset, vec3(c.axisX)), dot(offset, vec3(c.axisY)), dot(offset, vec3(c.axisZ)));
-        vec3 s = vec3(q.x >= 0.0f ? 1.0f : -1.0f, q.y >= 0.0f ? 1.0f : -1.0f, q.z >= 0.0f ? 1.0f : -1.0f);
-        vec3 gap = abs(q) - vec3(c.halfExtents);  // > 0: outside that slab
-        vec3 outside = max(gap, vec3(0.0f));
-        float outsideLength = length(outside);
-        vec3 local;
-        float distance;
+        SD_PRECISE vec3 offset = p - vec3(c.position);
+        SD_PRECISE float qx = dot(offset, vec3(c.axisX));
+        SD_PRECISE float qy = dot(offset, vec3(c.axisY));
+        SD_PRECISE float qz = dot(offset, vec3(c.axisZ));
+        vec3 q = vec3(qx, qy, qz);
+        SD_PRECISE vec3 s = vec3(q.x >= 0.0f ? 1.0f : -1.0f, q.y >= 0.0f ? 1.0f : -1.0f, q.z >= 0.0f ? 1.0f : -1.0f);
+        SD_PRECISE vec3 gap = abs(q) - vec3(c.halfExtents);  // > 0: outside that slab
+        SD_PRECISE vec3 outside = max(gap, vec3(0.0f));
+        SD_PRECISE float outsideLength = length(outside);
+        SD_PRECISE vec3 local;
+        SD_PRECISE float distance;
         if (outsideLength > 0.0f) {
             local = outside * s / outsideLength;
             distance = outsideLength;
@@ -266,7 +270,7 @@ SD_FN FluidSurface fluidColliderSurface(SD_IN(ColliderParams) c, vec3 p) {
                 distance = gap.z;
             }
         }
-        vec3 n = vec3(c.axisX) * local.x + vec3(c.axisY) * local.y + vec3(c.axisZ) * local.z;
+        SD_PRECISE vec3 n = vec3(c.axisX) * local.x + vec3(c.axisY) * local.y + vec3(c.axisZ) * local.z;
         return makeSurface(distance, n);
     }
     return makeSurface(3.0e38f, vec3(0.0f, 1.0f, 0.0f));
@@ -286,21 +290,21 @@ struct FluidPolygon {
 // inside, minus the distance to the nearest edge line (the convex polygon is
 // the intersection of its edges' half-planes).
 SD_FN FluidSurface fluidPolygonSurface(SD_IN(FluidPolygon) poly, vec3 p) {
-    vec2 x = vec2(p.x, p.y);
-    float insideDistance = -3.0e38f;
-    vec2 insideNormal = vec2(0.0f, 1.0f);
-    float outsideSquared = 3.0e38f;
-    vec2 outsideNormal = vec2(0.0f, 1.0f);
+    SD_PRECISE vec2 x = vec2(p.x, p.y);
+    SD_PRECISE float insideDistance = -3.0e38f;
+    SD_PRECISE vec2 insideNormal = vec2(0.0f, 1.0f);
+    SD_PRECISE float outsideSquared = 3.0e38f;
+    SD_PRECISE vec2 outsideNormal = vec2(0.0f, 1.0f);
     bool outside = false;
     for (uint i = 0u; i < poly.count; ++i) {
-        vec2 a = vec2(poly.vertices[i].x, poly.vertices[i].y);
+        SD_PRECISE vec2 a = vec2(poly.vertices[i].x, poly.vertices[i].y);
         uint j = i + 1u == poly.count ? 0u : i + 1u;
-        vec2 b = vec2(poly.vertices[j].x, poly.vertices[j].y);
-        vec2 edge = b - a;
-        float len = length(edge);
+        SD_PRECISE vec2 b = vec2(poly.vertices[j].x, poly.vertices[j].y);
+        SD_PRECISE vec2 edge = b - a;
+        SD_PRECISE float len = length(edge);
         // Counter-clockwise: the outward normal is the edge turned clockwise.
-        vec2 n = len > 0.0f ? vec2(edge.y, -edge.x) / len : vec2(0.0f, 1.0f);
-        float side = dot(x - a, n);
+        SD_PRECISE vec2 n = len > 0.0f ? vec2(edge.y, -edge.x) / len : vec2(0.0f, 1.0f);
+        SD_PRECISE float side = dot(x - a, n);
         if (side > 0.0f) {
             outside = true;
         }
@@ -308,10 +312,10 @@ SD_FN FluidSurface fluidPolygonSurface(SD_IN(FluidPolygon) poly, vec3 p) {
             insideDistance = side;
             insideNormal = n;
         }
-        float t = len > 0.0f ? clamp(dot(x - a, edge) / (len * len), 0.0f, 1.0f) : 0.0f;
-        vec2 closest = a + edge * t;
-        vec2 away = x - closest;
-        float d2 = dot(away, away);
+        SD_PRECISE float t = len > 0.0f ? clamp(dot(x - a, edge) / (len * len), 0.0f, 1.0f) : 0.0f;
+        SD_PRECISE vec2 closest = a + edge * t;
+        SD_PRECISE vec2 away = x - closest;
+        SD_PRECISE float d2 = dot(away, away);
         if (d2 < outsideSquared) {
             outsideSquared = d2;
             outsideNormal = d2 > 0.0f ? away / sqrt(d2) : n;
@@ -323,6 +327,47 @@ SD_FN FluidSurface fluidPolygonSurface(SD_IN(FluidPolygon) poly, vec3 p) {
     return makeSurface(insideDistance, vec3(insideNormal.x, insideNormal.y, 0.0f));
 }
 
+// Fraction of an overlap removed per step (m per m) by a contact's push: a
+// gentle push, so a particle that starts inside a wall does not shoot out.
+SD_CONST float SD_FLUID_OVERLAP_PUSH = 0.2f;
+
+// A 2D fluid's surface: a normal with a z part (a sphere's or a box's seen
+// off-centre) is projected into the plane, so the fluid stays in it.
+SD_FN FluidSurface fluidFlatSurface(FluidSurface s) {
+    SD_PRECISE float len = sqrt(s.normal.x * s.normal.x + s.normal.y * s.normal.y);
+    SD_PRECISE vec3 n = len > 0.0f ? vec3(s.normal.x / len, s.normal.y / len, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+    s.normal = n;
+    return s;
+}
+
+// The colliders' share of a particle's density at `distance` (m) from a
+// surface: a table of `size` entries from `start` (m), `step` (m) apart
+// (src/fluid/wall_density.cpp builds it), read linearly. The entry below the
+// distance, or -1 beyond the table (and for NaN), and the fraction toward
+// the next entry.
+struct FluidWallPlace {
+    int entry;
+    float fraction;
+};
+SD_FN FluidWallPlace fluidWallPlace(float distance, float start, float step, int size) {
+    SD_PRECISE float u = (distance - start) / step;
+    FluidWallPlace w;
+    w.entry = -1;
+    w.fraction = 0.0f;
+    if (!(u < float(size - 1))) {
+        return w;
+    }
+    float c = u > 0.0f ? u : 0.0f;
+    w.entry = int(c);
+    SD_PRECISE float a = c - float(w.entry);
+    w.fraction = a;
+    return w;
+}
+SD_FN float fluidWallLerp(float below, float above, float fraction) {
+    SD_PRECISE float r = below + (above - below) * fraction;
+    return r;
+}
+
 // The contact of slide 51 as a speculative velocity constraint: with
 // separation s = distance - radius, the normal velocity may not fall below
 // -s / dt (the particle may close the gap in this step, not more). A particle
@@ -330,19 +375,19 @@ SD_FN FluidSurface fluidPolygonSurface(SD_IN(FluidPolygon) poly, vec3 p) {
 // Friction (Coulomb, mu) removes tangential velocity up to mu times the
 // normal velocity change. Returns the new velocity.
 SD_FN vec3 fluidContactVelocity(vec3 v, FluidSurface surface, float radius, float invDt, float push, float mu) {
-    float separation = surface.distance - radius;
-    float target = separation >= 0.0f ? -separation * invDt : -separation * push * invDt;
-    float vn = dot(v, surface.normal);
+    SD_PRECISE float separation = surface.distance - radius;
+    SD_PRECISE float target = separation >= 0.0f ? -separation * invDt : -separation * push * invDt;
+    SD_PRECISE float vn = dot(v, surface.normal);
     if (vn >= target) {
         return v;
     }
-    float dvn = target - vn;
-    vec3 out1 = v + surface.normal * dvn;
+    SD_PRECISE float dvn = target - vn;
+    SD_PRECISE vec3 out1 = v + surface.normal * dvn;
     if (mu > 0.0f) {
-        vec3 tangent = out1 - surface.normal * dot(out1, surface.normal);
-        float speed = length(tangent);
+        SD_PRECISE vec3 tangent = out1 - surface.normal * dot(out1, surface.normal);
+        SD_PRECISE float speed = length(tangent);
         if (speed > 0.0f) {
-            float drop = min(speed, mu * dvn);
+            SD_PRECISE float drop = min(speed, mu * dvn);
             out1 = out1 - tangent * (drop / speed);
         }
     }

@@ -314,6 +314,42 @@ struct FluidSolvePush {
     float pad2;
 };
 
+// The constraint fluid's contacts with static colliders on the device
+// (src/gpu/shaders/fluid_contacts.comp, src/gpu/gpu_fluid_contacts.cpp): the
+// CPU's findContacts and solveContacts (src/fluid/collide.cpp).
+SD_CONST uint SD_FLUID_CONTACTS_PASS_FIND = 0u;   // the PASS specialization constant (id 0)
+SD_CONST uint SD_FLUID_CONTACTS_PASS_SOLVE = 1u;
+SD_CONST uint SD_FLUID_CONTACTS_WORKGROUP = 64u;
+// Surfaces a fluid's contacts tell apart: one bit each in a particle's mask.
+SD_CONST uint SD_FLUID_MAX_SURFACES = 32u;
+// Set 0 bindings, in order; per particle in grid order.
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_X = 0u;          // float[dimension n] (m)
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_V = 1u;          // float[dimension n] (m/s), at the search
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_COLLIDERS = 2u;  // ColliderParams[]: the fluid's planes, spheres and boxes
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_POLYGONS = 3u;   // FluidPolygon[]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_WALL_TABLE = 4u; // vec2[size]: density, push (wall_density.cpp)
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_WALL = 5u;       // vec4[n] out: colliders' density, xyz their g sum
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_MASK = 6u;       // uint[n]: the surfaces within reach
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_MOTION = 7u;     // float[2 dimension n]: the solve's velocity, pseudo velocity
+SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 8u;
+
+// The contact passes' push constants (std430: eight uints or floats, then
+// four). 48 bytes.
+struct FluidContactsPush {
+    uint count;           // particles
+    uint dimension;
+    uint colliders;       // entries of COLLIDERS
+    uint polygons;        // entries of POLYGONS
+    float radius;         // m, a particle's against the colliders
+    float spacing;        // m
+    float dt;             // s, of the substep
+    float friction;       // mu (FluidDef::friction)
+    float tableStart;     // m, distance of the wall table's entry 0
+    float tableStep;      // m between entries
+    uint tableSize;
+    uint split;           // 1: split impulses
+};
+
 // The renderer (src/render): what every render pipeline reads, the camera and
 // the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
 // 592 bytes.
@@ -489,6 +525,9 @@ static_assert(offsetof(FluidSetupPush, restDensity) == 48);
 static_assert(offsetof(FluidSetupPush, invRest) == 64);
 static_assert(sizeof(FluidSetupHeader) == 16);
 static_assert(sizeof(FluidSolvePush) == 48);
+static_assert(sizeof(FluidContactsPush) == 48);
+static_assert(offsetof(FluidContactsPush, radius) == 16);
+static_assert(offsetof(FluidContactsPush, tableStart) == 32);
 static_assert(offsetof(FluidSolvePush, count) == 16);
 static_assert(offsetof(FluidSolvePush, warmFraction) == 32);
 static_assert(offsetof(SortPush, count) == 32);

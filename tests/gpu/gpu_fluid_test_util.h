@@ -3,18 +3,23 @@
 // the CPU's grid and setup, and the same state uploaded for the device.
 #pragma once
 
+#include "fluid/body_link.h"
 #include "fluid/fluid_state.h"
 #include "fluid/fluid_test_util.h"
+#include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/gpu_fluid_setup.h"
 #include "gpu/gpu_fluid_solve.h"
 #include "gpu/vulkan_buffer.h"
+#include "particles/event_queue.h"
+#include "particles/params.h"
 
 #include <spindrift/fluid.h>
 #include <spindrift/world.h>
 
 #include <algorithm>
 #include <memory>
+#include <span>
 #include <vector>
 
 namespace spindrift::test {
@@ -26,9 +31,11 @@ struct FluidParts {
     std::unique_ptr<gpu::GpuFluidGrid> grid;
     std::unique_ptr<gpu::GpuFluidSetup> setup;
     std::unique_ptr<gpu::GpuFluidSolve> solve;
+    std::unique_ptr<gpu::GpuFluidContacts> contacts;
 };
 inline std::unique_ptr<FluidParts> createFluidParts(gpu::Device& d) {
     auto parts = std::make_unique<FluidParts>();
+    parts->contacts = gpu::createGpuFluidContacts(d);
     parts->grid = gpu::createGpuFluidGrid(d);
     parts->setup = gpu::createGpuFluidSetup(d);
     parts->solve = gpu::createGpuFluidSolve(d);
@@ -60,8 +67,22 @@ struct CpuSetup {
     std::vector<glm::vec4> wall;  // density, g sum (grid order)
 };
 
+/// A step's view of a world with colliders and no bodies (findContacts reads
+/// only the colliders).
+class NoBodies final : public fluid::BodyLink {
+public:
+    fluid::JetMount jetMount(BodyId) override { return {}; }
+    void applyRecoil(BodyId, const fluid::JetMount&) override {}
+    fluid::FluidBodyStep* gather(const fluid::FluidState&, float) override { return nullptr; }
+    void exchange(const fluid::FluidBodyStep&) override {}
+};
+
+/// The CPU's setup of `in`, the colliders' share from `colliders` (fluid
+/// kinds only, in order) and the fluid's polygons (findContacts), or, when
+/// there are none, synthetic (syntheticWall).
 template <int D>
-void runCpuSetup(CpuSetup<D>& c, const FluidDef& def, const FluidParticles<D>& in) {
+void runCpuSetup(CpuSetup<D>& c, const FluidDef& def, const FluidParticles<D>& in,
+                 std::span<const kernels::ColliderParams> colliders = {}) {
     c.f.def = def;
     fluid::initialiseFluid(c.f);
     fluid::Particles<D>& p = c.f.template particles<D>();
@@ -73,12 +94,22 @@ void runCpuSetup(CpuSetup<D>& c, const FluidDef& def, const FluidParticles<D>& i
     fluid::buildGrid<D>(pool, c.f);
     const std::size_t n = p.size();
     c.wall.resize(n);
-    c.f.constraints.wallDensity.resize(n);
-    c.f.constraints.wallGradient.resize(n);
-    for (std::size_t i = 0; i < n; ++i) {
-        c.wall[i] = syntheticWall(i, D);
-        c.f.constraints.wallDensity[i] = c.wall[i].x;
-        c.f.constraints.wallGradient[i] = glm::vec3(c.wall[i].y, c.wall[i].z, c.wall[i].w);
+    if (colliders.empty() && c.f.polygons.empty()) {
+        c.f.constraints.wallDensity.resize(n);
+        c.f.constraints.wallGradient.resize(n);
+        for (std::size_t i = 0; i < n; ++i) {
+            c.wall[i] = syntheticWall(i, D);
+            c.f.constraints.wallDensity[i] = c.wall[i].x;
+            c.f.constraints.wallGradient[i] = glm::vec3(c.wall[i].y, c.wall[i].z, c.wall[i].w);
+        }
+    } else {
+        EventQueue events;
+        NoBodies bodies;
+        const fluid::StepContext context{pool, colliders, 0.0, 0, events, bodies};
+        fluid::findContacts<D>(pool, c.f, context, kFluidDt);
+        for (std::size_t i = 0; i < n; ++i) {
+            c.wall[i] = glm::vec4(c.f.constraints.wallDensity[i], c.f.constraints.wallGradient[i]);
+        }
     }
     c.f.lastSubstep = 2.0f * kFluidDt;  // a warm start scaled by a half, as after a change of substeps
     fluid::setupConstraints<D>(pool, c.f, kFluidDt, c.stats);

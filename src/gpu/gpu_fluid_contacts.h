@@ -1,0 +1,99 @@
+// The constraint fluid's contacts with static colliders on the device (issue
+// 16, fourth slice): the CPU's findContacts and solveContacts
+// (src/fluid/collide.cpp) on the particles of the device setup
+// (gpu_fluid_setup.h), src/gpu/shaders/fluid_contacts.comp. The find pass
+// writes the colliders' share of the density, which the setup reads (its
+// `wall` input); the solve pass runs between the solve's sweeps
+// (recordFluidSolve). On a device that rounds to nearest both are the CPU's
+// bit for bit.
+//
+// Not yet here: rigid bodies' contacts, the integration with its path tests.
+#pragma once
+
+#include "gpu/gpu_fluid_setup.h"
+#include "gpu/vulkan_buffer.h"
+#include "kernels/fluid.glsl"
+
+#include <glm/glm.hpp>
+
+#include <cstdint>
+#include <memory>
+#include <span>
+#include <vector>
+
+namespace spindrift::gpu {
+
+/// What a fluid's contacts see, uploaded by setFluidSurfaces.
+struct FluidSurfaces {
+    /// The world's fluid colliders (planes, spheres, boxes) in creation order.
+    std::span<const kernels::ColliderParams> colliders;
+    std::span<const kernels::FluidPolygon> polygons;
+    /// The colliders' share by distance (fluid::WallTable): density, push.
+    std::span<const glm::vec2> wallTable;
+    float tableStart = 0.0f;  // m, distance of entry 0
+    float tableStep = 1.0f;   // m between entries
+};
+
+/// A contact pass's constants, as fluid::FluidState holds them.
+struct FluidContactParams {
+    float radius = 0.0f;   // m, FluidState::radius
+    float spacing = 0.0f;  // m
+    float dt = 0.0f;       // s, of the substep
+    float friction = 0.0f; // FluidDef::friction
+    bool split = true;     // FluidDef::splitImpulse
+};
+
+/// Pipelines, surfaces and masks of the contacts, for one Device.
+struct GpuFluidContacts {
+    Device* device = nullptr;
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+    VkPipeline findPipeline = VK_NULL_HANDLE;
+    VkPipeline solvePipeline = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    /// The find pass's set, and the solve pass's (written when the solve is
+    /// recorded, once its working velocities exist).
+    VkDescriptorSet findSet = VK_NULL_HANDLE;
+    VkDescriptorSet solveSet = VK_NULL_HANDLE;
+    Buffer colliders, polygons, wallTable;
+    Buffer masks;  // uint per particle: the surfaces within reach
+    std::uint32_t colliderCount = 0, polygonCount = 0, tableSize = 0;
+    float tableStart = 0.0f, tableStep = 1.0f;
+    std::uint32_t capacity = 0;  // particles `masks` holds
+    // Of the last recorded find.
+    std::uint32_t count = 0;
+    std::uint32_t dimension = 2;
+    FluidContactParams params;
+    const Buffer* boundX = nullptr;     // the find's positions (the setup's, grid order)
+    const Buffer* boundV = nullptr;
+    const Buffer* boundWall = nullptr;
+
+    GpuFluidContacts() = default;
+    GpuFluidContacts(const GpuFluidContacts&) = delete;
+    GpuFluidContacts& operator=(const GpuFluidContacts&) = delete;
+    ~GpuFluidContacts();
+};
+
+/// Creates the two pipelines.
+std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d);
+
+/// Uploads the surfaces (between submissions). Throws Error for more than
+/// SD_FLUID_MAX_SURFACES colliders and polygons together, or a table of
+/// fewer than two entries.
+void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces);
+
+/// Records the find pass for the particles of `setup`'s last gather (its
+/// grid-order positions and velocities) into `cmd`: writes `wall` (vec4 per
+/// particle: the colliders' density, xyz their g sum), the setup's input.
+/// Waits for earlier compute writes; its results are visible to later
+/// compute passes. Throws Error for a `wall` buffer too small.
+void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
+                             const FluidContactParams& params);
+
+/// Records the solve pass on `motion` (the solve's working velocities, 2 x
+/// dimension floats a particle) of the last recorded find. The first call
+/// after a find writes the solve's descriptor set, so `motion` must be the
+/// same buffer for every call until the next find.
+void recordFluidContactsSolve(VkCommandBuffer cmd, GpuFluidContacts& c, const Buffer& motion, bool firstAfterFind);
+
+}  // namespace spindrift::gpu

@@ -1,0 +1,153 @@
+#version 450
+// The constraint fluid's contacts with static colliders on the device (the
+// CPU's findContacts and solveContacts in src/fluid/collide.cpp; slide 51).
+// Passes (a specialization constant):
+//   0 find:  each particle's surfaces within reach this substep (speculative:
+//            what it could reach, plus a spacing for what the solve adds), as
+//            one bit per surface, and the colliders' share of its density
+//            and Jacobian (the motionless ghosts, src/fluid/wall_density.cpp);
+//   1 solve: each particle's contacts, in surface order, on the solve's
+//            working velocities (fluid_solve.comp records it between sweeps).
+// Surfaces are the world's planes, spheres and boxes in creation order, then
+// the fluid's polygons, as on the CPU. The solve pass recomputes each
+// surface at the particle's position instead of storing it: the same
+// function of the same numbers, so the CPU's stored surface.
+#include "fluid.glsl"
+#include "layout.glsl"
+
+layout(constant_id = 0) const uint PASS = 0u;
+
+layout(local_size_x = SD_FLUID_CONTACTS_WORKGROUP) in;
+
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_X) readonly buffer X { float xs[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_V) readonly buffer V { float vs[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_COLLIDERS) readonly buffer Colliders { ColliderParams colliders[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_POLYGONS) readonly buffer Polygons { FluidPolygon polygons[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_WALL_TABLE) readonly buffer WallTable { vec2 wallTable[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_WALL) writeonly buffer Wall { vec4 wall[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_MASK) buffer Mask { uint masks[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_MOTION) buffer Motion { float motion[]; };
+
+layout(push_constant) uniform Contacts { FluidContactsPush args; };  // FluidContactsPush in layout.glsl
+
+vec3 load(uint i, bool velocity) {
+    uint d = args.dimension;
+    if (velocity) return vec3(vs[d * i], vs[d * i + 1u], d == 3u ? vs[d * i + 2u] : 0.0f);
+    return vec3(xs[d * i], xs[d * i + 1u], d == 3u ? xs[d * i + 2u] : 0.0f);
+}
+
+// Surface k at x: a collider's (projected into the plane in 2D), then the
+// polygons'.
+FluidSurface surfaceOf(uint k, vec3 x) {
+    if (k < args.colliders) {
+        FluidSurface s = fluidColliderSurface(colliders[k], x);
+        return args.dimension == 2u ? fluidFlatSurface(s) : s;
+    }
+    return fluidPolygonSurface(polygons[k - args.colliders], x);
+}
+
+void find(uint i) {
+    if (i >= args.count) {
+        return;
+    }
+    uint d = args.dimension;
+    vec3 x = load(i, false);
+    vec3 v = load(i, true);
+    precise float speed2x = v.x * v.x;
+    precise float speed2y = v.y * v.y;
+    precise float speed2 = speed2x + speed2y;
+    if (d == 3u) {
+        precise float speed2z = v.z * v.z;
+        speed2 = speed2 + speed2z;
+    }
+    precise float travel = sqrt(speed2) * args.dt;
+    precise float near = args.radius + travel;
+    precise float reach = near + args.spacing;
+    uint mask = 0u;
+    precise float density = 0.0f;
+    precise float gx = 0.0f;
+    precise float gy = 0.0f;
+    precise float gz = 0.0f;
+    uint surfaces = args.colliders + args.polygons;
+    for (uint k = 0u; k < surfaces; ++k) {
+        FluidSurface s = surfaceOf(k, x);
+        if (s.distance < reach) mask |= 1u << k;
+        // The ghosts' direction from the particle is into the wall: -normal.
+        FluidWallPlace place = fluidWallPlace(s.distance, args.tableStart, args.tableStep, int(args.tableSize));
+        float lent = 0.0f;
+        float push = 0.0f;
+        if (place.entry >= 0) {
+            vec2 below = wallTable[place.entry];
+            vec2 above = wallTable[place.entry + 1];
+            lent = fluidWallLerp(below.x, above.x, place.fraction);
+            push = fluidWallLerp(below.y, above.y, place.fraction);
+        }
+        density = density + lent;
+        precise float px = s.normal.x * push;
+        precise float py = s.normal.y * push;
+        precise float pz = s.normal.z * push;
+        gx = gx - px;
+        gy = gy - py;
+        gz = gz - pz;
+    }
+    masks[i] = mask;
+    wall[i] = vec4(density, gx, gy, gz);
+}
+
+void solve(uint i) {
+    if (i >= args.count) {
+        return;
+    }
+    uint mask = masks[i];
+    if (mask == 0u) {
+        return;
+    }
+    uint d = args.dimension;
+    vec3 x = load(i, false);
+    precise float invDt = 1.0f / args.dt;
+    uint m = 2u * d * i;
+    uint surfaces = args.colliders + args.polygons;
+    for (uint k = 0u; k < surfaces; ++k) {
+        if ((mask & (1u << k)) == 0u) continue;
+        FluidSurface s = surfaceOf(k, x);
+        vec3 v = vec3(motion[m], motion[m + 1u], d == 3u ? motion[m + 2u] : 0.0f);
+        if (args.split == 0u) {
+            vec3 out1 = fluidContactVelocity(v, s, args.radius, invDt, SD_FLUID_OVERLAP_PUSH, args.friction);
+            motion[m] = out1.x;
+            motion[m + 1u] = out1.y;
+            if (d == 3u) motion[m + 2u] = out1.z;
+            continue;
+        }
+        // Split impulses: the real velocity only stops at the surface (no
+        // push out of an overlap, which would be kinetic energy); the
+        // particle's motion this substep, real plus pseudo, also may not
+        // enter the wall, and the pseudo part pushes an overlap out.
+        vec3 real = fluidContactVelocity(v, s, args.radius, invDt, 0.0f, args.friction);
+        vec3 pseudo = vec3(motion[m + d], motion[m + d + 1u], d == 3u ? motion[m + d + 2u] : 0.0f);
+        precise vec3 total = real + pseudo;
+        vec3 moved = fluidContactVelocity(total, s, args.radius, invDt, SD_FLUID_OVERLAP_PUSH, 0.0f);
+        precise float cx = moved.x - total.x;
+        precise float cy = moved.y - total.y;
+        precise float cz = moved.z - total.z;
+        precise float px = pseudo.x + cx;
+        precise float py = pseudo.y + cy;
+        precise float pz = pseudo.z + cz;
+        motion[m] = real.x;
+        motion[m + 1u] = real.y;
+        motion[m + d] = px;
+        motion[m + d + 1u] = py;
+        if (d == 3u) {
+            motion[m + 2u] = real.z;
+            motion[m + d + 2u] = pz;
+        }
+    }
+}
+
+void main() {
+    uint i = gl_GlobalInvocationID.x;
+    if (PASS == SD_FLUID_CONTACTS_PASS_FIND) {
+        find(i);
+    } else {
+        solve(i);
+    }
+}

@@ -84,11 +84,11 @@ std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d) {
     c->pool = l.pool;
     c->findSet = sets[0];
     c->solveSet = sets[1];
-    const std::span<const std::uint32_t> code(shaders::kFluidContacts, shaders::kFluidContactsWords);
-    c->findPipeline = createComputePipeline(d, c->pipelineLayout, code,
-                                            std::array{kernels::SD_FLUID_CONTACTS_PASS_FIND}, "fluid_contacts");
-    c->solvePipeline = createComputePipeline(d, c->pipelineLayout, code,
-                                             std::array{kernels::SD_FLUID_CONTACTS_PASS_SOLVE}, "fluid_contacts");
+    std::array<VkPipeline, 2> pipelines{};  // by pass: find, solve
+    createPassPipelines(d, c->pipelineLayout, std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), pipelines,
+                        "fluid_contacts");
+    c->findPipeline = pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND];
+    c->solvePipeline = pipelines[kernels::SD_FLUID_CONTACTS_PASS_SOLVE];
     const glm::vec2 empty[2] = {glm::vec2(0.0f), glm::vec2(0.0f)};
     setFluidSurfaces(*c, {{}, {}, empty, 0.0f, 1.0f});
     return c;

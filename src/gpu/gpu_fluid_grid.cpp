@@ -80,12 +80,11 @@ std::unique_ptr<GpuFluidGrid> createGpuFluidGrid(Device& d) {
     g->device = &d;
     g->sort = createGpuSort(d);
     createLayouts(*g);
-    for (auto [pipeline, pass] : {std::pair{&g->keysPipeline, kernels::SD_FLUID_GRID_PASS_KEYS},
-                                  std::pair{&g->startsPipeline, kernels::SD_FLUID_GRID_PASS_STARTS}}) {
-        const std::array<std::uint32_t, 1> constants{pass};
-        *pipeline = createComputePipeline(d, g->pipelineLayout, std::span(shaders::kFluidGrid, shaders::kFluidGridWords),
-                                          constants, "fluid_grid");
-    }
+    std::array<VkPipeline, 2> pipelines{};  // by pass: keys, starts
+    createPassPipelines(d, g->pipelineLayout, std::span(shaders::kFluidGrid, shaders::kFluidGridWords), pipelines,
+                        "fluid_grid");
+    g->keysPipeline = pipelines[kernels::SD_FLUID_GRID_PASS_KEYS];
+    g->startsPipeline = pipelines[kernels::SD_FLUID_GRID_PASS_STARTS];
     reserveKeyStart(*g, 1);
     return g;
 }

@@ -98,11 +98,7 @@ std::unique_ptr<GpuFluidSetup> createGpuFluidSetup(Device& d) {
     s->setLayout = l.setLayout;
     s->pipelineLayout = l.pipelineLayout;
     s->pool = l.pool;
-    for (std::uint32_t pass = 0; pass < 4; ++pass) {
-        const std::array<std::uint32_t, 1> constants{pass};
-        s->pipelines[pass] = createComputePipeline(
-            d, s->pipelineLayout, std::span(shaders::kFluidSetup, shaders::kFluidSetupWords), constants, "fluid_setup");
-    }
+    createPassPipelines(d, s->pipelineLayout, std::span(shaders::kFluidSetup, shaders::kFluidSetupWords), s->pipelines, "fluid_setup");
     reserveParticles(*s, 1);
     reserveFluidLists(*s, kWorkgroup);
     return s;

@@ -82,11 +82,7 @@ std::unique_ptr<GpuFluidSolve> createGpuFluidSolve(Device& d) {
     s->setLayout = l.setLayout;
     s->pipelineLayout = l.pipelineLayout;
     s->pool = l.pool;
-    for (std::uint32_t pass = 0; pass < 4; ++pass) {
-        const std::array<std::uint32_t, 1> constants{pass};
-        s->pipelines[pass] = createComputePipeline(
-            d, s->pipelineLayout, std::span(shaders::kFluidSolve, shaders::kFluidSolveWords), constants, "fluid_solve");
-    }
+    createPassPipelines(d, s->pipelineLayout, std::span(shaders::kFluidSolve, shaders::kFluidSolveWords), s->pipelines, "fluid_solve");
     reserveParticles(*s, 1);
     return s;
 }

@@ -39,6 +39,22 @@ VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, std::span<c
     return pipeline;
 }
 
+void createPassPipelines(Device& d, VkPipelineLayout layout, std::span<const std::uint32_t> code,
+                         std::span<VkPipeline> pipelines, const char* name) {
+    for (std::uint32_t pass = 0; pass < pipelines.size(); ++pass) {
+        const std::uint32_t constants[1] = {pass};
+        try {
+            pipelines[pass] = createComputePipeline(d, layout, code, constants, name);
+        } catch (...) {
+            for (std::uint32_t made = 0; made < pass; ++made) {  // none left behind
+                vkDestroyPipeline(d.device, pipelines[made], nullptr);
+                pipelines[made] = VK_NULL_HANDLE;
+            }
+            throw;
+        }
+    }
+}
+
 StorageLayouts createStorageLayouts(Device& d, std::uint32_t bindings, std::uint32_t pushBytes,
                                     std::span<VkDescriptorSet> sets, const char* name) {
     auto call = [&](const char* what) { return fmt::format("{}({})", what, name); };

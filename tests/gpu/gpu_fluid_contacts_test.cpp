@@ -15,7 +15,6 @@
 #include <spindrift/fluid.h>
 
 #include <cstdint>
-#include <cstring>
 #include <string>
 
 namespace spindrift {
@@ -114,7 +113,7 @@ protected:
         EXPECT_EQ(wallDiffs, 0u) << what;
 
         // The solve with the contacts between its sweeps, from the CPU's setup.
-        uploadCpuSetup<D>(c, parts, device);
+        test::uploadCpuSetup<D>(*s.device, c, *parts.setup, &device.wall);
         gpu::FluidSolveParams params{def.iterations, def.splitImpulse, c.f.constraints.warmFraction, c.f.restDensity,
                                      def.baumgarte, c.f.h, kFluidDt};
         gpu::submitOnce(*s.device, [&](VkCommandBuffer cmd) {
@@ -132,49 +131,6 @@ protected:
         }
         EXPECT_EQ(velocityDiffs, 0u) << what;
         EXPECT_EQ(pseudoDiffs, 0u) << what;
-    }
-
-    // The CPU's setup over the device setup's results (as in
-    // gpu_fluid_solve_test.cpp), so the solves start from the same bits.
-    template <int D>
-    static void uploadCpuSetup(test::CpuSetup<D>& c, test::FluidParts& parts, test::DeviceFluid<D>& device) {
-        gpu::GpuFluidSetup& setup = *parts.setup;
-        const fluid::Particles<D>& p = c.f.template particles<D>();
-        const fluid::Constraints& k = c.f.constraints;
-        const std::size_t n = p.size();
-        std::vector<std::uint32_t> first(n), counts(n);
-        std::vector<float> listG, velocity(n * D), pressure(p.pressure);
-        std::vector<std::uint32_t> listIndex;
-        std::vector<glm::vec4> constraints(n), warm(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            first[i] = static_cast<std::uint32_t>(listIndex.size());
-            counts[i] = k.count[i];
-            const fluid::Neighbour<D>* list = fluid::neighbourList<D>(c.f.template neighbours<D>(), k, i);
-            for (std::uint32_t e = 0; e < k.count[i]; ++e) {
-                for (int a = 0; a < D; ++a) listG.push_back(list[e].g[a]);
-                listIndex.push_back(list[e].index);
-            }
-            constraints[i] = glm::vec4(k.bias[i], k.invMass[i], p.density[i], 0.0f);
-            warm[i] = glm::vec4(k.warmVelocity[i], 0.0f);
-        }
-        ASSERT_LE(listIndex.size(), setup.listCapacity);
-        std::memcpy(velocity.data(), p.velocity.data(), velocity.size() * sizeof(float));
-        const std::uint32_t header[4] = {static_cast<std::uint32_t>(listIndex.size()),
-                                         static_cast<std::uint32_t>(c.stats.neighbourOverflows), 0u, 0u};
-        std::vector<gpu::Transfer> up{{&setup.header, const_cast<std::uint32_t*>(header), sizeof header},
-                                      {&device.wall, c.wall.data(), n * sizeof(glm::vec4)}};
-        const auto add = [&](gpu::Buffer& b, auto& values) {
-            if (!values.empty()) up.push_back({&b, values.data(), values.size() * sizeof(values[0])});
-        };
-        add(setup.first, first);
-        add(setup.counts, counts);
-        add(setup.listG, listG);
-        add(setup.listIndex, listIndex);
-        add(setup.constraints, constraints);
-        add(setup.warm, warm);
-        add(setup.v, velocity);
-        add(setup.p, pressure);
-        gpu::upload(*shared().device, up);
     }
 };
 

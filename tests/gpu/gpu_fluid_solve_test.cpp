@@ -17,7 +17,6 @@
 #include <spindrift/fluid.h>
 
 #include <cstdint>
-#include <cstring>
 #include <random>
 #include <string>
 
@@ -29,49 +28,6 @@ using test::kFluidDt;
 
 class GpuFluidSolveTest : public test::GpuSuiteWith<test::FluidParts, &test::createFluidParts> {
 protected:
-    // The CPU's setup of `c` copied over the device setup's results.
-    template <int D>
-    static void uploadCpuSetup(test::CpuSetup<D>& c) {
-        Shared& s = shared();
-        gpu::GpuFluidSetup& setup = *s.part->setup;
-        const fluid::Particles<D>& p = c.f.template particles<D>();
-        const fluid::Constraints& k = c.f.constraints;
-        const std::size_t n = p.size();
-        std::vector<std::uint32_t> first(n);
-        std::vector<float> listG;
-        std::vector<std::uint32_t> listIndex;
-        std::vector<glm::vec4> constraints(n), warm(n);
-        for (std::size_t i = 0; i < n; ++i) {
-            first[i] = static_cast<std::uint32_t>(listIndex.size());
-            const fluid::Neighbour<D>* list = fluid::neighbourList<D>(c.f.template neighbours<D>(), k, i);
-            for (std::uint32_t e = 0; e < k.count[i]; ++e) {
-                for (int a = 0; a < D; ++a) listG.push_back(list[e].g[a]);
-                listIndex.push_back(list[e].index);
-            }
-            constraints[i] = glm::vec4(k.bias[i], k.invMass[i], p.density[i], 0.0f);
-            warm[i] = glm::vec4(k.warmVelocity[i], 0.0f);
-        }
-        ASSERT_LE(listIndex.size(), setup.listCapacity);
-        const std::uint32_t header[4] = {static_cast<std::uint32_t>(listIndex.size()),
-                                         static_cast<std::uint32_t>(c.stats.neighbourOverflows), 0u, 0u};
-        std::vector<float> velocity(n * D), pressure(p.pressure);
-        std::memcpy(velocity.data(), p.velocity.data(), velocity.size() * sizeof(float));
-        std::vector<std::uint32_t> counts(k.count.begin(), k.count.begin() + static_cast<std::ptrdiff_t>(n));
-        std::vector<gpu::Transfer> up{{&setup.header, const_cast<std::uint32_t*>(header), sizeof header}};
-        const auto add = [&](gpu::Buffer& b, auto& values) {
-            if (!values.empty()) up.push_back({&b, values.data(), values.size() * sizeof(values[0])});
-        };
-        add(setup.first, first);
-        add(setup.counts, counts);
-        add(setup.listG, listG);
-        add(setup.listIndex, listIndex);
-        add(setup.constraints, constraints);
-        add(setup.warm, warm);
-        add(setup.v, velocity);
-        add(setup.p, pressure);
-        gpu::upload(*s.device, up);
-    }
-
     // The CPU's and the device's solves of the same setup, compared bit for bit.
     template <int D>
     static void expectSameSolve(const FluidDef& def, const test::FluidParticles<D>& in, const std::string& what) {
@@ -80,7 +36,7 @@ protected:
         test::runCpuSetup<D>(c, def, in);
         test::DeviceFluid<D> device(*s.device, c, in);
         gpu::submitOnce(*s.device, [&](VkCommandBuffer cmd) { device.recordSetup(cmd, *s.part); });
-        uploadCpuSetup<D>(c);
+        test::uploadCpuSetup<D>(*s.device, c, *s.part->setup);
         gpu::FluidSolveParams params;
         params.iterations = def.iterations;
         params.split = def.splitImpulse;

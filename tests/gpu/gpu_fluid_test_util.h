@@ -17,6 +17,8 @@
 #include <spindrift/fluid.h>
 #include <spindrift/world.h>
 
+#include <gtest/gtest.h>
+
 #include <algorithm>
 #include <memory>
 #include <span>
@@ -166,6 +168,48 @@ struct DeviceFluid {
         gpu::recordFluidSetup(cmd, *parts.setup, *parts.grid, {&x, &v, &p, &wall, n}, setupParams);
     }
 };
+
+/// The CPU's setup of `c` copied over the device setup's results (and, given
+/// `wall`, the colliders' share over it), so that a device solve starts from
+/// the CPU's bits.
+template <int D>
+void uploadCpuSetup(gpu::Device& d, CpuSetup<D>& c, gpu::GpuFluidSetup& setup, gpu::Buffer* wall = nullptr) {
+    const fluid::Particles<D>& p = c.f.template particles<D>();
+    const fluid::Constraints& k = c.f.constraints;
+    const std::size_t n = p.size();
+    std::vector<std::uint32_t> first(n), counts(n), listIndex;
+    std::vector<float> listG, velocity(n * D), pressure(p.pressure);
+    std::vector<glm::vec4> constraints(n), warm(n);
+    for (std::size_t i = 0; i < n; ++i) {
+        first[i] = static_cast<std::uint32_t>(listIndex.size());
+        counts[i] = k.count[i];
+        const fluid::Neighbour<D>* list = fluid::neighbourList<D>(c.f.template neighbours<D>(), k, i);
+        for (std::uint32_t e = 0; e < k.count[i]; ++e) {
+            for (int a = 0; a < D; ++a) listG.push_back(list[e].g[a]);
+            listIndex.push_back(list[e].index);
+        }
+        constraints[i] = glm::vec4(k.bias[i], k.invMass[i], p.density[i], 0.0f);
+        warm[i] = glm::vec4(k.warmVelocity[i], 0.0f);
+        for (int a = 0; a < D; ++a) velocity[D * i + a] = p.velocity[i][a];
+    }
+    ASSERT_LE(listIndex.size(), setup.listCapacity);
+    std::uint32_t header[4] = {static_cast<std::uint32_t>(listIndex.size()),
+                               static_cast<std::uint32_t>(c.stats.neighbourOverflows), 0u, 0u};
+    std::vector<gpu::Transfer> up{{&setup.header, header, sizeof header}};
+    if (wall != nullptr && n > 0) up.push_back({wall, c.wall.data(), n * sizeof(glm::vec4)});
+    const auto add = [&](gpu::Buffer& b, auto& values) {
+        if (!values.empty()) up.push_back({&b, values.data(), values.size() * sizeof(values[0])});
+    };
+    add(setup.first, first);
+    add(setup.counts, counts);
+    add(setup.listG, listG);
+    add(setup.listIndex, listIndex);
+    add(setup.constraints, constraints);
+    add(setup.warm, warm);
+    add(setup.v, velocity);
+    add(setup.p, pressure);
+    gpu::upload(d, up);
+}
 
 /// A dam break's particles after `steps` steps: moving, disordered, under
 /// pressure, with the pressures the CPU solver left (the warm start's input).

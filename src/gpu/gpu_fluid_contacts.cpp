@@ -71,24 +71,15 @@ GpuFluidContacts::~GpuFluidContacts() {
         return;
     }
     for (Buffer* b : {&colliders, &polygons, &wallTable, &masks}) destroyBuffer(*device, *b);
-    destroyComputePasses(*device, {findPipeline, solvePipeline}, pool, pipelineLayout, setLayout);
+    destroyComputePasses(*device, passes);
 }
 
 std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d) {
     auto c = std::make_unique<GpuFluidContacts>();  // destroys what was made if a step throws
     c->device = &d;
-    std::array<VkDescriptorSet, 2> sets{};
-    const StorageLayouts l = createStorageLayouts(d, kBindings, sizeof(FluidContactsPush), sets, "fluid contacts");
-    c->setLayout = l.setLayout;
-    c->pipelineLayout = l.pipelineLayout;
-    c->pool = l.pool;
-    c->findSet = sets[0];
-    c->solveSet = sets[1];
-    std::array<VkPipeline, 2> pipelines{};  // by pass: find, solve
-    createPassPipelines(d, c->pipelineLayout, std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), pipelines,
-                        "fluid_contacts");
-    c->findPipeline = pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND];
-    c->solvePipeline = pipelines[kernels::SD_FLUID_CONTACTS_PASS_SOLVE];
+    createComputePasses(d, kBindings, sizeof(FluidContactsPush), 2,
+                        std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), 2, "fluid_contacts",
+                        c->passes);
     const glm::vec2 empty[2] = {glm::vec2(0.0f), glm::vec2(0.0f)};
     setFluidSurfaces(*c, {{}, {}, empty, 0.0f, 1.0f});
     return c;
@@ -135,11 +126,12 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
     c.boundWall = &wall;
     // The solve pass's set names the masks too; it is written when a solve
     // is recorded. Here the motion binding is a placeholder (not read).
-    writeSet(c, c.findSet, setup.x, setup.v, wall, c.masks);
+    writeSet(c, c.passes.sets[0], setup.x, setup.v, wall, c.masks);
     const FluidContactsPush push = pushOf(c);
     computeToCompute(cmd);  // the gather
     if (n > 0) {
-        dispatchCompute(cmd, c.findPipeline, c.pipelineLayout, c.findSet, &push, sizeof(push), groups);
+        dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND], c.passes.pipelineLayout,
+                        c.passes.sets[0], &push, sizeof(push), groups);
     }
     computeToCompute(cmd);
 }
@@ -149,11 +141,12 @@ void recordFluidContactsSolve(VkCommandBuffer cmd, GpuFluidContacts& c, const Bu
         return;
     }
     if (firstAfterFind) {
-        writeSet(c, c.solveSet, *c.boundX, *c.boundV, *c.boundWall, motion);
+        writeSet(c, c.passes.sets[1], *c.boundX, *c.boundV, *c.boundWall, motion);
     }
     const FluidContactsPush push = pushOf(c);
     const std::uint32_t groups = workgroupsFor(*c.device, c.count, kWorkgroup, "gpu fluid contacts", "particles");
-    dispatchCompute(cmd, c.solvePipeline, c.pipelineLayout, c.solveSet, &push, sizeof(push), groups);
+    dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_SOLVE], c.passes.pipelineLayout,
+                    c.passes.sets[1], &push, sizeof(push), groups);
     computeToCompute(cmd);
 }
 

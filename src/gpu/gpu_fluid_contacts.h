@@ -12,6 +12,7 @@
 
 #include "gpu/gpu_fluid_setup.h"
 #include "gpu/vulkan_buffer.h"
+#include "gpu/vulkan_pipeline.h"
 #include "kernels/fluid.glsl"
 
 #include <glm/glm.hpp>
@@ -46,15 +47,10 @@ struct FluidContactParams {
 /// Pipelines, surfaces and masks of the contacts, for one Device.
 struct GpuFluidContacts {
     Device* device = nullptr;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkPipeline findPipeline = VK_NULL_HANDLE;
-    VkPipeline solvePipeline = VK_NULL_HANDLE;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    /// The find pass's set, and the solve pass's (written when the solve is
-    /// recorded, once its working velocities exist).
-    VkDescriptorSet findSet = VK_NULL_HANDLE;
-    VkDescriptorSet solveSet = VK_NULL_HANDLE;
+    /// fluid_contacts.comp's passes (find, solve); sets[0] the find pass's,
+    /// sets[1] the solve pass's (written when the solve is recorded, once its
+    /// working velocities exist).
+    ComputePasses passes;
     Buffer colliders, polygons, wallTable;
     Buffer masks;  // uint per particle: the surfaces within reach
     std::uint32_t colliderCount = 0, polygonCount = 0, tableSize = 0;

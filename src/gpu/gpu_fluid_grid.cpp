@@ -24,14 +24,6 @@ constexpr std::uint32_t kBindings = kernels::SD_FLUID_GRID_BINDINGS;
 constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_GRID_WORKGROUP;
 using kernels::FluidGridPush;
 
-void createLayouts(GpuFluidGrid& g) {
-    const StorageLayouts l =
-        createStorageLayouts(*g.device, kBindings, sizeof(FluidGridPush), std::span(&g.set, 1), "fluid grid");
-    g.setLayout = l.setLayout;
-    g.pipelineLayout = l.pipelineLayout;
-    g.pool = l.pool;
-}
-
 // keyStart for `entries` entries. Only between submissions: the old buffer
 // must be idle.
 void reserveKeyStart(GpuFluidGrid& g, std::uint32_t entries) {
@@ -51,12 +43,12 @@ void writeSet(GpuFluidGrid& g, const Buffer& positions) {
     buffers[kernels::SD_FLUID_GRID_BINDING_VALUES] = &g.sort->values[0];
     buffers[kernels::SD_FLUID_GRID_BINDING_SORTED_KEYS] = &g.sort->keys[g.sortedPair];
     buffers[kernels::SD_FLUID_GRID_BINDING_KEY_START] = &g.keyStart;
-    writeStorageSet(*g.device, g.set, buffers);
+    writeStorageSet(*g.device, g.passes.sets[0], buffers);
 }
 
 void dispatch(const GpuFluidGrid& g, VkCommandBuffer cmd, VkPipeline pipeline, const FluidGridPush& push,
               std::uint32_t groups) {
-    dispatchCompute(cmd, pipeline, g.pipelineLayout, g.set, &push, sizeof(push), groups);
+    dispatchCompute(cmd, pipeline, g.passes.pipelineLayout, g.passes.sets[0], &push, sizeof(push), groups);
 }
 
 std::uint32_t groupsFor(const GpuFluidGrid& g, std::uint64_t items, const char* what) {
@@ -72,19 +64,15 @@ GpuFluidGrid::~GpuFluidGrid() {
     }
     Device& d = *device;
     destroyBuffer(d, keyStart);
-    destroyComputePasses(d, {startsPipeline, keysPipeline}, pool, pipelineLayout, setLayout);
+    destroyComputePasses(d, passes);
 }
 
 std::unique_ptr<GpuFluidGrid> createGpuFluidGrid(Device& d) {
     auto g = std::make_unique<GpuFluidGrid>();  // destroys what was made if a step throws
     g->device = &d;
     g->sort = createGpuSort(d);
-    createLayouts(*g);
-    std::array<VkPipeline, 2> pipelines{};  // by pass: keys, starts
-    createPassPipelines(d, g->pipelineLayout, std::span(shaders::kFluidGrid, shaders::kFluidGridWords), pipelines,
-                        "fluid_grid");
-    g->keysPipeline = pipelines[kernels::SD_FLUID_GRID_PASS_KEYS];
-    g->startsPipeline = pipelines[kernels::SD_FLUID_GRID_PASS_STARTS];
+    createComputePasses(d, kBindings, sizeof(FluidGridPush), 1, std::span(shaders::kFluidGrid, shaders::kFluidGridWords),
+                        2, "fluid_grid", g->passes);
     reserveKeyStart(*g, 1);
     return g;
 }
@@ -132,11 +120,11 @@ void recordFluidGrid(VkCommandBuffer cmd, GpuFluidGrid& g, const Buffer& positio
                   VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_TRANSFER_WRITE_BIT, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT,
                   VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     if (count > 0) {
-        dispatch(g, cmd, g.keysPipeline, push, keyGroups);
+        dispatch(g, cmd, g.passes.pipelines[kernels::SD_FLUID_GRID_PASS_KEYS], push, keyGroups);
     }
     recordRadixPasses(*g.sort, cmd, count, keyBits);  // waits for the keys
     computeToCompute(cmd);
-    dispatch(g, cmd, g.startsPipeline, push, startGroups);
+    dispatch(g, cmd, g.passes.pipelines[kernels::SD_FLUID_GRID_PASS_STARTS], push, startGroups);
     // The order and keyStart for whoever reads them next: a compute pass or a copy.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,

@@ -12,6 +12,7 @@
 
 #include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
+#include "gpu/vulkan_pipeline.h"
 
 #include <glm/glm.hpp>
 
@@ -37,12 +38,7 @@ struct GpuFluidGrid {
     /// Its own sort: the radix passes and (key, value) pairs (the grid's keys
     /// pass writes pair 0), apart from the world's back-to-front sort.
     std::unique_ptr<GpuSort> sort;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkPipeline keysPipeline = VK_NULL_HANDLE;
-    VkPipeline startsPipeline = VK_NULL_HANDLE;
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    ComputePasses passes;  // fluid_grid.comp's two (keys, starts), one set
     Buffer keyStart;                   // uint[keyTotal + 1]
     std::uint32_t keyStartCapacity = 0;  // entries keyStart holds
     // Of the last recorded grid.

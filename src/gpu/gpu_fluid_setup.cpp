@@ -65,7 +65,7 @@ void writeSet(GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs
     buffers[kernels::SD_FLUID_SETUP_BINDING_LIST_INDEX] = &s.listIndex;
     buffers[kernels::SD_FLUID_SETUP_BINDING_CONSTRAINTS] = &s.constraints;
     buffers[kernels::SD_FLUID_SETUP_BINDING_WARM] = &s.warm;
-    writeStorageSet(*s.device, s.set, buffers);
+    writeStorageSet(*s.device, s.passes.sets[0], buffers);
 }
 
 // Throws unless `b` holds `bytes`.
@@ -86,19 +86,14 @@ GpuFluidSetup::~GpuFluidSetup() {
     for (Buffer* b : {&x, &v, &p, &counts, &first, &constraints, &warm, &tiles, &header, &listG, &listIndex}) {
         destroyBuffer(d, *b);
     }
-    destroyComputePasses(d, {pipelines[0], pipelines[1], pipelines[2], pipelines[3]}, pool, pipelineLayout,
-                         setLayout);
+    destroyComputePasses(d, passes);
 }
 
 std::unique_ptr<GpuFluidSetup> createGpuFluidSetup(Device& d) {
     auto s = std::make_unique<GpuFluidSetup>();  // destroys what was made if a step throws
     s->device = &d;
-    const StorageLayouts l =
-        createStorageLayouts(d, kBindings, sizeof(FluidSetupPush), std::span(&s->set, 1), "fluid setup");
-    s->setLayout = l.setLayout;
-    s->pipelineLayout = l.pipelineLayout;
-    s->pool = l.pool;
-    createPassPipelines(d, s->pipelineLayout, std::span(shaders::kFluidSetup, shaders::kFluidSetupWords), s->pipelines, "fluid_setup");
+    createComputePasses(d, kBindings, sizeof(FluidSetupPush), 1, std::span(shaders::kFluidSetup, shaders::kFluidSetupWords),
+                        4, "fluid_setup", s->passes);
     reserveParticles(*s, 1);
     reserveFluidLists(*s, kWorkgroup);
     return s;
@@ -146,7 +141,7 @@ void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid
     memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
                   VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     if (n > 0) {
-        dispatchCompute(cmd, s.pipelines[kernels::SD_FLUID_SETUP_PASS_GATHER], s.pipelineLayout, s.set, &push,
+        dispatchCompute(cmd, s.passes.pipelines[kernels::SD_FLUID_SETUP_PASS_GATHER], s.passes.pipelineLayout, s.passes.sets[0], &push,
                         sizeof(push), groups);
     }
     computeToCompute(cmd);
@@ -175,7 +170,7 @@ void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFlui
     if (s.count > 0) {
         for (std::uint32_t pass = kernels::SD_FLUID_SETUP_PASS_COUNT; pass < 4; ++pass) {
             const std::uint32_t passGroups = pass == kernels::SD_FLUID_SETUP_PASS_TILES ? 1u : s.groups;
-            dispatchCompute(cmd, s.pipelines[pass], s.pipelineLayout, s.set, &push, sizeof(push), passGroups);
+            dispatchCompute(cmd, s.passes.pipelines[pass], s.passes.pipelineLayout, s.passes.sets[0], &push, sizeof(push), passGroups);
             computeToCompute(cmd);
         }
     }

@@ -16,6 +16,7 @@
 
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/vulkan_buffer.h"
+#include "gpu/vulkan_pipeline.h"
 
 #include <glm/glm.hpp>
 
@@ -51,11 +52,7 @@ struct FluidSetupInputs {
 /// on demand and never shrink.
 struct GpuFluidSetup {
     Device* device = nullptr;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkPipeline pipelines[4] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};  // by pass
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    ComputePasses passes;  // fluid_setup.comp's four, one set
     // Per particle, grid order.
     Buffer x, v, p;        // positions, velocities, pressures
     Buffer counts, first;  // neighbours stored; first list entry

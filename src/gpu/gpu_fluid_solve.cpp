@@ -48,7 +48,7 @@ void writeSet(GpuFluidSolve& s, const GpuFluidGrid& grid, GpuFluidSetup& setup, 
     buffers[kernels::SD_FLUID_SOLVE_BINDING_PSEUDO_IMPULSE] = &s.pseudoImpulse;
     buffers[kernels::SD_FLUID_SOLVE_BINDING_MOTION] = &s.motion;
     buffers[kernels::SD_FLUID_SOLVE_BINDING_HEADER] = &setup.header;
-    writeStorageSet(*s.device, s.set, buffers);
+    writeStorageSet(*s.device, s.passes.sets[0], buffers);
 }
 
 /// Cells of colour `colour` (parities x | y << 1 | z << 2): those with
@@ -70,19 +70,14 @@ GpuFluidSolve::~GpuFluidSolve() {
     }
     destroyBuffer(*device, motion);
     destroyBuffer(*device, pseudoImpulse);
-    destroyComputePasses(*device, {pipelines[0], pipelines[1], pipelines[2], pipelines[3]}, pool, pipelineLayout,
-                         setLayout);
+    destroyComputePasses(*device, passes);
 }
 
 std::unique_ptr<GpuFluidSolve> createGpuFluidSolve(Device& d) {
     auto s = std::make_unique<GpuFluidSolve>();  // destroys what was made if a step throws
     s->device = &d;
-    const StorageLayouts l =
-        createStorageLayouts(d, kBindings, sizeof(FluidSolvePush), std::span(&s->set, 1), "fluid solve");
-    s->setLayout = l.setLayout;
-    s->pipelineLayout = l.pipelineLayout;
-    s->pool = l.pool;
-    createPassPipelines(d, s->pipelineLayout, std::span(shaders::kFluidSolve, shaders::kFluidSolveWords), s->pipelines, "fluid_solve");
+    createComputePasses(d, kBindings, sizeof(FluidSolvePush), 1, std::span(shaders::kFluidSolve, shaders::kFluidSolveWords),
+                        4, "fluid_solve", s->passes);
     reserveParticles(*s, 1);
     return s;
 }
@@ -118,7 +113,8 @@ void recordFluidSolve(VkCommandBuffer cmd, GpuFluidSolve& s, const GpuFluidGrid&
     }
     const auto pass = [&](std::uint32_t which, std::uint32_t colour, std::uint32_t passGroups) {
         push.colour = colour;
-        dispatchCompute(cmd, s.pipelines[which], s.pipelineLayout, s.set, &push, sizeof(push), passGroups);
+        dispatchCompute(cmd, s.passes.pipelines[which], s.passes.pipelineLayout, s.passes.sets[0], &push, sizeof(push),
+                        passGroups);
         computeToCompute(cmd);
     };
     // One colour's cells: one invocation each.

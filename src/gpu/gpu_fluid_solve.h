@@ -35,11 +35,7 @@ struct FluidSolveParams {
 /// demand and never shrinks.
 struct GpuFluidSolve {
     Device* device = nullptr;
-    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
-    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
-    VkPipeline pipelines[4] = {VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE, VK_NULL_HANDLE};  // by pass
-    VkDescriptorPool pool = VK_NULL_HANDLE;
-    VkDescriptorSet set = VK_NULL_HANDLE;
+    ComputePasses passes;  // fluid_solve.comp's four, one set
     Buffer motion;         // per particle (grid order): velocity, pseudo velocity (m/s)
     Buffer pseudoImpulse;  // per particle: accumulated pseudo impulse (m/s)
     std::uint32_t capacity = 0;

@@ -102,6 +102,27 @@ void destroyComputePasses(Device& d, std::initializer_list<VkPipeline> pipelines
     if (setLayout != VK_NULL_HANDLE) vkDestroyDescriptorSetLayout(d.device, setLayout, nullptr);
 }
 
+void createComputePasses(Device& d, std::uint32_t bindings, std::uint32_t pushBytes, std::uint32_t sets,
+                         std::span<const std::uint32_t> code, std::uint32_t passes, const char* name,
+                         ComputePasses& out) {
+    out.sets.assign(sets, VK_NULL_HANDLE);
+    const StorageLayouts l = createStorageLayouts(d, bindings, pushBytes, out.sets, name);
+    out.setLayout = l.setLayout;
+    out.pipelineLayout = l.pipelineLayout;
+    out.pool = l.pool;
+    out.pipelines.assign(passes, VK_NULL_HANDLE);
+    createPassPipelines(d, out.pipelineLayout, code, out.pipelines, name);
+}
+
+void destroyComputePasses(Device& d, ComputePasses& passes) {
+    for (VkPipeline p : passes.pipelines) {
+        if (p != VK_NULL_HANDLE) vkDestroyPipeline(d.device, p, nullptr);
+    }
+    passes.pipelines.clear();
+    destroyComputePasses(d, {}, passes.pool, passes.pipelineLayout, passes.setLayout);
+    passes = ComputePasses{};
+}
+
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,
                    VkPipelineStageFlags dstStage, VkAccessFlags dstAccess) {
     auto b = vkStruct<VkMemoryBarrier>(VK_STRUCTURE_TYPE_MEMORY_BARRIER);

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <initializer_list>
 #include <span>
+#include <vector>
 
 namespace spindrift::gpu {
 
@@ -40,6 +41,23 @@ StorageLayouts createStorageLayouts(Device& d, std::uint32_t bindings, std::uint
 /// layout and the set layout.
 void destroyComputePasses(Device& d, std::initializer_list<VkPipeline> pipelines, VkDescriptorPool pool,
                           VkPipelineLayout pipelineLayout, VkDescriptorSetLayout setLayout);
+
+/// The passes of one compute shader whose specialization constant 0 picks
+/// the pass, binding storage buffers 0..bindings-1 of set 0: pipelines[p]
+/// runs pass p; `sets` descriptor sets from their own pool.
+struct ComputePasses {
+    VkDescriptorSetLayout setLayout = VK_NULL_HANDLE;
+    VkPipelineLayout pipelineLayout = VK_NULL_HANDLE;
+    VkDescriptorPool pool = VK_NULL_HANDLE;
+    std::vector<VkDescriptorSet> sets;
+    std::vector<VkPipeline> pipelines;
+};
+/// Throws Error naming `name`; whatever it made is in `out` (destroy it with
+/// destroyComputePasses).
+void createComputePasses(Device& d, std::uint32_t bindings, std::uint32_t pushBytes, std::uint32_t sets,
+                         std::span<const std::uint32_t> code, std::uint32_t passes, const char* name,
+                         ComputePasses& out);
+void destroyComputePasses(Device& d, ComputePasses& passes);
 
 /// Execution and memory dependency between commands (a global VkMemoryBarrier).
 void memoryBarrier(VkCommandBuffer cmd, VkPipelineStageFlags srcStage, VkAccessFlags srcAccess,

@@ -25,6 +25,7 @@
 #include "fluid/fluid_state.h"
 #include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
+#include "gpu/gpu_fluid_integrate.h"
 #include "gpu/gpu_fluid_setup.h"
 #include "gpu/gpu_fluid_solve.h"
 #include "gpu/vulkan_buffer.h"
@@ -181,15 +182,17 @@ void BM_SubEmit(benchmark::State& state) {
     destroyWorld(w);
 }
 
-/// The constraint fluid's passes on the device (issue 16; grid, gather, the
-/// contacts with a floor and two walls, the constraints, then the solve's
-/// warm start and 4 Gauss-Seidel iterations colour by colour with the
-/// contacts after each): one substep of a block of water at rest on the
-/// lattice with velocities of up to 0.5 m/s at random, the CPU's FluidState
-/// placing the grid, every substep recorded and waited for. Argument 0:
-/// particles; 1: dimension. Counters: list entries per particle. Not yet a
-/// whole substep: the integration stays on the CPU (docs/performance.md,
-/// "The fluid on the device"). On lavapipe the time measures the path only.
+/// The constraint fluid's substep on the device (issue 16; grid, gather with
+/// gravity, the contacts with a floor and two walls, the constraints, the
+/// solve's warm start and 4 Gauss-Seidel iterations colour by colour with
+/// the contacts after each, the integration with sleeping and path tests):
+/// one substep of a block of water at rest on the lattice with velocities of
+/// up to 0.5 m/s at random, the CPU's FluidState placing the grid, every
+/// substep recorded and waited for (each from the same state). Argument 0:
+/// particles; 1: dimension. Counters: list entries per particle. Not on the
+/// device yet: the grid's placement, the step's statistics beyond the
+/// integration's, jets, bodies (docs/performance.md, "The fluid on the
+/// device"). On lavapipe the time measures the path only.
 void BM_FluidDeviceSubstep(benchmark::State& state) {
     using namespace spindrift;
     const auto n = static_cast<std::uint32_t>(state.range(0));
@@ -230,6 +233,9 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
         const float dt = 1.0f / 60.0f / 4.0f;  // a substep of four
         gpu::FluidSetupParams setup{f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, dt,
                                     f.def.warmStart};
+        setup.velocityChange = glm::vec3(f.def.gravity) * dt;
+        const gpu::FluidIntegrateParams integrate{f.def.gravity, dt, f.def.sleepSpeed, f.def.sleepTime, f.def.spacing,
+                                                  f.def.splitImpulse};
         gpu::FluidSolveParams solve{f.def.iterations, f.def.splitImpulse, f.def.warmStart, f.restDensity,
                                     f.def.baumgarte, f.h, dt};
 
@@ -239,6 +245,7 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
             auto setupPasses = gpu::createGpuFluidSetup(*d);
             auto solvePasses = gpu::createGpuFluidSolve(*d);
             auto contactPasses = gpu::createGpuFluidContacts(*d);
+            auto integratePasses = gpu::createGpuFluidIntegrate(*d);
             // A floor under the block and a wall on each side of it.
             std::vector<kernels::ColliderParams> walls3;
             for (const auto& [point, normal] : {std::pair{glm::vec3(0.0f), glm::vec3(0, 1, 0)},
@@ -260,20 +267,27 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
             gpu::Buffer vs = gpu::createStorageBuffer(*d, v.size() * 4);
             gpu::Buffer ps = gpu::createStorageBuffer(*d, p.size() * 4);
             gpu::Buffer walls = gpu::createStorageBuffer(*d, wall.size() * 16);
+            gpu::Buffer anchors = gpu::createStorageBuffer(*d, x.size() * 4);  // each particle's own position
+            gpu::Buffer stills = gpu::createStorageBuffer(*d, p.size() * 4);   // 0 s still
             const std::vector<gpu::Transfer> up{{&xs, x.data(), x.size() * 4},
                                                 {&vs, v.data(), v.size() * 4},
                                                 {&ps, p.data(), p.size() * 4},
-                                                {&walls, wall.data(), wall.size() * 16}};
+                                                {&walls, wall.data(), wall.size() * 16},
+                                                {&anchors, x.data(), x.size() * 4},
+                                                {&stills, p.data(), p.size() * 4}};
             gpu::upload(*d, up);
             const auto substep = [&] {
                 gpu::submitOnce(*d, [&](VkCommandBuffer cmd) {
                     gpu::recordFluidGrid(cmd, *gridPasses, xs, static_cast<std::uint32_t>(count), grid);
                     gpu::recordFluidGather(cmd, *setupPasses, *gridPasses,
-                                           {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)});
+                                           {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)},
+                                           setup.velocityChange);
                     gpu::recordFluidContactsFind(cmd, *contactPasses, *setupPasses, walls, contactParams);
                     gpu::recordFluidConstraints(cmd, *setupPasses, *gridPasses, setup);
                     gpu::recordFluidSolve(cmd, *solvePasses, *gridPasses, *setupPasses, walls, solve,
                                           contactPasses.get());
+                    gpu::recordFluidIntegrate(cmd, *integratePasses, *gridPasses, *setupPasses, *solvePasses,
+                                              *contactPasses, {&anchors, &stills}, integrate);
                 });
             };
             substep();  // the first allocates
@@ -283,7 +297,7 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
             }
             state.counters["particles"] = static_cast<double>(count);
             state.counters["entries_per_particle"] = static_cast<double>(r.entries) / static_cast<double>(count);
-            for (gpu::Buffer* b : {&xs, &vs, &ps, &walls}) gpu::destroyBuffer(*d, *b);
+            for (gpu::Buffer* b : {&xs, &vs, &ps, &walls, &anchors, &stills}) gpu::destroyBuffer(*d, *b);
         }
         gpu::destroyDevice(*d);
     } catch (const std::exception& e) {

@@ -17,24 +17,11 @@ namespace {
 
 /// Fraction of an overlap removed per step (fluid.glsl).
 constexpr float kOverlapPush = kernels::SD_FLUID_OVERLAP_PUSH;
-/// Distance (m) a put-back particle keeps from the surface, so rounding does
-/// not leave it inside for the next step.
-constexpr float kSkin = 1e-5f;
-/// A sleeping particle wakes above this many times FluidDef::sleepSpeed.
-constexpr float kWakeFactor = 2.0f;
-/// The sleep circle's largest radius, in spacings (integratePositions).
-constexpr float kSleepCircleSpacings = 0.5f;
+/// Distance (m) a put-back particle keeps from the surface (fluid.glsl).
+constexpr float kSkin = kernels::SD_FLUID_SKIN;
 
-/// |x| <= this is false for NaN and both infinities.
-constexpr float kFloatMax = 3.40282347e38f;
-
-bool finite(glm::vec3 v) {
-    return std::abs(v.x) <= kFloatMax && std::abs(v.y) <= kFloatMax && std::abs(v.z) <= kFloatMax;
-}
-
-/// A velocity the solver can square: contacts, speeds and the substep count
-/// take its length, which overflows above 1.8e19 m/s.
-bool finiteSpeed(glm::vec3 v) { return finite(v) && glm::dot(v, v) <= kFloatMax; }
+bool finite(glm::vec3 v) { return kernels::fluidFinite(v); }
+bool finiteSpeed(glm::vec3 v) { return kernels::fluidFiniteSpeed(v); }
 
 template <int D>
 glm::vec3 to3(Vec<D> v) {
@@ -150,17 +137,10 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
     const Vec<D> down = gravity > 0.0f ? Vec<D>(f.def.gravity / gravity) : Vec<D>(0.0f);
     std::vector<glm::vec2> pressed(maxSpeed.size(), glm::vec2(3.0e38f, -3.0e38f));
     const bool sleeps = f.def.sleepSpeed > 0.0f;
-    const float wakeSpeed = kWakeFactor * f.def.sleepSpeed;
+    const float wakeSpeed = kernels::SD_FLUID_WAKE_FACTOR * f.def.sleepSpeed;
     const float sleepTime = f.def.sleepTime;
-    // The sleep circle's radius (m): at most half a spacing. A standing wave's
-    // particles swing around a point, and near each turning point they stay
-    // within a small circle for a good part of a period: with the radius
-    // sleepSpeed x sleepTime alone (2.5 cm by default), a 4 cm slosh in a 1.6 m
-    // tank at 2 cm spacing (period 1.65 s) fell asleep at its first turn and
-    // froze with its surface 4.6 cm higher at one end than at the other. At
-    // half a spacing it swings on until each end is within about half a
-    // spacing of level (test FluidWaves; docs/fluid.md, "Sleeping and waves").
-    const float drift = std::min(f.def.sleepSpeed * f.def.sleepTime, kSleepCircleSpacings * f.def.spacing);
+    // The sleep circle's radius (m), at most half a spacing (fluid.glsl).
+    const float drift = kernels::fluidSleepDrift(f.def.sleepSpeed, f.def.sleepTime, f.def.spacing);
     // Every body shape within this distance (m) of a particle is in its grid
     // cell's list (beginSubstep grows each shape's box by at least it).
     const float binnedReach = f.radius + f.def.spacing;
@@ -183,30 +163,16 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             }
             const glm::vec3 x0 = to3<D>(p.position[i]);
             glm::vec3 v = to3<D>(p.velocity[i]);
-            // Sleeping: a particle that has not left a circle of `drift`
-            // for sleepTime holds still until the solver gives it more than
-            // the wake speed. Displacement, not speed, decides: a resting
-            // tank's particles jitter at several cm/s (the pressure of a
-            // disordered packing cannot cancel gravity exactly; the leftover
-            // accumulates, docs/fluid.md) but go nowhere, while a flow as slow
-            // as sleepSpeed leaves the circle and stays awake.
+            // Sleeping (fluid.glsl, fluidSleepStep): displacement, not
+            // speed, decides.
             if (sleeps) {
-                if (p.still[i] >= sleepTime) {
-                    if (glm::length(v) < wakeSpeed) {
-                        p.velocity[i] = Vec<D>(0.0f);
-                        continue;
-                    }
-                    p.still[i] = 0.0f;
-                    p.anchor[i] = p.position[i];
-                } else if (glm::distance(p.position[i], p.anchor[i]) > drift) {
-                    p.still[i] = 0.0f;
-                    p.anchor[i] = p.position[i];
-                } else {
-                    p.still[i] += dt;
-                    if (p.still[i] >= sleepTime) {
-                        p.velocity[i] = Vec<D>(0.0f);
-                        continue;
-                    }
+                const kernels::FluidSleep sleep =
+                    kernels::fluidSleepStep(x0, v, to3<D>(p.anchor[i]), p.still[i], dt, sleepTime, wakeSpeed, drift);
+                p.still[i] = sleep.still;
+                p.anchor[i] = from3<D>(sleep.anchor);
+                if (sleep.asleep) {
+                    p.velocity[i] = Vec<D>(0.0f);
+                    continue;
                 }
             }
             const glm::vec3 motion = f.def.splitImpulse ? v + to3<D>(p.motion[i].pseudo) : v;

@@ -108,7 +108,8 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries) {
     s.listCapacity = entries;
 }
 
-void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in) {
+void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
+                       glm::vec3 velocityChange) {
     const std::uint32_t n = in.count;
     const std::uint32_t dimension = grid.dimension;
     if (n != grid.count) {
@@ -129,6 +130,7 @@ void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid
 
     FluidSetupPush push{};
     push.cells = glm::ivec4(grid.cells, static_cast<int>(dimension));
+    push.velocityChange = glm::vec4(velocityChange, 0.0f);
     push.count = n;
     // The inputs' writers (a step's pass, an upload) and the last reader of
     // the header, before the header is cleared and the gather reads.
@@ -182,7 +184,7 @@ void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFlui
 
 void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
                       const FluidSetupParams& params) {
-    recordFluidGather(cmd, s, grid, in);
+    recordFluidGather(cmd, s, grid, in, params.velocityChange);
     recordFluidConstraints(cmd, s, grid, params);
 }
 

@@ -36,6 +36,9 @@ struct FluidSetupParams {
     float baumgarte = 0.0f;
     float dt = 1.0f / 60.0f;          // s, of the substep
     float warmFraction = 0.0f;        // Constraints::warmFraction
+    /// m/s added to every velocity in the gather: gravity x dt, computed as
+    /// the CPU's step does (z 0 in 2D).
+    glm::vec3 velocityChange{0.0f};
 };
 
 /// What the setup reads, in particle order (the grid's input order), except
@@ -98,7 +101,8 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
 /// gathered particles and writes `wall` (the contacts' find pass,
 /// gpu_fluid_contacts.h): the gather into grid order (it binds `in`, wall
 /// included), then the constraints (passes count, tiles and setup).
-void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in);
+void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
+                       glm::vec3 velocityChange);
 void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid,
                             const FluidSetupParams& params);
 

@@ -27,6 +27,8 @@ extern const std::uint32_t kFluidSolve[];
 extern const std::size_t kFluidSolveWords;
 extern const std::uint32_t kFluidContacts[];
 extern const std::size_t kFluidContactsWords;
+extern const std::uint32_t kFluidIntegrate[];
+extern const std::size_t kFluidIntegrateWords;
 // The renderer (src/render/shaders/).
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;

@@ -394,6 +394,90 @@ SD_FN vec3 fluidContactVelocity(vec3 v, FluidSurface surface, float radius, floa
     return out1;
 }
 
+// --- Integration (src/fluid/collide.cpp, integratePositions) -------------------
+// Distance (m) a particle put back out of a collider keeps from its surface,
+// so rounding does not leave it inside for the next substep.
+SD_CONST float SD_FLUID_SKIN = 1e-5f;
+// A sleeping particle wakes above this many times FluidDef::sleepSpeed.
+SD_CONST float SD_FLUID_WAKE_FACTOR = 2.0f;
+// The sleep circle's largest radius, in spacings.
+SD_CONST float SD_FLUID_SLEEP_CIRCLE_SPACINGS = 0.5f;
+// |x| <= this is false for NaN and both infinities.
+SD_CONST float SD_FLUID_FLOAT_MAX = 3.40282347e38f;
+
+SD_FN bool fluidFinite(vec3 v) {
+    return abs(v.x) <= SD_FLUID_FLOAT_MAX && abs(v.y) <= SD_FLUID_FLOAT_MAX && abs(v.z) <= SD_FLUID_FLOAT_MAX;
+}
+// A velocity the solver can square: contacts, speeds and the substep count
+// take its length, which overflows above 1.8e19 m/s.
+SD_FN bool fluidFiniteSpeed(vec3 v) {
+    SD_PRECISE float xx = v.x * v.x;
+    SD_PRECISE float yy = v.y * v.y;
+    SD_PRECISE float zz = v.z * v.z;
+    SD_PRECISE float squared = xx + yy + zz;
+    return fluidFinite(v) && squared <= SD_FLUID_FLOAT_MAX;
+}
+
+// Length of v (z 0 in 2D: the same number as the 2D length).
+SD_FN float fluidLength(vec3 v) {
+    SD_PRECISE float xx = v.x * v.x;
+    SD_PRECISE float yy = v.y * v.y;
+    SD_PRECISE float zz = v.z * v.z;
+    SD_PRECISE float squared = xx + yy + zz;
+    SD_PRECISE float len = sqrt(squared);
+    return len;
+}
+
+// The sleep circle's radius (m): sleepSpeed x sleepTime, at most half a
+// spacing. A standing wave's particles swing around a point, and near each
+// turning point they stay within a small circle for a good part of a period:
+// with the radius sleepSpeed x sleepTime alone (2.5 cm by default), a 4 cm
+// slosh in a 1.6 m tank at 2 cm spacing (period 1.65 s) fell asleep at its
+// first turn and froze with its surface 4.6 cm higher at one end than at the
+// other. At half a spacing it swings on until each end is within about half
+// a spacing of level (test FluidWaves; docs/fluid.md, "Sleeping and waves").
+SD_FN float fluidSleepDrift(float sleepSpeed, float sleepTime, float spacing) {
+    SD_PRECISE float byTime = sleepSpeed * sleepTime;
+    SD_PRECISE float bySpacing = SD_FLUID_SLEEP_CIRCLE_SPACINGS * spacing;
+    return min(byTime, bySpacing);
+}
+
+// One substep of a particle's sleep (as Box2D's bodies and FleX's particles):
+// a particle that has not left a circle of `drift` (m) around its anchor for
+// sleepTime (s) holds still until the solver gives it more than `wakeSpeed`
+// (m/s). Displacement, not speed, decides: a resting tank's particles jitter
+// at several cm/s (the pressure of a disordered packing cannot cancel
+// gravity exactly) but go nowhere, while a flow as slow as sleepSpeed leaves
+// the circle and stays awake. x, v, anchor: z 0 in 2D.
+struct FluidSleep {
+    bool asleep;    // this substep: velocity 0, position held
+    float still;    // s, time within the circle
+    vec3 anchor;    // m, the circle's centre
+};
+SD_FN FluidSleep fluidSleepStep(vec3 x, vec3 v, vec3 anchor, float still, float dt, float sleepTime, float wakeSpeed,
+                               float drift) {
+    FluidSleep s;
+    s.asleep = false;
+    s.still = still;
+    s.anchor = anchor;
+    if (still >= sleepTime) {
+        if (fluidLength(v) < wakeSpeed) {
+            s.asleep = true;
+            return s;
+        }
+        s.still = 0.0f;
+        s.anchor = x;
+    } else if (fluidLength(x - anchor) > drift) {
+        s.still = 0.0f;
+        s.anchor = x;
+    } else {
+        SD_PRECISE float longer = still + dt;
+        s.still = longer;
+        s.asleep = longer >= sleepTime;
+    }
+    return s;
+}
+
 // --- Rigid bodies (Box2D fixtures, src/coupling/) --------------------------------
 // A fixture of a body as the 2D fluid sees it, in world coordinates at the
 // body's pose of the current substep (slide 50: a separate representation

@@ -253,11 +253,12 @@ struct FluidSetupHeader {
     uint pad1;
 };
 
-// The setup passes' push constants (std430: an ivec4, four uints, eight
-// floats, four uints). 80 bytes. The floats are the CPU setup's, computed
-// the same way on the host (h2 = h h, invH2 = 1 / h2, ...).
+// The setup passes' push constants (std430: an ivec4, a vec4, four uints,
+// eight floats, four uints). 96 bytes. The floats are the CPU setup's,
+// computed the same way on the host (h2 = h h, invH2 = 1 / h2, ...).
 struct FluidSetupPush {
     ivec4 cells;          // xyz cells 2h wide per axis (z 1 in 2D), w = dimension
+    vec4 velocityChange;  // xyz m/s the gather adds to every velocity: gravity x dt (the step's external force)
     uint count;           // particles
     uint readLimit;       // most particles read from one sub-cell (FluidState::subCellReadLimit)
     uint cap;             // most neighbours stored per particle (FluidState::maxNeighbours)
@@ -348,6 +349,51 @@ struct FluidContactsPush {
     float tableStep;      // m between entries
     uint tableSize;
     uint split;           // 1: split impulses
+};
+
+// The constraint fluid's integration on the device (src/gpu/shaders/
+// fluid_integrate.comp, src/gpu/gpu_fluid_integrate.cpp): the CPU's
+// integratePositions (src/fluid/collide.cpp) without bodies.
+SD_CONST uint SD_FLUID_INTEGRATE_WORKGROUP = 64u;
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ORDER = 0u;      // uint[n]: grid order -> particle index
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_X = 1u;          // float[dimension n] (m), grid order: in, then out
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_V = 2u;          // float[dimension n] (m/s), grid order: the solve's, then out
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_P = 3u;          // float[n] (m/s): the solve's pressures
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_MOTION = 4u;     // float[2 dimension n]: the solve's pseudo velocities
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ANCHOR_IN = 5u;  // float[dimension n] (m), particle order
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_STILL_IN = 6u;   // float[n] (s), particle order
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ANCHOR = 7u;     // float[dimension n], grid order, out
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_STILL = 8u;      // float[n], grid order, out
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_COLLIDERS = 9u;  // ColliderParams[], the contacts'
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_POLYGONS = 10u;  // FluidPolygon[]
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_STATS = 11u;     // FluidIntegrateStats
+SD_CONST uint SD_FLUID_INTEGRATE_BINDINGS = 12u;
+
+// What the integration reports (std430, 16 bytes), reduced with integer
+// atomics, so in any order the same: floats as order-preserving keys.
+struct FluidIntegrateStats {
+    uint fastest;      // floatBitsToUint of the largest speed (m/s, >= 0)
+    uint pressedLow;   // key (fluidOrderKey) of the least depth along gravity of a particle under pressure
+    uint pressedHigh;  // key of the greatest
+    uint nonFinite;    // particles whose numbers became NaN or infinite (position set to NaN)
+};
+
+// The integration's push constants (std430: a vec4, then twelve 4-byte
+// values). 64 bytes.
+struct FluidIntegratePush {
+    vec4 down;          // xyz unit gravity direction (0 without gravity)
+    uint count;
+    uint dimension;
+    uint colliders;
+    uint polygons;
+    float dt;           // s, of the substep
+    float sleepTime;    // s
+    float wakeSpeed;    // m/s
+    float drift;        // m, the sleep circle's radius (fluidSleepDrift)
+    uint split;         // 1: split impulses (the pseudo velocity moves the particle too)
+    uint sleeps;        // 1: FluidDef::sleepSpeed > 0
+    uint pad0;
+    uint pad1;
 };
 
 // The renderer (src/render): what every render pipeline reads, the camera and
@@ -518,14 +564,17 @@ static_assert(sizeof(FluidGridPush) == 48);
 static_assert(offsetof(FluidGridPush, cells) == 16);
 static_assert(offsetof(FluidGridPush, count) == 32);
 static_assert(offsetof(FluidGridPush, keyTotal) == 40);
-static_assert(sizeof(FluidSetupPush) == 80);
-static_assert(offsetof(FluidSetupPush, count) == 16);
-static_assert(offsetof(FluidSetupPush, h) == 32);
-static_assert(offsetof(FluidSetupPush, restDensity) == 48);
-static_assert(offsetof(FluidSetupPush, invRest) == 64);
+static_assert(sizeof(FluidSetupPush) == 96);
+static_assert(offsetof(FluidSetupPush, count) == 32);
+static_assert(offsetof(FluidSetupPush, h) == 48);
+static_assert(offsetof(FluidSetupPush, restDensity) == 64);
+static_assert(offsetof(FluidSetupPush, invRest) == 80);
 static_assert(sizeof(FluidSetupHeader) == 16);
 static_assert(sizeof(FluidSolvePush) == 48);
 static_assert(sizeof(FluidContactsPush) == 48);
+static_assert(sizeof(FluidIntegratePush) == 64);
+static_assert(offsetof(FluidIntegratePush, dt) == 32);
+static_assert(sizeof(FluidIntegrateStats) == 16);
 static_assert(offsetof(FluidContactsPush, radius) == 16);
 static_assert(offsetof(FluidContactsPush, tableStart) == 32);
 static_assert(offsetof(FluidSolvePush, count) == 16);

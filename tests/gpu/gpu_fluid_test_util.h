@@ -8,6 +8,7 @@
 #include "fluid/fluid_test_util.h"
 #include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
+#include "gpu/gpu_fluid_integrate.h"
 #include "gpu/gpu_fluid_setup.h"
 #include "gpu/gpu_fluid_solve.h"
 #include "gpu/vulkan_buffer.h"
@@ -34,10 +35,12 @@ struct FluidParts {
     std::unique_ptr<gpu::GpuFluidSetup> setup;
     std::unique_ptr<gpu::GpuFluidSolve> solve;
     std::unique_ptr<gpu::GpuFluidContacts> contacts;
+    std::unique_ptr<gpu::GpuFluidIntegrate> integrate;
 };
 inline std::unique_ptr<FluidParts> createFluidParts(gpu::Device& d) {
     auto parts = std::make_unique<FluidParts>();
     parts->contacts = gpu::createGpuFluidContacts(d);
+    parts->integrate = gpu::createGpuFluidIntegrate(d);
     parts->grid = gpu::createGpuFluidGrid(d);
     parts->setup = gpu::createGpuFluidSetup(d);
     parts->solve = gpu::createGpuFluidSolve(d);
@@ -49,6 +52,10 @@ template <int D>
 struct FluidParticles {
     std::vector<fluid::Vec<D>> x, v;
     std::vector<float> pressure;  // m/s
+    /// Sleep (integratePositions): the anchor (m) and time still (s); empty:
+    /// each particle's own position and 0.
+    std::vector<fluid::Vec<D>> anchor;
+    std::vector<float> still;
 };
 
 /// A colliders' share for every particle in grid order: not the contacts'
@@ -91,7 +98,12 @@ void runCpuSetup(CpuSetup<D>& c, const FluidDef& def, const FluidParticles<D>& i
     for (std::size_t i = 0; i < in.x.size(); ++i) {
         p.push(in.x[i], in.v[i], static_cast<std::uint32_t>(i));
         p.pressure[i] = in.pressure[i];
+        if (!in.anchor.empty()) p.anchor[i] = in.anchor[i];
+        if (!in.still.empty()) p.still[i] = in.still[i];
     }
+    // The step's external force, as stepPasses applies it before the grid.
+    const fluid::Vec<D> dv = fluid::Vec<D>(glm::vec3(def.gravity) * kFluidDt);
+    for (fluid::Vec<D>& v : p.velocity) v += dv;
     WorkerPool pool(2);
     fluid::buildGrid<D>(pool, c.f);
     const std::size_t n = p.size();
@@ -126,7 +138,10 @@ struct DeviceFluid {
     std::uint32_t n;
     gpu::FluidGridParams gridParams;
     gpu::FluidSetupParams setupParams;
+    std::vector<fluid::Vec<D>> anchors;
+    std::vector<float> stills;
     gpu::Buffer x, v, p, wall;
+    gpu::Buffer anchor, still;  // particle order
 
     DeviceFluid(gpu::Device& device, CpuSetup<D>& c, const FluidParticles<D>& in)
         : d(device), n(static_cast<std::uint32_t>(in.x.size())) {
@@ -142,25 +157,33 @@ struct DeviceFluid {
         setupParams.baumgarte = c.f.def.baumgarte;
         setupParams.dt = kFluidDt;
         setupParams.warmFraction = c.f.constraints.warmFraction;
+        setupParams.velocityChange = glm::vec3(glm::vec3(c.f.def.gravity) * kFluidDt);
+        if (D == 2) setupParams.velocityChange.z = 0.0f;
         static_assert(sizeof(fluid::Vec<D>) == D * sizeof(float));  // tightly packed, as the device reads them
         const auto bytes = [](std::size_t b) { return std::max<VkDeviceSize>(b, 16u); };
         x = gpu::createStorageBuffer(d, bytes(n * sizeof(fluid::Vec<D>)));
         v = gpu::createStorageBuffer(d, bytes(n * sizeof(fluid::Vec<D>)));
         p = gpu::createStorageBuffer(d, bytes(n * sizeof(float)));
         wall = gpu::createStorageBuffer(d, bytes(n * sizeof(glm::vec4)));
+        anchor = gpu::createStorageBuffer(d, bytes(n * sizeof(fluid::Vec<D>)));
+        still = gpu::createStorageBuffer(d, bytes(n * sizeof(float)));
+        anchors = in.anchor.empty() ? in.x : in.anchor;
+        stills = in.still.empty() ? std::vector<float>(n, 0.0f) : in.still;
         if (n > 0) {
             std::vector<gpu::Transfer> up{
                 {&x, const_cast<fluid::Vec<D>*>(in.x.data()), n * sizeof(fluid::Vec<D>)},
                 {&v, const_cast<fluid::Vec<D>*>(in.v.data()), n * sizeof(fluid::Vec<D>)},
                 {&p, const_cast<float*>(in.pressure.data()), n * sizeof(float)},
-                {&wall, c.wall.data(), n * sizeof(glm::vec4)}};
+                {&wall, c.wall.data(), n * sizeof(glm::vec4)},
+                {&anchor, anchors.data(), n * sizeof(fluid::Vec<D>)},
+                {&still, stills.data(), n * sizeof(float)}};
             gpu::upload(d, up);
         }
     }
     DeviceFluid(const DeviceFluid&) = delete;
     DeviceFluid& operator=(const DeviceFluid&) = delete;
     ~DeviceFluid() {
-        for (gpu::Buffer* b : {&x, &v, &p, &wall}) gpu::destroyBuffer(d, *b);
+        for (gpu::Buffer* b : {&x, &v, &p, &wall, &anchor, &still}) gpu::destroyBuffer(d, *b);
     }
 
     void recordSetup(VkCommandBuffer cmd, FluidParts& parts) {

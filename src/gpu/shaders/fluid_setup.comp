@@ -3,7 +3,8 @@
 // src/fluid/neighbours.cpp, slides 35 and 46-52), after the grid
 // (fluid_grid.comp). Passes (a specialization constant, one small pipeline
 // each):
-//   0 gather:  positions, velocities and pressures into grid order;
+//   0 gather:  positions, velocities (gravity x dt added) and pressures
+//              into grid order;
 //   1 count:   each particle's neighbours within h (at most `cap`), and each
 //              workgroup's sum of them;
 //   2 tiles:   the workgroups' exclusive prefix sum, in one invocation (a
@@ -68,7 +69,10 @@ void gather(uint i) {
     uint from = order[i];
     for (uint a = 0u; a < d; ++a) {
         xs[d * i + a] = positions[d * from + a];
-        vs[d * i + a] = velocities[d * from + a];
+        // External forces first (semi-implicit Euler, fluid_step.cpp): the
+        // constraints see this substep's weight.
+        precise float v = velocities[d * from + a] + args.velocityChange[a];
+        vs[d * i + a] = v;
     }
     ps[i] = pressures[from];
 }

@@ -108,10 +108,7 @@ void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces) {
 void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
                              const FluidContactParams& params) {
     const std::uint32_t n = setup.count;
-    if (wall.buffer == VK_NULL_HANDLE || wall.size < VkDeviceSize{n} * 16) {
-        throw Error(fmt::format("gpu fluid contacts: the wall buffer holds {} bytes, {} needed", wall.size,
-                                VkDeviceSize{n} * 16));
-    }
+    requireBufferBytes(&wall, VkDeviceSize{n} * 16, "gpu fluid contacts", "wall");
     const std::uint32_t groups = workgroupsFor(*c.device, n, kWorkgroup, "gpu fluid contacts", "particles");
     if (n > c.capacity) {
         const std::uint32_t room = std::max(n, 2 * c.capacity);

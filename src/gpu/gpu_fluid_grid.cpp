@@ -93,10 +93,7 @@ void recordFluidGrid(VkCommandBuffer cmd, GpuFluidGrid& g, const Buffer& positio
             throw Error("gpu fluid grid: too many cells for 32-bit keys");
         }
     }
-    const VkDeviceSize bytes = VkDeviceSize{count} * dimension * 4;
-    if (positions.buffer == VK_NULL_HANDLE || positions.size < bytes) {
-        throw Error(fmt::format("gpu fluid grid: the positions buffer holds {} bytes, {} needed", positions.size, bytes));
-    }
+    requireBufferBytes(&positions, VkDeviceSize{count} * dimension * 4, "gpu fluid grid", "positions");
     const std::uint32_t keyGroups = groupsFor(g, count, "particles");
     const std::uint32_t startGroups = groupsFor(g, keyTotal + 1, "keys");
     // Keys are below keyTotal: the radix passes need only the bits of keyTotal - 1.

@@ -29,13 +29,6 @@ float fromOrderKey(std::uint32_t key) {
     return std::bit_cast<float>(bits);
 }
 
-void checkSleep(const Buffer* b, VkDeviceSize bytes, const char* what) {
-    if (b == nullptr || b->buffer == VK_NULL_HANDLE || b->size < bytes) {
-        throw Error(fmt::format("gpu fluid integrate: the {} buffer holds {} bytes, {} needed", what,
-                                b == nullptr ? VkDeviceSize{0} : b->size, bytes));
-    }
-}
-
 }  // namespace
 
 GpuFluidIntegrate::~GpuFluidIntegrate() {
@@ -61,8 +54,8 @@ void recordFluidIntegrate(VkCommandBuffer cmd, GpuFluidIntegrate& g, const GpuFl
                           const FluidIntegrateParams& params) {
     const std::uint32_t n = setup.count;
     const std::uint32_t d = setup.dimension;
-    checkSleep(sleep.anchors, VkDeviceSize{n} * d * 4, "anchors");
-    checkSleep(sleep.stills, VkDeviceSize{n} * 4, "stills");
+    requireBufferBytes(sleep.anchors, VkDeviceSize{n} * d * 4, "gpu fluid integrate", "anchors");
+    requireBufferBytes(sleep.stills, VkDeviceSize{n} * 4, "gpu fluid integrate", "stills");
     const std::uint32_t groups = workgroupsFor(*g.device, n, kWorkgroup, "gpu fluid integrate", "particles");
     if (n > g.capacity || g.anchors.buffer == VK_NULL_HANDLE) {
         const std::uint32_t room = std::max({n, 2 * g.capacity, kWorkgroup});

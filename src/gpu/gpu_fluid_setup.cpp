@@ -69,13 +69,6 @@ void writeSet(GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs
 }
 
 // Throws unless `b` holds `bytes`.
-void checkInput(const Buffer* b, VkDeviceSize bytes, const char* what) {
-    if (b == nullptr || b->buffer == VK_NULL_HANDLE || b->size < bytes) {
-        throw Error(fmt::format("gpu fluid setup: the {} buffer holds {} bytes, {} needed", what,
-                                b == nullptr ? VkDeviceSize{0} : b->size, bytes));
-    }
-}
-
 }  // namespace
 
 GpuFluidSetup::~GpuFluidSetup() {
@@ -115,10 +108,10 @@ void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid
     if (n != grid.count) {
         throw Error(fmt::format("gpu fluid setup: {} particles, but the grid holds {}", n, grid.count));
     }
-    checkInput(in.positions, VkDeviceSize{n} * dimension * 4, "positions");
-    checkInput(in.velocities, VkDeviceSize{n} * dimension * 4, "velocities");
-    checkInput(in.pressures, VkDeviceSize{n} * 4, "pressures");
-    checkInput(in.wall, VkDeviceSize{n} * 16, "wall");
+    requireBufferBytes(in.positions, VkDeviceSize{n} * dimension * 4, "gpu fluid setup", "positions");
+    requireBufferBytes(in.velocities, VkDeviceSize{n} * dimension * 4, "gpu fluid setup", "velocities");
+    requireBufferBytes(in.pressures, VkDeviceSize{n} * 4, "gpu fluid setup", "pressures");
+    requireBufferBytes(in.wall, VkDeviceSize{n} * 16, "gpu fluid setup", "wall");
     const std::uint32_t groups = workgroupsFor(*s.device, n, kWorkgroup, "gpu fluid setup", "particles");
     reserveParticles(s, n);
     const std::uint64_t room = std::uint64_t{n} * (dimension == 2 ? kEntriesPerParticle2D : kEntriesPerParticle3D);

@@ -89,10 +89,7 @@ void recordFluidSolve(VkCommandBuffer cmd, GpuFluidSolve& s, const GpuFluidGrid&
     if (n != grid.count) {
         throw Error(fmt::format("gpu fluid solve: the setup holds {} particles, the grid {}", n, grid.count));
     }
-    if (wall.buffer == VK_NULL_HANDLE || wall.size < VkDeviceSize{n} * 16) {
-        throw Error(fmt::format("gpu fluid solve: the wall buffer holds {} bytes, {} needed", wall.size,
-                                VkDeviceSize{n} * 16));
-    }
+    requireBufferBytes(&wall, VkDeviceSize{n} * 16, "gpu fluid solve", "wall");
     const std::uint32_t groups = workgroupsFor(*s.device, n, kWorkgroup, "gpu fluid solve", "particles");
     reserveParticles(s, n);
     s.count = n;

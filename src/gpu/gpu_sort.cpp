@@ -128,13 +128,6 @@ void requireTiles(const GpuSort& s, std::uint32_t n) {
     }
 }
 
-void requireBytes(const Buffer* b, VkDeviceSize bytes, const char* what) {
-    if (b == nullptr || b->buffer == VK_NULL_HANDLE || b->size < bytes) {
-        throw Error(fmt::format("gpu sort: the {} buffer holds {} bytes, {} needed", what,
-                                b != nullptr ? b->size : VkDeviceSize{0}, bytes));
-    }
-}
-
 }  // namespace
 
 GpuSort::~GpuSort() {
@@ -170,9 +163,9 @@ void recordSortBackToFront(GpuSort& s, VkCommandBuffer cmd, const SortInput& in)
     const std::uint32_t n = in.count;
     const std::uint32_t tiles = tilesFor(n);
     requireTiles(s, n);
-    requireBytes(in.positions, VkDeviceSize{n} * 12, "positions");
+    requireBufferBytes(in.positions, VkDeviceSize{n} * 12, "gpu sort", "positions");
     if (in.ages != nullptr) {
-        requireBytes(in.ages, VkDeviceSize{n} * 4, "ages");
+        requireBufferBytes(in.ages, VkDeviceSize{n} * 4, "gpu sort", "ages");
     }
     reserve(s, n);
     writeSets(s, in.positions, in.ages);

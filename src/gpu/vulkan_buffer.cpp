@@ -1,6 +1,8 @@
 // Buffers, memory and staging copies.
 #include "gpu/vulkan_buffer.h"
 
+#include <spindrift/errors.h>
+
 #include <spindrift/effects.h>
 
 #include <fmt/format.h>
@@ -209,6 +211,13 @@ Buffer createStorageBuffer(Device& d, VkDeviceSize size) {
 Buffer createHostStorageBuffer(Device& d, VkDeviceSize size) {
     return createBuffer(d, size, VK_BUFFER_USAGE_STORAGE_BUFFER_BIT,
                         VK_MEMORY_PROPERTY_HOST_VISIBLE_BIT | VK_MEMORY_PROPERTY_HOST_COHERENT_BIT);
+}
+
+void requireBufferBytes(const Buffer* b, VkDeviceSize bytes, const char* pass, const char* what) {
+    if (b == nullptr || b->buffer == VK_NULL_HANDLE || b->size < bytes) {
+        throw Error(fmt::format("{}: the {} buffer holds {} bytes, {} needed", pass, what,
+                                b != nullptr ? b->size : VkDeviceSize{0}, bytes));
+    }
 }
 
 void recreateStorageBuffer(Device& d, Buffer& b, VkDeviceSize bytes) {

@@ -25,6 +25,9 @@ Buffer createStorageBuffer(Device& d, VkDeviceSize size);
 /// Host-visible, host-coherent storage buffer, mapped (small counters read by the CPU).
 Buffer createHostStorageBuffer(Device& d, VkDeviceSize size);
 void destroyBuffer(Device& d, Buffer& b);
+/// Throws Error, naming `pass` and `what`, unless `b` is a buffer of at
+/// least `bytes` (a pass's input checked where it enters).
+void requireBufferBytes(const Buffer* b, VkDeviceSize bytes, const char* pass, const char* what);
 /// Destroys `b` and creates a device-local storage buffer of at least `bytes`
 /// (16 at least) in its place. Only while nothing pending uses `b`.
 void recreateStorageBuffer(Device& d, Buffer& b, VkDeviceSize bytes);

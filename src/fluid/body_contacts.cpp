@@ -26,10 +26,10 @@
 namespace spindrift::fluid {
 namespace {
 
-/// As for static colliders (collide.cpp): fraction of an overlap removed per
+/// As for static colliders (fluid.glsl): fraction of an overlap removed per
 /// step, and the distance a put-back particle keeps from the surface (m).
-constexpr float kOverlapPush = 0.2f;
-constexpr float kSkin = 1e-5f;
+constexpr float kOverlapPush = kernels::SD_FLUID_OVERLAP_PUSH;
+constexpr float kSkin = kernels::SD_FLUID_SKIN;
 
 glm::vec2 rotate(float angle, glm::vec2 v) {
     const float c = std::cos(angle), s = std::sin(angle);
@@ -304,7 +304,7 @@ bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1, gl
     const glm::vec2 side = glm::vec2(-edge.y, edge.x) * ((s0 > 0.0f ? 1.0f : -1.0f) / std::sqrt(len2));
     const float length = glm::length(path);
     x1 = p + side * kSkin - (length > 0.0f ? path / length : glm::vec2(0.0f)) * kSkin;
-    v -= side * std::min(glm::dot(v, side), 0.0f);
+    v = glm::vec2(kernels::fluidWithoutInward(glm::vec3(v, 0.0f), glm::vec3(side, 0.0f)));
     return true;
 }
 

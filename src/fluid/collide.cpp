@@ -20,8 +20,6 @@ constexpr float kOverlapPush = kernels::SD_FLUID_OVERLAP_PUSH;
 /// Distance (m) a put-back particle keeps from the surface (fluid.glsl).
 constexpr float kSkin = kernels::SD_FLUID_SKIN;
 
-bool finite(glm::vec3 v) { return kernels::fluidFinite(v); }
-bool finiteSpeed(glm::vec3 v) { return kernels::fluidFiniteSpeed(v); }
 
 template <int D>
 glm::vec3 to3(Vec<D> v) {
@@ -40,9 +38,7 @@ bool isFluidCollider(const kernels::ColliderParams& c) {
 
 /// Where the path x0 -> x1 first meets collider c, if it does.
 kernels::Hit pathHit(const kernels::ColliderParams& c, glm::vec3 x0, glm::vec3 x1) {
-    return c.kind == kernels::SD_COLLIDER_PLANE    ? kernels::intersectPlane(c, x0, x1)
-           : c.kind == kernels::SD_COLLIDER_SPHERE ? kernels::intersectSphere(c, x0, x1)
-                                                   : kernels::intersectBox(c, x0, x1);
+    return kernels::intersectCollider(kernels::KernelContext{}, c, x0, x1);  // a fluid collider: no map read
 }
 
 /// In 2D a surface's normal is projected into the plane (fluid.glsl).
@@ -177,7 +173,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             }
             const glm::vec3 motion = f.def.splitImpulse ? v + to3<D>(p.motion[i].pseudo) : v;
             glm::vec3 x1 = x0 + motion * dt;
-            if (!finite(x1) || !finiteSpeed(v)) {
+            if (!kernels::fluidFinite(x1) || !kernels::fluidFiniteSpeed(v)) {
                 removeLater(chunk, i);
                 continue;
             }
@@ -206,7 +202,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 if (hit.hit != 0u) {
                     const glm::vec3 n = flatten<D>(kernels::makeSurface(0.0f, hit.normal)).normal;
                     x1 = hit.point + n * kSkin;
-                    v -= n * std::min(glm::dot(v, n), 0.0f);
+                    v = kernels::fluidWithoutInward(v, n);
                 }
             }
             // Polygons: an end point inside goes out through the nearest edge.
@@ -214,10 +210,10 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 const kernels::FluidSurface s = kernels::fluidPolygonSurface(poly, x1);
                 if (s.distance < 0.0f) {
                     x1 += s.normal * (kSkin - s.distance);
-                    v -= s.normal * std::min(glm::dot(v, s.normal), 0.0f);
+                    v = kernels::fluidWithoutInward(v, s.normal);
                 }
             }
-            if (!finite(x1) || !finiteSpeed(v)) {
+            if (!kernels::fluidFinite(x1) || !kernels::fluidFiniteSpeed(v)) {
                 removeLater(chunk, i);
                 continue;
             }
@@ -237,7 +233,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
     std::uint64_t removed = 0;
     for (std::uint32_t n : nonFinite) removed += n;
     if (removed > 0) {
-        p.keepIf([&](std::size_t i) { return finite(to3<D>(p.position[i])); });
+        p.keepIf([&](std::size_t i) { return kernels::fluidFinite(to3<D>(p.position[i])); });
         stats.nonFinite += removed;
     }
 }

@@ -39,6 +39,11 @@ VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, std::span<c
     return pipeline;
 }
 
+namespace {
+
+/// One pipeline per pass of a shader whose specialization constant 0 picks
+/// the pass: pipelines[p] runs pass p. Throws Error as createComputePipeline,
+/// having destroyed the pipelines it made.
 void createPassPipelines(Device& d, VkPipelineLayout layout, std::span<const std::uint32_t> code,
                          std::span<VkPipeline> pipelines, const char* name) {
     for (std::uint32_t pass = 0; pass < pipelines.size(); ++pass) {
@@ -54,6 +59,8 @@ void createPassPipelines(Device& d, VkPipelineLayout layout, std::span<const std
         }
     }
 }
+
+}  // namespace
 
 StorageLayouts createStorageLayouts(Device& d, std::uint32_t bindings, std::uint32_t pushBytes,
                                     std::span<VkDescriptorSet> sets, const char* name) {

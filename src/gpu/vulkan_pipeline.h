@@ -18,12 +18,6 @@ namespace spindrift::gpu {
 VkPipeline createComputePipeline(Device& d, VkPipelineLayout layout, std::span<const std::uint32_t> code,
                                  std::span<const std::uint32_t> constants, const char* name);
 
-/// One pipeline per pass of a shader whose specialization constant 0 picks
-/// the pass: pipelines[p] runs pass p. Throws Error as createComputePipeline,
-/// having destroyed the pipelines it made.
-void createPassPipelines(Device& d, VkPipelineLayout layout, std::span<const std::uint32_t> code,
-                         std::span<VkPipeline> pipelines, const char* name);
-
 /// What compute passes that bind storage buffers 0..bindings-1 in set 0 and
 /// push `pushBytes` of constants share: the set layout, the pipeline layout,
 /// and a pool of `sets.size()` descriptor sets, allocated into `sets`.

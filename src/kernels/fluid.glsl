@@ -418,6 +418,16 @@ SD_FN bool fluidFiniteSpeed(vec3 v) {
     return fluidFinite(v) && squared <= SD_FLUID_FLOAT_MAX;
 }
 
+// v with no part left into a surface of unit normal n: v - n min(dot(v, n),
+// 0) (a particle put back on a collider or a body keeps only its tangential
+// and outward motion).
+SD_FN vec3 fluidWithoutInward(vec3 v, vec3 n) {
+    SD_PRECISE float vn = dot(v, n);
+    SD_PRECISE float inward = min(vn, 0.0f);
+    SD_PRECISE vec3 out1 = v - n * inward;
+    return out1;
+}
+
 // Length of v (z 0 in 2D: the same number as the 2D length).
 SD_FN float fluidLength(vec3 v) {
     SD_PRECISE float xx = v.x * v.x;

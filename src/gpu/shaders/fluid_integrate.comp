@@ -48,14 +48,6 @@ uint orderKey(float f) {
     return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
 }
 
-// v -= n min(dot(v, n), 0): no velocity left into the surface.
-vec3 withoutInward(vec3 v, vec3 n) {
-    precise float vn = dot(v, n);
-    precise float inward = min(vn, 0.0f);
-    precise vec3 out1 = v - n * inward;
-    return out1;
-}
-
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= args.count) {
@@ -113,16 +105,15 @@ void main() {
         // Path tests: a path that crosses a plane, sphere or box ends at the
         // contact, moving no further in.
         for (uint k = 0u; k < args.colliders; ++k) {
-            ColliderParams c = colliders[k];
-            Hit hit = c.kind == SD_COLLIDER_PLANE    ? intersectPlane(c, x0, x1)
-                      : c.kind == SD_COLLIDER_SPHERE ? intersectSphere(c, x0, x1)
-                                                     : intersectBox(c, x0, x1);
+            KernelContext none;
+            none.none = 0u;
+            Hit hit = intersectCollider(none, colliders[k], x0, x1);  // planes, spheres and boxes only
             if (hit.hit != 0u) {
                 FluidSurface s = makeSurface(0.0f, hit.normal);
                 vec3 n = d == 2u ? fluidFlatSurface(s).normal : s.normal;
                 precise vec3 put = hit.point + n * SD_FLUID_SKIN;
                 x1 = put;
-                v = withoutInward(v, n);
+                v = fluidWithoutInward(v, n);
             }
         }
         // Polygons: an end point inside goes out through the nearest edge.
@@ -132,7 +123,7 @@ void main() {
                 precise float out1 = SD_FLUID_SKIN - s.distance;
                 precise vec3 put = x1 + s.normal * out1;
                 x1 = put;
-                v = withoutInward(v, s.normal);
+                v = fluidWithoutInward(v, s.normal);
             }
         }
         lost = !fluidFinite(x1) || !fluidFiniteSpeed(v);

@@ -13,6 +13,12 @@
 #include <limits>
 
 namespace spindrift::fluid {
+
+bool isFluidCollider(const kernels::ColliderParams& c) {
+    return c.kind == kernels::SD_COLLIDER_PLANE || c.kind == kernels::SD_COLLIDER_SPHERE ||
+           c.kind == kernels::SD_COLLIDER_BOX;
+}
+
 namespace {
 
 /// Fraction of an overlap removed per step (fluid.glsl).
@@ -29,11 +35,6 @@ glm::vec3 to3(Vec<D> v) {
 template <int D>
 Vec<D> from3(glm::vec3 v) {
     if constexpr (D == 2) return Vec<D>(v.x, v.y); else return v;
-}
-
-bool isFluidCollider(const kernels::ColliderParams& c) {
-    return c.kind == kernels::SD_COLLIDER_PLANE || c.kind == kernels::SD_COLLIDER_SPHERE ||
-           c.kind == kernels::SD_COLLIDER_BOX;
 }
 
 /// Where the path x0 -> x1 first meets collider c, if it does.

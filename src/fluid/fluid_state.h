@@ -151,12 +151,9 @@ struct Grid {
 /// distance shrinks; moving apart counts as 0), in bins kApproachBin wide,
 /// the last one open-ended. Integer counts summed in chunk order, so the
 /// substeps they pick are the same for any thread count.
-inline constexpr float kApproachBin = 0.5f;
-using ApproachHistogram = std::array<std::uint64_t, 64>;
-inline std::size_t approachBin(float speed) {
-    const float b = speed / kApproachBin;
-    return b > 0.0f ? static_cast<std::size_t>(std::min(b, 63.0f)) : 0u;  // NaN: 0
-}
+inline constexpr float kApproachBin = kernels::SD_FLUID_APPROACH_BIN;
+using ApproachHistogram = std::array<std::uint64_t, kernels::SD_FLUID_APPROACH_BINS>;
+inline std::size_t approachBin(float speed) { return kernels::fluidApproachBin(speed); }
 
 /// How crushed a sub-cell may be before the setup stops reading it, in
 /// multiples of its particle count at rest. Far from any fluid the solver
@@ -334,6 +331,12 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
 /// m wide: sets g.h, g.origin and g.cells (uses g.scratchFloat), nothing
 /// else. The device's grid (src/gpu/gpu_fluid_grid.h) takes its place from here.
 template <int D> void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, float h, Grid<D>& g);
+/// placeGrid's window for `n` particles whose box is [lo, hi]: sets g.h,
+/// g.origin and g.cells and returns the axes (bit a) whose cells the budget
+/// capped; placeGrid moves such an axis's origin to cappedWindowOrigin of
+/// the particles' median (the device fluid, which knows only the box, too).
+template <int D> std::uint32_t placeGridInBox(Vec<D> lo, Vec<D> hi, std::size_t n, float h, Grid<D>& g);
+float cappedWindowOrigin(float median, float lo, float hi, float width);
 
 // The passes of one step, in order (fluid_step.cpp).
 template <int D> void buildGrid(WorkerPool& pool, FluidState& f);
@@ -350,6 +353,14 @@ bool crossesCollider(std::span<const kernels::ColliderParams> colliders, const F
                      glm::vec3 x1);
 template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt,
                                          FluidStepStats& stats);
+
+/// The substeps of this step when FluidDef::substeps is 0, from the last
+/// step's statistics (f.approach, which it empties, f.pressedDepth,
+/// f.lastMeanDensityError, f.lastSubsteps), so the count is deterministic;
+/// the device's step (src/world/device_fluid.cpp) fills the same fields.
+int automaticSubsteps(FluidState& f, float dt);
+/// Whether a world collider is one the fluid meets (plane, sphere, box).
+bool isFluidCollider(const kernels::ColliderParams& c);
 
 FluidStepStats stepFluid(const StepContext& world, FluidState& f, FluidId id, float dt);
 

@@ -148,6 +148,8 @@ float closingSpeed(const ApproachHistogram& h) {
     return 0.0f;
 }
 
+}  // namespace
+
 /// Substeps of this step when FluidDef::substeps is 0, from the last step's
 /// statistics, so the count is deterministic:
 /// - speed: two neighbours may close in on each other by at most kCourant h
@@ -212,8 +214,6 @@ int automaticSubsteps(FluidState& f, float dt) {
     const float wanted = std::max({bySpeed, byDepth, static_cast<float>(f.compressionSubsteps)});
     return wanted <= 1.0f ? 1 : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted) : kMaxSubsteps;
 }
-
-}  // namespace
 
 FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
     FluidStepStats stats;

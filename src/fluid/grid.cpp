@@ -43,24 +43,15 @@ Bounds<D> particleBounds(WorkerPool& pool, const std::vector<Vec<D>>& x) {
     return all;
 }
 
-/// Where a capped grid starts along axis a: its window (`width` m, the cell
-/// budget's cells) centred on the particles' median coordinate, kept inside
-/// their box. Anchored at the box's low end instead, a few particles fallen
-/// off a level (a stream leaving the showcase's right edge, 90 m down after
-/// 9 s) moved the window below everything else, which was clamped into the
-/// top row of cells: every particle of the level then searched one row of
-/// sub-cells holding all of them, the crushed-cell bound cut their lists
-/// (1.4e8 neighbour overflows in 9 s) and the automatic substeps went to 16.
-/// The median is the bulk's as long as it holds most particles; the few
-/// outside the window are clamped into its edge cells, which keeps every
-/// neighbour pair in adjacent sub-cells.
+/// The median of the particles' coordinate a (the value is unique for any
+/// order of the particles: deterministic).
 template <int D>
-float cappedOrigin(const std::vector<Vec<D>>& x, int a, const Bounds<D>& box, float width, std::vector<float>& scratch) {
+float medianAlong(const std::vector<Vec<D>>& x, int a, std::vector<float>& scratch) {
     scratch.resize(x.size());
     for (std::size_t i = 0; i < x.size(); ++i) scratch[i] = x[i][a];
     const auto middle = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
-    std::nth_element(scratch.begin(), middle, scratch.end());  // the value is unique: deterministic
-    return std::max(box.lo[a], std::min(*middle - 0.5f * width, box.hi[a] - width));  // hi - width may be below lo
+    std::nth_element(scratch.begin(), middle, scratch.end());
+    return *middle;
 }
 
 /// x in 3D, for the kernels (z 0 in 2D).
@@ -83,24 +74,51 @@ std::uint32_t keyOf(const Grid<D>& g, Vec<D> x, float invH) {
                                  glm::ivec3(g.cells[0], g.cells[1], g.cells[2]));
 }
 
+/// Where a capped grid starts along an axis: its window (`width` m, the cell
+/// budget's cells) centred on the particles' median coordinate, kept inside
+/// their box. Anchored at the box's low end instead, a few particles fallen
+/// off a level (a stream leaving the showcase's right edge, 90 m down after
+/// 9 s) moved the window below everything else, which was clamped into the
+/// top row of cells: every particle of the level then searched one row of
+/// sub-cells holding all of them, the crushed-cell bound cut their lists
+/// (1.4e8 neighbour overflows in 9 s) and the automatic substeps went to 16.
+/// The median is the bulk's as long as it holds most particles; the few
+/// outside the window are clamped into its edge cells, which keeps every
+/// neighbour pair in adjacent sub-cells.
+float cappedWindowOrigin(float median, float lo, float hi, float width) {
+    return std::max(lo, std::min(median - 0.5f * width, hi - width));  // hi - width may be below lo
+}
+
 template <int D>
-void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, float h, Grid<D>& g) {
-    const std::size_t n = x.size();
-    // The grid covers the particles' box, capped at the cell budget.
-    Bounds<D> box = particleBounds<D>(pool, x);
+std::uint32_t placeGridInBox(Vec<D> lo, Vec<D> hi, std::size_t n, float h, Grid<D>& g) {
     if (n == 0) {
-        box.lo = box.hi = Vec<D>(0.0f);
+        lo = hi = Vec<D>(0.0f);
     }
     g.h = h;
-    g.origin = box.lo;
+    g.origin = lo;
     const double budget = static_cast<double>(cellBudget(n));
     const int axisCap = std::max(2, static_cast<int>(std::pow(budget, 1.0 / D)));
     g.cells = {1, 1, 1};
+    std::uint32_t capped = 0;
     for (int a = 0; a < D; ++a) {
-        const double span = static_cast<double>(box.hi[a]) - static_cast<double>(box.lo[a]);
+        const double span = static_cast<double>(hi[a]) - static_cast<double>(lo[a]);
         const double needed = span / (2.0 * h) + 1.0;
         g.cells[a] = static_cast<int>(std::clamp(needed, 1.0, static_cast<double>(axisCap)));
-        if (needed > axisCap) g.origin[a] = cappedOrigin(x, a, box, axisCap * 2.0f * h, g.scratchFloat);
+        if (needed > axisCap) capped |= 1u << a;
+    }
+    return capped;
+}
+
+template <int D>
+void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, float h, Grid<D>& g) {
+    // The grid covers the particles' box, capped at the cell budget.
+    const Bounds<D> box = particleBounds<D>(pool, x);
+    const std::uint32_t capped = placeGridInBox<D>(box.lo, box.hi, x.size(), h, g);
+    for (int a = 0; a < D; ++a) {
+        if ((capped & (1u << a)) != 0) {
+            const float width = static_cast<float>(g.cells[a]) * 2.0f * h;
+            g.origin[a] = cappedWindowOrigin(medianAlong<D>(x, a, g.scratchFloat), box.lo[a], box.hi[a], width);
+        }
     }
 }
 
@@ -185,6 +203,8 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
     }
 }
 
+template std::uint32_t placeGridInBox<2>(Vec<2>, Vec<2>, std::size_t, float, Grid<2>&);
+template std::uint32_t placeGridInBox<3>(Vec<3>, Vec<3>, std::size_t, float, Grid<3>&);
 template void placeGrid<2>(WorkerPool&, const std::vector<Vec<2>>&, float, Grid<2>&);
 template void placeGrid<3>(WorkerPool&, const std::vector<Vec<3>>&, float, Grid<3>&);
 template void buildGrid<2>(WorkerPool&, FluidState&);

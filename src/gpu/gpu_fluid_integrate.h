@@ -16,9 +16,11 @@
 #include "gpu/gpu_fluid_solve.h"
 #include "gpu/vulkan_buffer.h"
 #include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
 
 #include <glm/glm.hpp>
 
+#include <array>
 #include <cstdint>
 #include <memory>
 #include <vector>
@@ -35,17 +37,21 @@ struct FluidIntegrateParams {
     bool split = true;                      // FluidDef::splitImpulse
 };
 
-/// The particles' sleep in particle order, as the integration reads it.
+/// What the integration carries from particle order into grid order: the
+/// particles' sleep and, optionally, their creation serials.
 struct FluidSleepInputs {
     const Buffer* anchors = nullptr;  // float[dimension n] (m)
     const Buffer* stills = nullptr;   // float[n] (s)
+    const Buffer* ids = nullptr;      // uint[n]; null: not carried
 };
 
 struct GpuFluidIntegrate {
     Device* device = nullptr;
     ComputePasses passes;  // fluid_integrate.comp, one pass, one set
     Buffer anchors, stills;  // grid order, out
+    Buffer ids;              // grid order, out (FluidSleepInputs::ids)
     Buffer stats;            // FluidIntegrateStats
+    Buffer partials;         // float per workgroup: its compression sum
     std::uint32_t capacity = 0;
     std::uint32_t count = 0;
     std::uint32_t dimension = 2;
@@ -65,6 +71,26 @@ void recordFluidIntegrate(VkCommandBuffer cmd, GpuFluidIntegrate& g, const GpuFl
                           GpuFluidSolve& solve, GpuFluidContacts& contacts, const FluidSleepInputs& sleep,
                           const FluidIntegrateParams& params);
 
+/// The substep's statistics, read back in one transfer (a few hundred
+/// bytes): waits for the device. Of the setup (its lists, and the density
+/// and closing speeds the constraints were built from) and of the move
+/// (speed, depth, box).
+struct FluidSubstepReport {
+    std::uint32_t listEntries = 0;         // the lists' entries (more than their capacity: some not written)
+    std::uint32_t neighbourOverflows = 0;  // neighbours left out (FluidStepStats::neighbourOverflows)
+    float maxSpeed = 0.0f;      // m/s, after the move
+    float pressedDepth = 0.0f;  // m along gravity, of the particles under pressure
+    std::uint32_t nonFinite = 0;
+    /// Box of the finite particles after the move (m; z 0 in 2D); lo > hi
+    /// when there are none.
+    glm::vec3 boxLow{3.0e38f}, boxHigh{-3.0e38f};
+    float maxDensityError = 0.0f;   // largest rho / rho0 - 1 at the setup
+    float densityErrorSum = 0.0f;   // sum of max(rho / rho0 - 1, 0)
+    std::uint32_t neighbours = 0;   // list entries of all particles
+    std::array<std::uint32_t, kernels::SD_FLUID_APPROACH_BINS> approach{};  // by fastest closing speed
+};
+FluidSubstepReport readFluidSubstepReport(GpuFluidSetup& setup, GpuFluidIntegrate& g);
+
 /// The last integration's statistics and sleep, read back (tests): waits.
 struct FluidIntegrateReadback {
     float maxSpeed = 0.0f;      // m/s
@@ -72,6 +98,6 @@ struct FluidIntegrateReadback {
     std::uint32_t nonFinite = 0;
     std::vector<float> anchors, stills;  // grid order
 };
-FluidIntegrateReadback readFluidIntegrate(GpuFluidIntegrate& g);
+FluidIntegrateReadback readFluidIntegrate(GpuFluidSetup& setup, GpuFluidIntegrate& g);
 
 }  // namespace spindrift::gpu

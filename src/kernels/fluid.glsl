@@ -25,6 +25,7 @@
 //   is 0: a tank at rest stays at rest.
 #ifndef SPINDRIFT_KERNELS_FLUID
 #define SPINDRIFT_KERNELS_FLUID
+#include "layout.glsl"
 #include "types.glsl"
 SD_BEGIN
 
@@ -404,6 +405,24 @@ SD_CONST float SD_FLUID_WAKE_FACTOR = 2.0f;
 SD_CONST float SD_FLUID_SLEEP_CIRCLE_SPACINGS = 0.5f;
 // |x| <= this is false for NaN and both infinities.
 SD_CONST float SD_FLUID_FLOAT_MAX = 3.40282347e38f;
+
+// --- The step's statistics (the substep rule's inputs) ----------------------
+// Particles are counted by the fastest closing speed of a neighbour (m/s), in
+// bins SD_FLUID_APPROACH_BIN wide, the last one open-ended; a NaN counts in
+// bin 0 (src/fluid/fluid_step.cpp, closingSpeed, reads the histogram; the
+// bins are layout.glsl's, since the device's report holds them).
+SD_FN uint fluidApproachBin(float speed) {
+    float b = speed / SD_FLUID_APPROACH_BIN;
+    return b > 0.0f ? uint(min(b, float(SD_FLUID_APPROACH_BINS - 1u))) : 0u;
+}
+
+// A float as a uint whose order is the float's, so that integer atomicMin and
+// atomicMax reduce floats in any order to the same result (the device's
+// statistics and box).
+SD_FN uint fluidOrderKey(float f) {
+    uint bits = floatBitsToUint(f);
+    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+}
 
 SD_FN bool fluidFinite(vec3 v) {
     return abs(v.x) <= SD_FLUID_FLOAT_MAX && abs(v.y) <= SD_FLUID_FLOAT_MAX && abs(v.z) <= SD_FLUID_FLOAT_MAX;

@@ -354,6 +354,8 @@ struct FluidContactsPush {
 // The constraint fluid's integration on the device (src/gpu/shaders/
 // fluid_integrate.comp, src/gpu/gpu_fluid_integrate.cpp): the CPU's
 // integratePositions (src/fluid/collide.cpp) without bodies.
+SD_CONST uint SD_FLUID_INTEGRATE_PASS_MOVE = 0u;    // the PASS specialization constant (id 0)
+SD_CONST uint SD_FLUID_INTEGRATE_PASS_TOTALS = 1u;  // the workgroups' sums added in order (one invocation)
 SD_CONST uint SD_FLUID_INTEGRATE_WORKGROUP = 64u;
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ORDER = 0u;      // uint[n]: grid order -> particle index
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_X = 1u;          // float[dimension n] (m), grid order: in, then out
@@ -367,15 +369,41 @@ SD_CONST uint SD_FLUID_INTEGRATE_BINDING_STILL = 8u;      // float[n], grid orde
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_COLLIDERS = 9u;  // ColliderParams[], the contacts'
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_POLYGONS = 10u;  // FluidPolygon[]
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_STATS = 11u;     // FluidIntegrateStats
-SD_CONST uint SD_FLUID_INTEGRATE_BINDINGS = 12u;
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_CONSTRAINTS = 12u;  // vec4[n], the setup's: z rho / rho0, w fastest closing (m/s)
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_COUNTS = 13u;    // uint[n], the setup's: neighbours stored
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_PARTIALS = 14u;  // float[workgroups]: each workgroup's compression sum
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ID_IN = 15u;     // uint[n], particle order: creation serials (carriesIds)
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ID = 16u;        // uint[n], grid order, out
+SD_CONST uint SD_FLUID_INTEGRATE_BINDINGS = 17u;
 
-// What the integration reports (std430, 16 bytes), reduced with integer
-// atomics, so in any order the same: floats as order-preserving keys.
+// The closing-speed histogram's bins (fluid.glsl, fluidApproachBin): m/s wide,
+// and how many (the last one open-ended).
+SD_CONST float SD_FLUID_APPROACH_BIN = 0.5f;
+SD_CONST uint SD_FLUID_APPROACH_BINS = 64u;
+
+// What the integration reports (std430, 320 bytes): the substep's statistics
+// and the particles' box, reduced with integer atomics, so in any order the
+// same (floats as order-preserving keys, fluidOrderKey); the compression sum
+// is added in a fixed order (per workgroup in a tree, then the workgroups in
+// order by the TOTALS pass).
 struct FluidIntegrateStats {
     uint fastest;      // floatBitsToUint of the largest speed (m/s, >= 0)
     uint pressedLow;   // key (fluidOrderKey) of the least depth along gravity of a particle under pressure
     uint pressedHigh;  // key of the greatest
     uint nonFinite;    // particles whose numbers became NaN or infinite (position set to NaN)
+    uint lowX;         // keys of the finite particles' box after the move (m; z 0 in 2D)
+    uint lowY;
+    uint lowZ;
+    uint maxError;     // key of the largest rho / rho0 - 1 at the setup
+    uint highX;
+    uint highY;
+    uint highZ;
+    uint neighbours;   // neighbours stored, all particles
+    float errorSum;    // sum of max(rho / rho0 - 1, 0) at the setup (TOTALS)
+    uint pad0;
+    uint pad1;
+    uint pad2;
+    uint approach[SD_FLUID_APPROACH_BINS];  // particles by fastest closing speed (fluidApproachBin)
 };
 
 // The integration's push constants (std430: a vec4, then twelve 4-byte
@@ -392,8 +420,8 @@ struct FluidIntegratePush {
     float drift;        // m, the sleep circle's radius (fluidSleepDrift)
     uint split;         // 1: split impulses (the pseudo velocity moves the particle too)
     uint sleeps;        // 1: FluidDef::sleepSpeed > 0
-    uint pad0;
-    uint pad1;
+    uint groups;        // workgroups of the MOVE pass (partials the TOTALS pass adds)
+    uint carriesIds;    // 1: the creation serials are carried into grid order too
 };
 
 // The renderer (src/render): what every render pipeline reads, the camera and
@@ -574,7 +602,6 @@ static_assert(sizeof(FluidSolvePush) == 48);
 static_assert(sizeof(FluidContactsPush) == 48);
 static_assert(sizeof(FluidIntegratePush) == 64);
 static_assert(offsetof(FluidIntegratePush, dt) == 32);
-static_assert(sizeof(FluidIntegrateStats) == 16);
 static_assert(offsetof(FluidContactsPush, radius) == 16);
 static_assert(offsetof(FluidContactsPush, tableStart) == 32);
 static_assert(offsetof(FluidSolvePush, count) == 16);
@@ -605,6 +632,8 @@ static_assert(SD_SCREEN_FLUID_SET == SD_SPLAT_SET);  // screen_fluid_sphere.vert
 static_assert(SD_SURFACE_SET == SD_SPLAT_SET);  // surface_field.vert reads the splats' instance set
 // The masks are 32 bits wide.
 static_assert(SD_MAX_FORCES <= 32u && SD_MAX_COLLIDERS <= 32u);
+static_assert(sizeof(FluidIntegrateStats) == 64 + 4 * SD_FLUID_APPROACH_BINS);
+static_assert(offsetof(FluidIntegrateStats, errorSum) == 48);
 }  // namespace spindrift::kernels
 #endif
 

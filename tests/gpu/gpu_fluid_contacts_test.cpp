@@ -158,7 +158,7 @@ protected:
                                       {&device.anchor, &device.still}, integrateParams);
         });
         const gpu::FluidSetupReadback moved = gpu::readFluidSetup(*parts.setup);
-        const gpu::FluidIntegrateReadback ir = gpu::readFluidIntegrate(*parts.integrate);
+        const gpu::FluidIntegrateReadback ir = gpu::readFluidIntegrate(*parts.setup, *parts.integrate);
         EventQueue events;
         test::NoBodies bodies;
         const fluid::StepContext context{pool, colliders, 0.0, 0, events, bodies};

@@ -1,12 +1,20 @@
 #version 450
 // The constraint fluid's integration on the device (the CPU's
-// integratePositions in src/fluid/collide.cpp, without rigid bodies): each
-// particle's sleep (fluid.glsl, fluidSleepStep), its move by velocity plus
-// pseudo velocity, and the path tests that put back a particle whose path
-// crossed a collider or ends inside a polygon; the step's statistics reduced
-// with integer atomics (the same in any order). The arithmetic is the CPU's,
-// operation for operation, with one variable per component (see
-// fluid_solve.comp, applyImpulse).
+// integratePositions in src/fluid/collide.cpp, without rigid bodies). Passes
+// (a specialization constant):
+//   0 move:   each particle's sleep and creation serial carried into grid
+//             order, its sleep (fluid.glsl, fluidSleepStep), its move by
+//             velocity plus pseudo velocity, and the path tests that put back
+//             a particle whose path crossed a collider or ends inside a
+//             polygon; the substep's statistics (largest speed, depth under
+//             pressure, the particles' box; from the setup's constraints the
+//             closing-speed histogram, the largest compression and the
+//             neighbours) reduced with integer atomics (the same in any
+//             order), and each workgroup's sum of compression in a fixed tree;
+//   1 totals: the workgroups' sums added in order (one invocation), so the
+//             mean compression is the same from run to run.
+// The arithmetic of the move is the CPU's, operation for operation, with one
+// variable per component (see fluid_solve.comp, applyImpulse).
 #include "types.glsl"
 // collide.glsl's terrain and cube-map colliders read their maps through the
 // backend's context (context_hooks.glsl); they are not fluid colliders, so
@@ -19,6 +27,8 @@ vec4 sampleCubeMap(KernelContext ctx, uint map, vec3 direction) { return vec4(0.
 #include "collide.glsl"
 #include "fluid.glsl"
 #include "layout.glsl"
+
+layout(constant_id = 0) const uint PASS = 0u;
 
 layout(local_size_x = SD_FLUID_INTEGRATE_WORKGROUP) in;
 
@@ -34,6 +44,11 @@ layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_STILL) writeonly bu
 layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_COLLIDERS) readonly buffer Colliders { ColliderParams colliders[]; };
 layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_POLYGONS) readonly buffer Polygons { FluidPolygon polygons[]; };
 layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_STATS) buffer Stats { FluidIntegrateStats stats; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_CONSTRAINTS) readonly buffer Constraints { vec4 constraints[]; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_COUNTS) readonly buffer Counts { uint counts[]; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_PARTIALS) buffer Partials { float partials[]; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_ID_IN) readonly buffer IdIn { uint idIn[]; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_ID) writeonly buffer Id { uint ids[]; };
 
 layout(push_constant) uniform Integrate { FluidIntegratePush args; };  // FluidIntegratePush in layout.glsl
 
@@ -42,17 +57,23 @@ vec3 readD(uint d, uint at, bool velocity) {
     return vec3(xs[at], xs[at + 1u], d == 3u ? xs[at + 2u] : 0.0f);
 }
 
-// A float as a uint whose order is the float's (for atomicMin and atomicMax).
-uint orderKey(float f) {
-    uint bits = floatBitsToUint(f);
-    return (bits & 0x80000000u) != 0u ? ~bits : bits | 0x80000000u;
+// The workgroup's statistics of the setup, reduced before one atomic each.
+shared float groupError[SD_FLUID_INTEGRATE_WORKGROUP];
+shared uint groupStored[SD_FLUID_INTEGRATE_WORKGROUP];
+shared uint groupWorst[SD_FLUID_INTEGRATE_WORKGROUP];
+shared uint groupBins[SD_FLUID_APPROACH_BINS];
+
+// The particles' box, which places the next substep's grid.
+void addToBox(vec3 x) {
+    atomicMin(stats.lowX, fluidOrderKey(x.x));
+    atomicMin(stats.lowY, fluidOrderKey(x.y));
+    atomicMin(stats.lowZ, fluidOrderKey(x.z));
+    atomicMax(stats.highX, fluidOrderKey(x.x));
+    atomicMax(stats.highY, fluidOrderKey(x.y));
+    atomicMax(stats.highZ, fluidOrderKey(x.z));
 }
 
-void main() {
-    uint i = gl_GlobalInvocationID.x;
-    if (i >= args.count) {
-        return;
-    }
+void move(uint i) {
     uint d = args.dimension;
     vec3 x0 = readD(d, d * i, false);
     vec3 v = readD(d, d * i, true);
@@ -67,8 +88,8 @@ void main() {
             precise float alongZ = x0.z * args.down.z;
             along = along + alongZ;
         }
-        atomicMin(stats.pressedLow, orderKey(along));
-        atomicMax(stats.pressedHigh, orderKey(along));
+        atomicMin(stats.pressedLow, fluidOrderKey(along));
+        atomicMax(stats.pressedHigh, fluidOrderKey(along));
     }
     // Sleeping, from the particle's anchor and time still (particle order in,
     // grid order out).
@@ -85,10 +106,12 @@ void main() {
     anchors[d * i + 1u] = anchor.y;
     if (d == 3u) anchors[d * i + 2u] = anchor.z;
     stills[i] = still;
+    if (args.carriesIds != 0u) ids[i] = idIn[from];
     if (asleep) {
         vs[d * i] = 0.0f;
         vs[d * i + 1u] = 0.0f;
         if (d == 3u) vs[d * i + 2u] = 0.0f;
+        addToBox(x0);
         return;
     }
     vec3 moving = v;
@@ -135,6 +158,7 @@ void main() {
         x1 = vec3(uintBitsToFloat(0x7FC00000u));
     } else {
         atomicMax(stats.fastest, floatBitsToUint(fluidLength(vec3(v.x, v.y, d == 3u ? v.z : 0.0f))));
+        addToBox(vec3(x1.x, x1.y, d == 3u ? x1.z : 0.0f));
     }
     xs[d * i] = x1.x;
     xs[d * i + 1u] = x1.y;
@@ -142,4 +166,62 @@ void main() {
     vs[d * i] = v.x;
     vs[d * i + 1u] = v.y;
     if (d == 3u) vs[d * i + 2u] = v.z;
+}
+
+// The workgroups' sums of compression, added in workgroup order.
+void addPartials() {
+    if (gl_GlobalInvocationID.x != 0u) {
+        return;
+    }
+    float sum = 0.0f;
+    for (uint g = 0u; g < args.groups; ++g) {
+        sum += partials[g];
+    }
+    stats.errorSum = sum;
+}
+
+void main() {
+    if (PASS == SD_FLUID_INTEGRATE_PASS_TOTALS) {
+        addPartials();
+        return;
+    }
+    uint i = gl_GlobalInvocationID.x;
+    uint local = gl_LocalInvocationID.x;
+    for (uint b = local; b < SD_FLUID_APPROACH_BINS; b += SD_FLUID_INTEGRATE_WORKGROUP) {
+        groupBins[b] = 0u;
+    }
+    barrier();
+    // The setup's statistics (the CPU's setupConstraints counts them):
+    // compression rho / rho0 - 1, neighbours, and the fastest closing speed.
+    float error = 0.0f;
+    uint stored = 0u;
+    uint worst = 0u;
+    if (i < args.count) {
+        vec4 c = constraints[i];
+        error = max(c.z - 1.0f, 0.0f);
+        worst = fluidOrderKey(c.z - 1.0f);
+        stored = counts[i];
+        atomicAdd(groupBins[fluidApproachBin(c.w)], 1u);
+        move(i);
+    }
+    groupError[local] = error;
+    groupStored[local] = stored;
+    groupWorst[local] = worst;
+    barrier();
+    for (uint stride = SD_FLUID_INTEGRATE_WORKGROUP / 2u; stride > 0u; stride /= 2u) {
+        if (local < stride) {
+            groupError[local] += groupError[local + stride];  // a fixed tree: the same sum every run
+            groupStored[local] += groupStored[local + stride];
+            groupWorst[local] = max(groupWorst[local], groupWorst[local + stride]);
+        }
+        barrier();
+    }
+    if (local == 0u) {
+        partials[gl_WorkGroupID.x] = groupError[0];
+        atomicAdd(stats.neighbours, groupStored[0]);
+        atomicMax(stats.maxError, groupWorst[0]);
+    }
+    for (uint b = local; b < SD_FLUID_APPROACH_BINS; b += SD_FLUID_INTEGRATE_WORKGROUP) {
+        if (groupBins[b] != 0u) atomicAdd(stats.approach[b], groupBins[b]);
+    }
 }

@@ -1,0 +1,329 @@
+// The device fluid's step driver (device_fluid.h): particle buffers kept on
+// the device, the substeps recorded from the passes of src/gpu, and the few
+// numbers read back that the host's substep rule and grid placement need.
+#include "world/device_fluid.h"
+
+#include "gpu/gpu_fluid_contacts.h"
+#include "gpu/gpu_fluid_grid.h"
+#include "gpu/gpu_fluid_integrate.h"
+#include "gpu/gpu_fluid_setup.h"
+#include "gpu/gpu_fluid_solve.h"
+#include "gpu/vulkan_buffer.h"
+#include "gpu/vulkan_device.h"
+#include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
+
+#include <spindrift/errors.h>
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cstring>
+#include <vector>
+
+namespace spindrift {
+
+struct DeviceFluid {
+    gpu::Device* device = nullptr;
+    std::unique_ptr<gpu::GpuFluidGrid> grid;
+    std::unique_ptr<gpu::GpuFluidSetup> setup;
+    std::unique_ptr<gpu::GpuFluidSolve> solve;
+    std::unique_ptr<gpu::GpuFluidContacts> contacts;
+    std::unique_ptr<gpu::GpuFluidIntegrate> integrate;
+    // The particles in particle order (the last grid order), tightly packed
+    // as the CPU's arrays: positions and anchors dimension floats each,
+    // velocities too, pressures, times still and serials one each.
+    gpu::Buffer x, v, p, anchors, stills, ids;
+    gpu::Buffer wall;  // the contacts' find writes it, the setup reads it (grid order)
+    std::uint32_t count = 0;
+    std::uint32_t dimension = 2;
+    glm::vec3 boxLow{0.0f}, boxHigh{0.0f};  // of the particles now (m): places the next grid
+    bool setUp = false;                     // a setup ran: its constraints hold the densities
+    std::vector<kernels::ColliderParams> surfaces;  // the fluid colliders last uploaded
+    bool surfacesSet = false;
+
+    ~DeviceFluid() {
+        if (device == nullptr) return;
+        for (gpu::Buffer* b : {&x, &v, &p, &anchors, &stills, &ids, &wall}) gpu::destroyBuffer(*device, *b);
+    }
+};
+
+void DeviceFluidDeleter::operator()(DeviceFluid* g) const { delete g; }
+
+namespace {
+
+template <int D>
+glm::vec3 to3(fluid::Vec<D> x) {
+    if constexpr (D == 2) return glm::vec3(x, 0.0f); else return x;
+}
+
+/// Room for `n` particles in every particle buffer (their contents are lost).
+void reserveParticles(DeviceFluid& g, std::uint32_t n) {
+    const VkDeviceSize room = std::max<VkDeviceSize>(n, 1);
+    for (gpu::Buffer* b : {&g.x, &g.v, &g.anchors}) gpu::recreateStorageBuffer(*g.device, *b, room * g.dimension * 4);
+    for (gpu::Buffer* b : {&g.p, &g.stills, &g.ids}) gpu::recreateStorageBuffer(*g.device, *b, room * 4);
+    gpu::recreateStorageBuffer(*g.device, g.wall, room * sizeof(glm::vec4));
+}
+
+/// `p`'s particles onto the device, and their box.
+template <int D>
+void uploadParticles(DeviceFluid& g, const fluid::Particles<D>& p) {
+    static_assert(sizeof(fluid::Vec<D>) == D * sizeof(float));  // tightly packed, as the passes read them
+    g.count = static_cast<std::uint32_t>(p.size());
+    if (g.x.buffer == VK_NULL_HANDLE || g.x.size < VkDeviceSize{g.count} * D * 4) reserveParticles(g, g.count);
+    g.boxLow = glm::vec3(0.0f);
+    g.boxHigh = glm::vec3(0.0f);
+    if (g.count == 0) return;
+    g.boxLow = glm::vec3(3.0e38f);
+    g.boxHigh = glm::vec3(-3.0e38f);
+    for (const fluid::Vec<D>& x : p.position) {
+        g.boxLow = glm::min(g.boxLow, to3<D>(x));
+        g.boxHigh = glm::max(g.boxHigh, to3<D>(x));
+    }
+    const auto host = [](const auto& array) { return const_cast<void*>(static_cast<const void*>(array.data())); };
+    const std::vector<gpu::Transfer> up{{&g.x, host(p.position), p.position.size() * sizeof(p.position[0])},
+                                        {&g.v, host(p.velocity), p.velocity.size() * sizeof(p.velocity[0])},
+                                        {&g.p, host(p.pressure), p.pressure.size() * 4},
+                                        {&g.anchors, host(p.anchor), p.anchor.size() * sizeof(p.anchor[0])},
+                                        {&g.stills, host(p.still), p.still.size() * 4},
+                                        {&g.ids, host(p.id), p.id.size() * 4}};  // upload only reads them
+    gpu::upload(*g.device, up);
+}
+
+/// The device's particles into `p` (resized).
+template <int D>
+void downloadParticles(DeviceFluid& g, fluid::Particles<D>& p) {
+    const std::size_t n = g.count;
+    p.position.resize(n);
+    p.velocity.resize(n);
+    p.pressure.resize(n);
+    p.density.resize(n, 1.0f);
+    p.id.resize(n);
+    p.anchor.resize(n);
+    p.still.resize(n);
+    p.motion.resize(n);
+    if (n == 0) return;
+    std::vector<gpu::Transfer> down{{&g.x, p.position.data(), n * sizeof(p.position[0])},
+                                    {&g.v, p.velocity.data(), n * sizeof(p.velocity[0])},
+                                    {&g.p, p.pressure.data(), n * 4},
+                                    {&g.anchors, p.anchor.data(), n * sizeof(p.anchor[0])},
+                                    {&g.stills, p.still.data(), n * 4},
+                                    {&g.ids, p.id.data(), n * 4}};
+    gpu::download(*g.device, down);
+    if (g.setUp) {
+        // The last setup's densities, in the order the particles are now
+        // (the setup's grid order, which the carry kept).
+        const std::vector<glm::vec4> c = gpu::downloadArray<glm::vec4>(*g.device, g.setup->constraints, n);
+        for (std::size_t i = 0; i < n; ++i) p.density[i] = c[i].z;
+    }
+}
+
+/// The fluid colliders (planes, spheres, boxes) and polygons for the
+/// contacts, uploaded when they changed.
+void setSurfaces(DeviceFluid& g, const fluid::FluidState& f, std::span<const kernels::ColliderParams> colliders) {
+    std::vector<kernels::ColliderParams> fluidColliders;
+    for (const kernels::ColliderParams& c : colliders) {
+        if (fluid::isFluidCollider(c)) fluidColliders.push_back(c);
+    }
+    if (g.surfacesSet && fluidColliders.size() == g.surfaces.size() &&
+        std::memcmp(fluidColliders.data(), g.surfaces.data(), fluidColliders.size() * sizeof(fluidColliders[0])) == 0) {
+        return;
+    }
+    std::vector<glm::vec2> table(fluid::WallTable::kSize);
+    for (int e = 0; e < fluid::WallTable::kSize; ++e) {
+        table[e] = glm::vec2(f.wallTable.density[e], f.wallTable.push[e]);
+    }
+    gpu::setFluidSurfaces(*g.contacts, {fluidColliders, f.polygons, table, f.wallTable.start, f.wallTable.step});
+    g.surfaces = std::move(fluidColliders);
+    g.surfacesSet = true;
+}
+
+/// Where the substep's grid lies: the CPU's placeGrid for the particles' box
+/// (read back after the last substep). An axis the cell budget caps centres
+/// its window on the particles' median, which needs their coordinates: read
+/// back then (a fluid spread over more than about 2 x 10^5 cells of 2h a
+/// side in 2D; the device's median is a later slice).
+template <int D>
+gpu::FluidGridParams placeDeviceGrid(DeviceFluid& g, const fluid::FluidState& f) {
+    fluid::Grid<D> grid;
+    fluid::Vec<D> lo, hi;
+    for (int a = 0; a < D; ++a) {
+        lo[a] = g.boxLow[a];
+        hi[a] = g.boxHigh[a];
+    }
+    const std::uint32_t capped = fluid::placeGridInBox<D>(lo, hi, g.count, f.h, grid);
+    if (capped != 0) {
+        const std::vector<float> x = gpu::downloadArray<float>(*g.device, g.x, std::size_t{g.count} * D);
+        std::vector<float> axis(g.count);
+        for (int a = 0; a < D; ++a) {
+            if ((capped & (1u << a)) == 0) continue;
+            for (std::size_t i = 0; i < g.count; ++i) axis[i] = x[D * i + a];
+            const auto middle = axis.begin() + static_cast<std::ptrdiff_t>(axis.size() / 2);
+            std::nth_element(axis.begin(), middle, axis.end());
+            const float width = static_cast<float>(grid.cells[a]) * 2.0f * f.h;
+            grid.origin[a] = fluid::cappedWindowOrigin(*middle, lo[a], hi[a], width);
+        }
+    }
+    gpu::FluidGridParams params;
+    params.dimension = D;
+    params.origin = to3<D>(grid.origin);
+    params.invH = 1.0f / grid.h;
+    params.cells = glm::ivec3(grid.cells[0], grid.cells[1], grid.cells[2]);
+    return params;
+}
+
+/// The passes' settings of one substep of `dt` s, as the CPU's passes
+/// compute them from the fluid's state.
+struct SubstepParams {
+    gpu::FluidGridParams grid;
+    gpu::FluidSetupParams setup;
+    gpu::FluidContactParams contacts;
+    gpu::FluidSolveParams solve;
+    gpu::FluidIntegrateParams integrate;
+};
+
+template <int D>
+SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt) {
+    SubstepParams s;
+    s.grid = placeDeviceGrid<D>(g, f);
+    // The warm start's share: as setupConstraints (neighbours.cpp) scales it.
+    const float warmFraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
+    s.setup = {f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, dt, warmFraction};
+    // The step's external force, as stepPasses applies it (fluid_step.cpp).
+    s.setup.velocityChange = to3<D>(fluid::Vec<D>(glm::vec3(f.def.gravity) * dt));
+    s.contacts = {f.radius, f.def.spacing, dt, f.def.friction, f.def.splitImpulse};
+    s.solve = {f.def.iterations, f.def.splitImpulse, warmFraction, f.restDensity, f.def.baumgarte, f.h, dt};
+    s.integrate = {f.def.gravity, dt, f.def.sleepSpeed, f.def.sleepTime, f.def.spacing, f.def.splitImpulse};
+    return s;
+}
+
+void recordSubstep(VkCommandBuffer cmd, DeviceFluid& g, const SubstepParams& s) {
+    gpu::recordFluidGrid(cmd, *g.grid, g.x, g.count, s.grid);
+    gpu::recordFluidGather(cmd, *g.setup, *g.grid, {&g.x, &g.v, &g.p, &g.wall, g.count}, s.setup.velocityChange);
+    gpu::recordFluidContactsFind(cmd, *g.contacts, *g.setup, g.wall, s.contacts);
+    gpu::recordFluidConstraints(cmd, *g.setup, *g.grid, s.setup);
+    gpu::recordFluidSolve(cmd, *g.solve, *g.grid, *g.setup, g.wall, s.solve, g.contacts.get());
+    gpu::recordFluidIntegrate(cmd, *g.integrate, *g.grid, *g.setup, *g.solve, *g.contacts,
+                              {&g.anchors, &g.stills, &g.ids}, s.integrate);
+}
+
+/// The substep's results (grid order) become the next one's input: the
+/// driver's buffers and the passes' outputs trade places, no copy. The
+/// driver's buffer is first made the size of the pass's, so the pass's
+/// capacity stays true of what it gets (its old contents are dropped: the
+/// pass writes it before reading it).
+void carry(DeviceFluid& g) {
+    const auto trade = [&](gpu::Buffer& mine, gpu::Buffer& pass) {
+        if (mine.size != pass.size) gpu::recreateStorageBuffer(*g.device, mine, pass.size);
+        std::swap(mine, pass);
+    };
+    trade(g.x, g.setup->x);
+    trade(g.v, g.setup->v);
+    trade(g.p, g.setup->p);
+    trade(g.anchors, g.integrate->anchors);
+    trade(g.stills, g.integrate->stills);
+    trade(g.ids, g.integrate->ids);
+}
+
+/// The particles whose numbers stopped being finite (marked with a NaN
+/// position by the integration) removed, as the CPU's integratePositions
+/// removes them: read back, kept in order, uploaded again. Rare (a blow-up);
+/// the device's compaction is a later slice.
+template <int D>
+std::uint64_t removeNonFinite(DeviceFluid& g) {
+    fluid::Particles<D> p;
+    downloadParticles<D>(g, p);
+    const std::size_t removed =
+        p.keepIf([&](std::size_t i) { return kernels::fluidFinite(to3<D>(p.position[i])); });
+    uploadParticles<D>(g, p);
+    g.setUp = false;  // the setup's densities are of the old order
+    return removed;
+}
+
+template <int D>
+void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& stats) {
+    const SubstepParams params = substepParams<D>(g, f, dt);
+    // The lists hold what the setup found, or the substep runs again with
+    // room for them (its inputs are untouched until the carry).
+    gpu::FluidSubstepReport r;
+    for (;;) {
+        gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) { recordSubstep(cmd, g, params); });
+        r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
+        if (r.listEntries <= g.setup->listCapacity) break;
+        gpu::reserveFluidLists(*g.setup, r.listEntries + r.listEntries / 4);
+    }
+    carry(g);
+    g.setUp = true;
+    f.lastSubstep = dt;  // as solveConstraints records it
+    stats.neighbourOverflows += r.neighbourOverflows;
+
+    // The substep's statistics, as the CPU's setup and integration report
+    // them (the density ones are the last substep's).
+    const double n = std::max<double>(g.count, 1.0);
+    stats.meanDensityError = r.densityErrorSum / n;
+    stats.maxDensityError = g.count > 0 ? r.maxDensityError : 0.0;
+    stats.meanNeighbours = r.neighbours / n;
+    stats.maxSpeed = r.maxSpeed;
+    for (std::size_t b = 0; b < f.approach.size(); ++b) f.approach[b] += r.approach[b];
+    f.pressedDepth = r.pressedDepth;
+    g.boxLow = r.boxLow;
+    g.boxHigh = r.boxHigh;
+    if (r.nonFinite > 0) stats.nonFinite += removeNonFinite<D>(g);
+}
+
+}  // namespace
+
+DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f) {
+    if (!f.jets.empty()) {
+        throw Error(fmt::format("fluid '{}': the device fluid has no jets yet (use the cpu backend)", f.def.name));
+    }
+    if (f.def.solver != FluidSolver::Parallel) {
+        throw Error(fmt::format("fluid '{}': the device fluid solves in the Parallel order only", f.def.name));
+    }
+    DeviceFluidPtr g(new DeviceFluid);
+    g->device = &d;
+    g->dimension = f.def.dimension;
+    g->grid = gpu::createGpuFluidGrid(d);
+    g->setup = gpu::createGpuFluidSetup(d);
+    g->solve = gpu::createGpuFluidSolve(d);
+    g->contacts = gpu::createGpuFluidContacts(d);
+    g->integrate = gpu::createGpuFluidIntegrate(d);
+    if (f.def.dimension == 2) {
+        uploadParticles<2>(*g, f.p2);
+    } else {
+        uploadParticles<3>(*g, f.p3);
+    }
+    return g;
+}
+
+FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
+                               std::span<const kernels::ColliderParams> colliders, FluidId id, float dt) {
+    FluidStepStats stats;
+    stats.fluid = id;
+    setSurfaces(g, f, colliders);
+    const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : fluid::automaticSubsteps(f, dt);
+    const float h = dt / static_cast<float>(substeps);
+    for (int k = 0; k < substeps && g.count > 0; ++k) {
+        if (f.def.dimension == 2) {
+            substep<2>(g, f, h, stats);
+        } else {
+            substep<3>(g, f, h, stats);
+        }
+    }
+    f.lastMeanDensityError = static_cast<float>(stats.meanDensityError);
+    f.lastSubsteps = substeps;
+    stats.substeps = static_cast<std::uint32_t>(substeps);
+    stats.particles = g.count;
+    f.steps += 1;
+    return stats;
+}
+
+void readDeviceFluid(DeviceFluid& g, fluid::FluidState& f) {
+    if (f.def.dimension == 2) {
+        downloadParticles<2>(g, f.p2);
+    } else {
+        downloadParticles<3>(g, f.p3);
+    }
+}
+
+}  // namespace spindrift

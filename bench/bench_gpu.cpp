@@ -19,7 +19,7 @@
 // Vulkan backend runs on Mesa's lavapipe, a CPU implementation, so the numbers
 // here measure the path, not a GPU; 1M particles on lavapipe take about a
 // second per step, too long to repeat here, so the Vulkan case is 100k only.
-// BM_SubEmit, BM_FluidDeviceSubstep: see their comments.
+// BM_SubEmit, BM_FluidDeviceSubstep, BM_FluidDeviceStep: see their comments.
 #include "core/parallel.h"
 #include "effects/batch_update.h"
 #include "fluid/fluid_state.h"
@@ -189,10 +189,9 @@ void BM_SubEmit(benchmark::State& state) {
 /// one substep of a block of water at rest on the lattice with velocities of
 /// up to 0.5 m/s at random, the CPU's FluidState placing the grid, every
 /// substep recorded and waited for (each from the same state). Argument 0:
-/// particles; 1: dimension. Counters: list entries per particle. Not on the
-/// device yet: the grid's placement, the step's statistics beyond the
-/// integration's, jets, bodies (docs/performance.md, "The fluid on the
-/// device"). On lavapipe the time measures the path only.
+/// particles; 1: dimension. Counters: list entries per particle. The whole
+/// step through the world: BM_FluidDeviceStep. On lavapipe the time measures
+/// the path only.
 void BM_FluidDeviceSubstep(benchmark::State& state) {
     using namespace spindrift;
     const auto n = static_cast<std::uint32_t>(state.range(0));
@@ -305,7 +304,64 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
     }
 }
 
+/// The constraint fluid's whole step on the device through the public API
+/// (issue 16): a Vulkan world, a fluid with backend gpu, a block of water
+/// (argument 0: particles; 1: dimension) on the floor of a closed box twice
+/// its width, released at rest; each step the automatic substeps (the CPU's
+/// rule on the statistics read back), every substep's passes, its read-back
+/// of a few hundred bytes, and the particles read back once a step for the
+/// host's readers (the renderer, snapshots) until the renderer draws from the
+/// device's buffers. One warm-up step, untimed. Counters: substeps a step,
+/// particles. On lavapipe the time measures the path only.
+void BM_FluidDeviceStep(benchmark::State& state) {
+    using namespace spindrift;
+    const auto n = static_cast<std::uint32_t>(state.range(0));
+    const auto dimension = static_cast<std::uint32_t>(state.range(1));
+    try {
+        WorldDef wd;
+        wd.backend = Backend::Vulkan;
+        const WorldId w = createWorld(wd);
+        FluidDef def;
+        def.name = "water";
+        def.dimension = dimension;
+        def.spacing = dimension == 2 ? 0.01f : 0.02f;
+        def.backend = FluidBackend::Gpu;
+        const float side = def.spacing * std::pow(static_cast<float>(n), 1.0f / static_cast<float>(dimension));
+        const glm::vec3 box(2.0f * side, 2.0f * side, dimension == 3 ? side : 0.0f);
+        def.blocks.push_back({glm::vec3(0.0f), glm::vec3(side, side, dimension == 3 ? side : 0.0f), glm::vec3(0.0f)});
+        for (int a = 0; a < static_cast<int>(dimension); ++a) {
+            for (const float sign : {1.0f, -1.0f}) {
+                ColliderDef c;
+                c.kind = ColliderKind::Plane;
+                c.normal = glm::vec3(0.0f);
+                c.normal[a] = sign;
+                c.position = sign > 0.0f ? glm::vec3(0.0f) : box;
+                createCollider(w, c);
+            }
+        }
+        const FluidId f = createFluid(w, def);
+        stepWorld(w, kDt);  // the first allocates
+        double substeps = 0.0;
+        for (auto _ : state) {
+            substeps += stepWorld(w, kDt).fluids.at(0).substeps;
+        }
+        state.counters["substeps"] = substeps / static_cast<double>(state.iterations());
+        state.counters["particles"] = static_cast<double>(readFluid(w, f).count());
+        destroyWorld(w);
+    } catch (const std::exception& e) {
+        state.SkipWithError(e.what());
+    }
+}
+
 }  // namespace
+
+BENCHMARK(BM_FluidDeviceStep)
+    ->ArgNames({"particles", "dimension"})
+    ->Args({100'000, 2})
+    ->Args({100'000, 3})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 
 BENCHMARK(BM_FluidDeviceSubstep)
     ->ArgNames({"particles", "dimension"})

@@ -3,7 +3,7 @@
 # as errors, then the same tests under AddressSanitizer and
 # UndefinedBehaviorSanitizer. Exits non-zero on any failure.
 #
-# The sanitizer pass leaves out 49 tests (the asan test preset's filter in
+# The sanitizer pass leaves out 51 tests (the asan test preset's filter in
 # CMakePresets.json), which would put CI (2 cores) over its 30 minutes (a
 # clean run with only the first nine left out took 31 minutes, 11 of them the
 # sanitizer tests); all of them run in the optimised pass:
@@ -33,7 +33,9 @@
 #   pour-and-remove script (the other viewer tests run), and the trails'
 #   history on both backends (53 s under the sanitizers; the CPU trail
 #   writes run in the other trail tests, the device's trail buffers in the
-#   Vulkan half of Trails.RibbonCoversTheLastStepsOfThePathOnBothBackends).
+#   Vulkan half of Trails.RibbonCoversTheLastStepsOfThePathOnBothBackends),
+#   and the device fluid's tank at rest and 3D dam break against the CPU
+#   (its 2D dam break and world tests run the same driver under them).
 # Under the sanitizers every code path they drive still runs: the short fluid
 # tests, SceneBuild.EverySceneBuildsAndRuns (every bundled scene, the showcase
 # and the fluid tanks included, for 2 s) and the two-thread determinism tests

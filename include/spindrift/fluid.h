@@ -18,6 +18,20 @@ namespace spindrift {
 
 struct FluidId { std::uint32_t index = 0; };
 
+/// Where a fluid is solved (docs/fluid.md, "On the device").
+enum class FluidBackend : std::uint32_t {
+    /// The device in a Vulkan world on a hardware GPU (never lavapipe, which
+    /// runs shaders on the CPU cores slower than the CPU solver) for the
+    /// Parallel solver; else the CPU. A fluid that meets a rigid body moves
+    /// to the CPU (bodies are not coupled on the device yet).
+    Auto = 0,
+    Cpu = 1,
+    /// The device of a Vulkan world (WorldDef::backend), lavapipe included;
+    /// an Error in a CPU world, and at a step that finds rigid bodies near
+    /// the fluid.
+    Gpu = 2,
+};
+
 enum class FluidSolver : std::uint32_t {
     /// Gauss-Seidel over four (2D) or eight (3D) colour groups of grid cells,
     /// cells of one colour in parallel; bit-identical for any thread count.
@@ -112,6 +126,8 @@ struct FluidDef {
     /// (the lists are compact and grow).
     std::uint32_t maxNeighbours = 0;
     FluidSolver solver = FluidSolver::Parallel;
+    /// Where the fluid is solved; the device runs the Parallel order only.
+    FluidBackend backend = FluidBackend::Auto;
     /// Solve most of the bias on a pseudo velocity that moves particles this
     /// step and is then dropped (split impulses), so correcting density errors
     /// adds little kinetic energy; false: the slides' bias in the velocity.
@@ -171,6 +187,7 @@ struct FluidStepStats {
     /// which bounds what a crushed fluid costs (docs/fluid.md).
     std::uint64_t neighbourOverflows = 0;
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
+    bool device = false;                ///< solved on the device (FluidBackend)
     std::uint64_t bodyContacts = 0;     ///< particle-body contacts, all substeps
     /// Particles removed because their position or velocity became NaN or
     /// infinite (all substeps), in the substep where it arose.

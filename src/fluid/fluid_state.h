@@ -354,6 +354,10 @@ bool crossesCollider(std::span<const kernels::ColliderParams> colliders, const F
 template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt,
                                          FluidStepStats& stats);
 
+/// The jets' particles born during the step [w.time, w.time + dt), appended
+/// to `f`'s arrays, and their recoil given to the bodies they sit on; returns
+/// how many (the device's step appends the same particles to its buffers).
+std::uint64_t emitStepJets(const StepContext& w, FluidState& f, float dt);
 /// The substeps of this step when FluidDef::substeps is 0, from the last
 /// step's statistics (f.approach, which it empties, f.pressedDepth,
 /// f.lastMeanDensityError, f.lastSubsteps), so the count is deterministic;

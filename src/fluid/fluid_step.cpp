@@ -215,15 +215,20 @@ int automaticSubsteps(FluidState& f, float dt) {
     return wanted <= 1.0f ? 1 : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted) : kMaxSubsteps;
 }
 
-FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
-    FluidStepStats stats;
-    stats.fluid = id;
+std::uint64_t emitStepJets(const StepContext& w, FluidState& f, float dt) {
     // Emission: the jets' particles born during this step join before binning.
     // A jet on a body moves with it and gives it the recoil.
     std::vector<JetMount> mounts;
     for (const Jet& jet : f.jets) mounts.push_back(w.bodies.jetMount(jet.def.body));
-    stats.born = emitJets(f, w.time, dt, mounts);
+    const std::uint64_t born = emitJets(f, w.time, dt, mounts);
     for (std::size_t j = 0; j < f.jets.size(); ++j) w.bodies.applyRecoil(f.jets[j].def.body, mounts[j]);
+    return born;
+}
+
+FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
+    FluidStepStats stats;
+    stats.fluid = id;
+    stats.born = emitStepJets(w, f, dt);
     const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : automaticSubsteps(f, dt);
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as

@@ -298,6 +298,15 @@ void validateFluidDef(const FluidDef& def) {
     check.number("baumgarte", def.baumgarte, rules::kBaumgarte);
     check.number("warm_start", def.warmStart, rules::kWarmStart);
     check.number("max_neighbours", def.maxNeighbours, rules::kMaxNeighbours);
+    if (def.solver != FluidSolver::Parallel && def.solver != FluidSolver::Sequential) {
+        check.fail("solver", "expected parallel or sequential");
+    }
+    if (def.backend != FluidBackend::Auto && def.backend != FluidBackend::Cpu && def.backend != FluidBackend::Gpu) {
+        check.fail("backend", "expected cpu, gpu or auto");
+    }
+    if (def.backend == FluidBackend::Gpu && def.solver != FluidSolver::Parallel) {
+        check.fail("solver", "expected parallel with backend gpu (the device solves the colours in parallel)");
+    }
     check.number("substeps", def.substeps, rules::kSubsteps);
     check.number("sleep_speed", def.sleepSpeed, rules::kSleepSpeed);
     check.number("sleep_time", def.sleepTime, rules::kSleepTime);

@@ -255,7 +255,7 @@ void upload(Device& d, std::span<const Transfer> transfers) {
             VkDeviceSize at = 0;
             for (const Transfer& t : transfers) {
                 if (t.bytes > 0) {
-                    VkBufferCopy region{at, 0, t.bytes};
+                    VkBufferCopy region{at, t.offset, t.bytes};
                     vkCmdCopyBuffer(cmd, staging.buffer, t.buffer->buffer, 1, &region);
                 }
                 at += t.bytes;
@@ -285,7 +285,7 @@ void download(Device& d, std::span<const Transfer> transfers) {
             VkDeviceSize at = 0;
             for (const Transfer& t : transfers) {
                 if (t.bytes > 0) {
-                    VkBufferCopy region{0, at, t.bytes};
+                    VkBufferCopy region{t.offset, at, t.bytes};
                     vkCmdCopyBuffer(cmd, t.buffer->buffer, staging.buffer, 1, &region);
                 }
                 at += t.bytes;

@@ -32,11 +32,13 @@ void requireBufferBytes(const Buffer* b, VkDeviceSize bytes, const char* pass, c
 /// (16 at least) in its place. Only while nothing pending uses `b`.
 void recreateStorageBuffer(Device& d, Buffer& b, VkDeviceSize bytes);
 
-/// One copy between host memory and a device buffer, at offset 0.
+/// One copy between host memory and a device buffer, at `offset` bytes into
+/// the buffer.
 struct Transfer {
     Buffer* buffer;
     void* host;
     VkDeviceSize bytes;
+    VkDeviceSize offset = 0;
 };
 
 /// Copies every host range into its buffer through one staging buffer and one

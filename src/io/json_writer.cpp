@@ -130,6 +130,11 @@ void JsonWriter::value(double number) {
     out_ << fmt::format("{}", number);
 }
 
+void JsonWriter::boolean(bool b) {
+    separate();
+    out_ << (b ? "true" : "false");
+}
+
 void JsonWriter::null() {
     separate();
     out_ << "null";

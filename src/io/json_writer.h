@@ -37,6 +37,7 @@ public:
     void value(float number);
     /// Shortest text that parses back to the same double.
     void value(double number);
+    void boolean(bool b);
     void null();
 
     /// Ends the document with a newline.

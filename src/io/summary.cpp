@@ -111,6 +111,8 @@ void writeFluidStep(JsonWriter& json, const FluidStepStats& f, const FluidNumber
     json.value(f.neighbourOverflows);
     json.key("substeps");
     json.value(f.substeps);
+    json.key("device");
+    json.boolean(f.device);
     json.key("non_finite");
     json.value(f.nonFinite);
     if (density != nullptr) {

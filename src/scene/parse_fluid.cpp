@@ -74,7 +74,7 @@ FluidPolygonDef parsePolygon(const Table& t) {
 
 FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
     t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
-                 "solver", "substeps", "sleep_speed", "sleep_time", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
+                 "solver", "backend", "substeps", "sleep_speed", "sleep_time", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
                 "a [[fluid]]");
     FluidDef def;
     def.name = names.add(t);
@@ -91,6 +91,10 @@ FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
     def.maxNeighbours = t.whole("max_neighbours", def.maxNeighbours, rules::kMaxNeighbours);
     if (auto v = t.find("solver")) {
         def.solver = v->choice<FluidSolver>({{"parallel", FluidSolver::Parallel}, {"sequential", FluidSolver::Sequential}});
+    }
+    if (auto v = t.find("backend")) {
+        def.backend = v->choice<FluidBackend>(
+            {{"auto", FluidBackend::Auto}, {"cpu", FluidBackend::Cpu}, {"gpu", FluidBackend::Gpu}});
     }
     def.substeps = t.whole("substeps", def.substeps, rules::kSubsteps);
     def.sleepSpeed = t.real("sleep_speed", def.sleepSpeed, rules::kSleepSpeed);

@@ -3,6 +3,7 @@
 // numbers read back that the host's substep rule and grid placement need.
 #include "world/device_fluid.h"
 
+#include "fluid/fluid_state.h"
 #include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/gpu_fluid_integrate.h"
@@ -18,6 +19,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <array>
 #include <cstring>
 #include <vector>
 
@@ -57,12 +59,28 @@ glm::vec3 to3(fluid::Vec<D> x) {
     if constexpr (D == 2) return glm::vec3(x, 0.0f); else return x;
 }
 
-/// Room for `n` particles in every particle buffer (their contents are lost).
+/// A particle buffer and its bytes a particle.
+struct ParticleArray {
+    gpu::Buffer* buffer;
+    VkDeviceSize each;
+};
+std::array<ParticleArray, 6> particleArrays(DeviceFluid& g) {
+    const VkDeviceSize vector = VkDeviceSize{g.dimension} * 4;
+    return {{{&g.x, vector}, {&g.v, vector}, {&g.anchors, vector}, {&g.p, 4}, {&g.stills, 4}, {&g.ids, 4}}};
+}
+
+/// Room for `n` particles in every particle buffer and the wall; a buffer
+/// too small is made anew (its contents lost: the caller uploads them all).
 void reserveParticles(DeviceFluid& g, std::uint32_t n) {
     const VkDeviceSize room = std::max<VkDeviceSize>(n, 1);
-    for (gpu::Buffer* b : {&g.x, &g.v, &g.anchors}) gpu::recreateStorageBuffer(*g.device, *b, room * g.dimension * 4);
-    for (gpu::Buffer* b : {&g.p, &g.stills, &g.ids}) gpu::recreateStorageBuffer(*g.device, *b, room * 4);
-    gpu::recreateStorageBuffer(*g.device, g.wall, room * sizeof(glm::vec4));
+    for (const ParticleArray& a : particleArrays(g)) {
+        if (a.buffer->buffer == VK_NULL_HANDLE || a.buffer->size < room * a.each) {
+            gpu::recreateStorageBuffer(*g.device, *a.buffer, room * a.each);
+        }
+    }
+    if (g.wall.buffer == VK_NULL_HANDLE || g.wall.size < room * sizeof(glm::vec4)) {
+        gpu::recreateStorageBuffer(*g.device, g.wall, room * sizeof(glm::vec4));
+    }
 }
 
 /// `p`'s particles onto the device, and their box.
@@ -70,7 +88,7 @@ template <int D>
 void uploadParticles(DeviceFluid& g, const fluid::Particles<D>& p) {
     static_assert(sizeof(fluid::Vec<D>) == D * sizeof(float));  // tightly packed, as the passes read them
     g.count = static_cast<std::uint32_t>(p.size());
-    if (g.x.buffer == VK_NULL_HANDLE || g.x.size < VkDeviceSize{g.count} * D * 4) reserveParticles(g, g.count);
+    reserveParticles(g, g.count);
     g.boxLow = glm::vec3(0.0f);
     g.boxHigh = glm::vec3(0.0f);
     if (g.count == 0) return;
@@ -88,6 +106,55 @@ void uploadParticles(DeviceFluid& g, const fluid::Particles<D>& p) {
                                         {&g.stills, host(p.still), p.still.size() * 4},
                                         {&g.ids, host(p.id), p.id.size() * 4}};  // upload only reads them
     gpu::upload(*g.device, up);
+}
+
+/// Room for `n` particles in every particle buffer, the particles there
+/// kept (a buffer that grows is copied into its successor on the device).
+void growKeeping(DeviceFluid& g, std::uint32_t n) {
+    for (const ParticleArray& a : particleArrays(g)) {
+        if (a.buffer->size >= n * a.each) continue;
+        gpu::Buffer grown = gpu::createStorageBuffer(*g.device, std::max(n * a.each, 2 * a.buffer->size));
+        if (g.count > 0) {
+            gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) {
+                const VkBufferCopy region{0, 0, g.count * a.each};
+                vkCmdCopyBuffer(cmd, a.buffer->buffer, grown.buffer, 1, &region);
+            });
+        }
+        gpu::destroyBuffer(*g.device, *a.buffer);
+        *a.buffer = grown;
+    }
+    reserveParticles(g, n);  // the wall, which holds nothing between substeps
+}
+
+/// `p`'s particles from `from` on (born on the host this step) appended to
+/// the device's, and to the box the next grid covers.
+template <int D>
+void appendParticles(DeviceFluid& g, const fluid::Particles<D>& p, std::size_t from) {
+    const auto n = static_cast<std::uint32_t>(p.size());
+    if (n <= from) return;
+    growKeeping(g, n);
+    const std::size_t added = n - from;
+    const auto host = [&](const auto& array) {
+        return const_cast<void*>(static_cast<const void*>(array.data() + from));  // upload only reads it
+    };
+    const VkDeviceSize vector = sizeof(fluid::Vec<D>);
+    const std::vector<gpu::Transfer> up{{&g.x, host(p.position), added * vector, from * vector},
+                                        {&g.v, host(p.velocity), added * vector, from * vector},
+                                        {&g.p, host(p.pressure), added * 4, from * 4},
+                                        {&g.anchors, host(p.anchor), added * vector, from * vector},
+                                        {&g.stills, host(p.still), added * 4, from * 4},
+                                        {&g.ids, host(p.id), added * 4, from * 4}};
+    gpu::upload(*g.device, up);
+    if (g.count == 0) {
+        g.boxLow = glm::vec3(3.0e38f);
+        g.boxHigh = glm::vec3(-3.0e38f);
+    }
+    for (std::size_t i = from; i < n; ++i) {
+        g.boxLow = glm::min(g.boxLow, to3<D>(p.position[i]));
+        g.boxHigh = glm::max(g.boxHigh, to3<D>(p.position[i]));
+    }
+    g.count = n;
+    g.setUp = false;  // the last setup's densities are of fewer particles
 }
 
 /// The device's particles into `p` (resized).
@@ -274,9 +341,6 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
 }  // namespace
 
 DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f) {
-    if (!f.jets.empty()) {
-        throw Error(fmt::format("fluid '{}': the device fluid has no jets yet (use the cpu backend)", f.def.name));
-    }
     if (f.def.solver != FluidSolver::Parallel) {
         throw Error(fmt::format("fluid '{}': the device fluid solves in the Parallel order only", f.def.name));
     }
@@ -288,11 +352,7 @@ DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f) {
     g->solve = gpu::createGpuFluidSolve(d);
     g->contacts = gpu::createGpuFluidContacts(d);
     g->integrate = gpu::createGpuFluidIntegrate(d);
-    if (f.def.dimension == 2) {
-        uploadParticles<2>(*g, f.p2);
-    } else {
-        uploadParticles<3>(*g, f.p3);
-    }
+    uploadDeviceFluid(*g, f);
     return g;
 }
 
@@ -316,6 +376,23 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
     stats.particles = g.count;
     f.steps += 1;
     return stats;
+}
+
+void appendDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, std::size_t from) {
+    if (f.def.dimension == 2) {
+        appendParticles<2>(g, f.p2, from);
+    } else {
+        appendParticles<3>(g, f.p3, from);
+    }
+}
+
+void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f) {
+    if (f.def.dimension == 2) {
+        uploadParticles<2>(g, f.p2);
+    } else {
+        uploadParticles<3>(g, f.p3);
+    }
+    g.setUp = false;
 }
 
 void readDeviceFluid(DeviceFluid& g, fluid::FluidState& f) {

@@ -10,11 +10,12 @@
 // statistics the substep rule of the next step reads (fluid_step.cpp,
 // automaticSubsteps, the same function the CPU's step calls).
 //
-// Not yet here: jets, rigid bodies, the Sequential solver order (each an
-// Error at creation), the renderer reading the device's buffers.
+// Not yet here: rigid bodies (the world keeps a fluid near bodies on the
+// CPU, src/world/fluid_api.cpp), the Sequential solver order (an Error at
+// creation), the jets' births computed on the device (the host emits them
+// and appends them), the renderer reading the device's buffers (the world
+// reads the particles back after each step).
 #pragma once
-
-#include "fluid/fluid_state.h"
 
 #include <spindrift/fluid.h>
 
@@ -26,6 +27,12 @@ namespace spindrift {
 namespace gpu {
 struct Device;
 }
+namespace fluid {
+struct FluidState;
+}
+namespace kernels {
+struct ColliderParams;
+}
 
 struct DeviceFluid;
 struct DeviceFluidDeleter {
@@ -35,11 +42,12 @@ using DeviceFluidPtr = std::unique_ptr<DeviceFluid, DeviceFluidDeleter>;
 
 /// Uploads `f`'s particles (its arrays as they are: creation, or the CPU's
 /// last step) to `d`, which must outlive the result. Throws Error for what
-/// the device fluid does not run yet: jets, the Sequential solver.
+/// the device fluid does not run: the Sequential solver.
 DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f);
 
 /// One step of `f` on the device, as fluid::stepFluid takes it on the CPU
-/// for a fluid without jets and bodies: the automatic substeps from the same
+/// for a fluid without bodies (the jets' births appended first,
+/// appendDeviceFluid): the automatic substeps from the same
 /// rule, the world's fluid colliders (planes, spheres, boxes; at most 32 with
 /// the fluid's polygons) and `f`'s polygons. `f`'s particle arrays are not
 /// touched (readDeviceFluid fills them); its counters and statistics are.
@@ -47,6 +55,15 @@ DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f);
 /// FluidStepStats::nonFinite). Pass times are not measured (0).
 FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
                                std::span<const kernels::ColliderParams> colliders, FluidId id, float dt);
+
+/// `f`'s particles from `from` on appended to the device's (the jets'
+/// births of this step, emitted on the host by fluid::emitStepJets from
+/// arrays that hold the device's particles: a few bytes a birth).
+void appendDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, std::size_t from);
+
+/// `f`'s particles uploaded again, in place of the device's (after an edit
+/// on the host: a block added, particles removed or poured).
+void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f);
 
 /// The device's particles into `f`'s arrays (positions, velocities,
 /// pressures, densities of the last setup, serials, sleep), in the device's

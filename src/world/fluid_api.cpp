@@ -7,6 +7,9 @@
 #include "fluid/body_link.h"
 #include "fluid/fluid_world.h"
 #include "fluid/number_density.h"
+#include "gpu/gpu_world.h"
+#include "gpu/vulkan_device.h"
+#include "world/device_fluid.h"
 #include "world/world.h"
 
 #include <fmt/format.h>
@@ -42,15 +45,75 @@ const fluid::FluidState& fluidStateFromId(const World& world, FluidId fluid) {
     return *world.fluids[fluid.index - 1];
 }
 
+/// Whether fluid `def` is solved on the device of `w` (FluidBackend): Gpu
+/// needs a Vulkan world, Auto a Vulkan world on a hardware GPU and a fluid
+/// the device runs. Throws Error for Gpu in a CPU world.
+bool solvedOnDevice(const World& w, const FluidDef& def) {
+    switch (def.backend) {
+        case FluidBackend::Cpu:
+            return false;
+        case FluidBackend::Gpu:
+            if (!w.gpu) {
+                throw Error(fmt::format("fluid '{}': backend gpu needs a Vulkan world (a scene's [world] backend "
+                                        "or --backend vulkan; WorldDef::backend in the API)",
+                                        def.name));
+            }
+            return true;
+        case FluidBackend::Auto:
+            return w.gpu && gpu::hardwareGpuAvailable() && def.solver == FluidSolver::Parallel;
+    }
+    return false;
+}
+
+/// A fluid on the device moves to the CPU (its particles are read back after
+/// every step, so the CPU's solver continues from them) when it meets what
+/// the device does not run yet; with backend gpu that is an Error.
+void leaveDevice(World& w, std::size_t i, const char* why) {
+    const fluid::FluidState& f = *w.fluids[i];
+    if (f.def.backend == FluidBackend::Gpu) {
+        throw Error(fmt::format("fluid '{}' (backend gpu): {}; the device does not run that yet (use backend cpu or "
+                                "auto)",
+                                f.def.name, why));
+    }
+    w.deviceFluids[i].reset();
+}
+
 void stepFluids(World& w, float dt, StepStats& stats) {
     if (w.fluids.empty()) return;
     checkColliders(w);
     coupling::FluidLink bodies(w.bodies.get());
     const fluid::StepContext context{w.pool, w.colliders, w.time, w.stepIndex, w.events, bodies};
     for (std::size_t i = 0; i < w.fluids.size(); ++i) {
-        stats.fluids.push_back(
-            fluid::stepFluid(context, *w.fluids[i], FluidId{static_cast<std::uint32_t>(i + 1)}, dt));
+        fluid::FluidState& f = *w.fluids[i];
+        const FluidId id{static_cast<std::uint32_t>(i + 1)};
+        if (w.deviceFluids[i] && f.def.dimension == 2 && bodies.gather(f, dt) != nullptr) {
+            leaveDevice(w, i, "rigid bodies are near it");
+        }
+        if (w.deviceFluids[i]) {
+            // The jets' births, emitted on the host (whose arrays hold the
+            // device's particles) and appended; the particles are read back
+            // for everything that reads them on the host (snapshots, the
+            // renderer, caches, the brushes) until the renderer draws from
+            // the device's buffers (issue 16).
+            const std::size_t before = f.size();
+            const std::uint64_t born = fluid::emitStepJets(context, f, dt);
+            appendDeviceFluid(*w.deviceFluids[i], f, before);
+            FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
+            s.born = born;
+            readDeviceFluid(*w.deviceFluids[i], f);
+            f.recentStrikes.clear();
+            s.device = true;
+            stats.fluids.push_back(s);
+        } else {
+            stats.fluids.push_back(fluid::stepFluid(context, f, id, dt));
+        }
     }
+}
+
+/// After an edit of fluid i's particles on the host: the device's copy
+/// replaced by them.
+void fluidEdited(World& w, std::size_t i) {
+    if (w.deviceFluids[i]) uploadDeviceFluid(*w.deviceFluids[i], *w.fluids[i]);
 }
 
 void settleFluids(World& w) {
@@ -67,9 +130,8 @@ void validateFluidDef(const FluidDef& def) { fluid::validateFluidDef(def); }
 
 FluidId createFluid(WorldId id, const FluidDef& def) {
     World& w = worldFromId(id);
-    // The fluid has one solver, on the CPU, whichever backend runs the world's
-    // emitters: a Vulkan world keeps its effects on the device and its fluids
-    // here (the kernels in src/kernels/fluid.glsl are ready for a GPU port).
+    // The fluid is solved on the CPU or on the world's device (FluidBackend,
+    // solvedOnDevice): both from the rules of src/kernels/fluid.glsl.
     fluid::validateFluidDef(def);
     checkColliders(w);
     fluid::checkBlocksClear(def, w.colliderDefs);
@@ -79,7 +141,10 @@ FluidId createFluid(WorldId id, const FluidDef& def) {
     fluid::initialiseFluid(*f);
     for (const FluidBlockDef& b : def.blocks) fluid::addBlock(*f, b);
     for (const FluidJetDef& j : def.jets) f->jets.push_back(fluid::Jet{j, w.time, 0.0, 0});
+    DeviceFluidPtr onDevice;
+    if (solvedOnDevice(w, def)) onDevice = createDeviceFluid(*w.gpu->device, *f);
     w.fluids.push_back(std::move(f));
+    w.deviceFluids.push_back(std::move(onDevice));
     return {static_cast<std::uint32_t>(w.fluids.size())};
 }
 
@@ -92,6 +157,7 @@ void addFluidBlock(WorldId id, FluidId fluidId, const FluidBlockDef& block) {
     fluid::checkBlocksClear(withBlock, w.colliderDefs, f.def.blocks.size());
     fluid::addBlock(f, block);
     f.def.blocks.push_back(block);
+    fluidEdited(w, fluidId.index - 1);
 }
 
 void addFluidJet(WorldId id, FluidId fluidId, const FluidJetDef& jet) {
@@ -158,16 +224,20 @@ float fluidRestDensity(WorldId id, FluidId fluidId) {
 }
 
 std::uint32_t removeFluid(WorldId id, FluidId fluidId, glm::vec3 centre, float radius) {
-    fluid::FluidState& f = fluidFromId(worldFromId(id), fluidId);
+    World& w = worldFromId(id);
+    fluid::FluidState& f = fluidFromId(w, fluidId);
     if (!(radius >= 0.0f) || !std::isfinite(radius) || !std::isfinite(centre.x) || !std::isfinite(centre.y) ||
         !std::isfinite(centre.z)) {
         throw Error("removeFluid: expected a finite centre and radius >= 0");
     }
-    return fluid::removeParticles(f, centre, radius);
+    const std::uint32_t removed = fluid::removeParticles(f, centre, radius);
+    if (removed > 0) fluidEdited(w, fluidId.index - 1);
+    return removed;
 }
 
 std::uint32_t pourFluid(WorldId id, FluidId fluidId, glm::vec3 centre, float radius, glm::vec3 velocity) {
-    fluid::FluidState& f = fluidFromId(worldFromId(id), fluidId);
+    World& w = worldFromId(id);
+    fluid::FluidState& f = fluidFromId(w, fluidId);
     // The radius is bounded so one call is a brush, not a flood: at most
     // about 200^D lattice points are looked at.
     if (!(radius >= 0.0f) || !(radius <= 100.0f * f.def.spacing) || !std::isfinite(centre.x) ||
@@ -175,7 +245,9 @@ std::uint32_t pourFluid(WorldId id, FluidId fluidId, glm::vec3 centre, float rad
         !std::isfinite(velocity.y) || !std::isfinite(velocity.z)) {
         throw Error("pourFluid: expected a finite centre and velocity and a radius from 0 to 100 spacings");
     }
-    return fluid::pourParticles(f, centre, radius, velocity);
+    const std::uint32_t poured = fluid::pourParticles(f, centre, radius, velocity);
+    if (poured > 0) fluidEdited(w, fluidId.index - 1);
+    return poured;
 }
 
 FluidSnapshot readFluid(WorldId id, FluidId fluidId) {

@@ -9,6 +9,7 @@
 #include "particles/emitter_state.h"
 #include "particles/event_queue.h"
 #include "particles/fields.h"
+#include "world/device_fluid.h"
 #include "world/fires.h"
 
 #include <spindrift/world.h>
@@ -63,6 +64,9 @@ struct World {
     std::unique_ptr<gpu::GpuWorld, GpuWorldDeleter> gpu;
     /// Constraint fluids (src/fluid), stepped after the emitters.
     std::vector<std::unique_ptr<fluid::FluidState, FluidStateDeleter>> fluids;
+    /// Per fluid, its state on the device when it is solved there
+    /// (FluidBackend; null: on the CPU). After `gpu`, so destroyed before it.
+    std::vector<DeviceFluidPtr> deviceFluids;
     /// Rigid bodies (src/coupling), made with the first body; stepped after
     /// the fluids, which exchange impulses with them.
     std::unique_ptr<coupling::BodyWorld, BodyWorldDeleter> bodies;

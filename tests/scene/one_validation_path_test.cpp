@@ -86,6 +86,34 @@ TEST(OneValidationPath, NestedFieldsPointAtTheirKey) {
     EXPECT_EQ(scene.keyPath(), "fluid[0].jet[0].speed");
 }
 
+TEST(OneValidationPath, AGpuFluidSolvedInSequenceReadsTheSameFromTheApiAndAFile) {
+    // The device solves the colours of cells in parallel only: backend gpu
+    // with the sequential order is the solver's error, located at its key.
+    FluidDef def = fluidDef();
+    def.backend = FluidBackend::Gpu;
+    def.solver = FluidSolver::Sequential;
+    const FieldError api = apiError(def);
+    EXPECT_EQ(api.field(), "solver");
+    EXPECT_NE(api.message().find("expected parallel with backend gpu"), std::string::npos) << api.message();
+
+    const SceneError scene = sceneError(fluidScene("backend = \"gpu\"\nsolver = \"sequential\""));
+    EXPECT_EQ(scene.message(), api.message());
+    EXPECT_EQ(scene.line(), 4);
+    EXPECT_EQ(scene.keyPath(), "fluid[0].solver");
+}
+
+TEST(OneValidationPath, AFluidBackendIsOneOfItsNames) {
+    for (const auto& [name, backend] : {std::pair{"auto", FluidBackend::Auto}, std::pair{"cpu", FluidBackend::Cpu},
+                                        std::pair{"gpu", FluidBackend::Gpu}}) {
+        const SceneDef s = parseScene(fluidScene(std::string("backend = \"") + name + "\""), "ok.toml");
+        EXPECT_EQ(s.fluids.at(0).backend, backend) << name;
+    }
+    EXPECT_EQ(parseScene(fluidScene(""), "ok.toml").fluids.at(0).backend, FluidBackend::Auto);
+    const SceneError scene = sceneError(fluidScene("backend = \"vulkan\""));
+    EXPECT_EQ(scene.line(), 3);
+    EXPECT_EQ(scene.keyPath(), "fluid[0].backend");
+}
+
 TEST(OneValidationPath, ARuleBetweenTwoKeysPointsAtTheOneThatBrokeIt) {
     // h must exceed the spacing: with the spacing left at its default, h is wrong.
     FluidDef def = fluidDef();

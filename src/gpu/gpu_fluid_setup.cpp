@@ -61,7 +61,6 @@ void writeSet(GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs
     buffers[kernels::SD_FLUID_SETUP_BINDING_TILES] = &s.tiles;
     buffers[kernels::SD_FLUID_SETUP_BINDING_HEADER] = &s.header;
     buffers[kernels::SD_FLUID_SETUP_BINDING_FIRST] = &s.first;
-    buffers[kernels::SD_FLUID_SETUP_BINDING_LIST_G] = &s.listG;
     buffers[kernels::SD_FLUID_SETUP_BINDING_LIST_INDEX] = &s.listIndex;
     buffers[kernels::SD_FLUID_SETUP_BINDING_CONSTRAINTS] = &s.constraints;
     buffers[kernels::SD_FLUID_SETUP_BINDING_WARM] = &s.warm;
@@ -76,7 +75,7 @@ GpuFluidSetup::~GpuFluidSetup() {
         return;
     }
     Device& d = *device;
-    for (Buffer* b : {&x, &v, &p, &counts, &first, &constraints, &warm, &tiles, &header, &listG, &listIndex}) {
+    for (Buffer* b : {&x, &v, &p, &counts, &first, &constraints, &warm, &tiles, &header, &listIndex}) {
         destroyBuffer(d, *b);
     }
     destroyComputePasses(d, passes);
@@ -96,7 +95,6 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries) {
     if (entries <= s.listCapacity) {
         return;
     }
-    recreateStorageBuffer(*s.device, s.listG, VkDeviceSize{entries} * 3 * 4);  // room for 3D
     recreateStorageBuffer(*s.device, s.listIndex, VkDeviceSize{entries} * 4);
     s.listCapacity = entries;
 }
@@ -196,7 +194,6 @@ FluidSetupReadback readFluidSetup(GpuFluidSetup& s) {
     r.constraints = downloadArray<glm::vec4>(d, s.constraints, n);
     r.warm = downloadArray<glm::vec4>(d, s.warm, n);
     const std::size_t written = std::min(r.entries, s.listCapacity);
-    r.listG = downloadArray<float>(d, s.listG, written * s.dimension);
     r.listIndex = downloadArray<std::uint32_t>(d, s.listIndex, written);
     return r;
 }

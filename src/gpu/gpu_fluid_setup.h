@@ -63,8 +63,9 @@ struct GpuFluidSetup {
     Buffer warm;           // vec4: xyz the gathered warm start (m/s)
     Buffer tiles;          // per workgroup of the count pass
     Buffer header;         // FluidSetupHeader: entries, overflows
-    // The lists: g (dimension floats) and neighbour (grid order) per entry.
-    Buffer listG, listIndex;
+    // The lists: the neighbour (grid order) of each entry; its g = w dir the
+    // solve computes again from the positions (fluid.glsl, fluidPairG).
+    Buffer listIndex;
     std::uint32_t capacity = 0;      // particles the per-particle buffers hold
     std::uint32_t listCapacity = 0;  // entries the lists hold
     // Of the last recorded setup.
@@ -113,7 +114,6 @@ struct FluidSetupReadback {
     std::vector<float> x, v, p;   // grid order
     std::vector<std::uint32_t> counts, first;
     std::vector<glm::vec4> constraints, warm;
-    std::vector<float> listG;     // dimension per entry
     std::vector<std::uint32_t> listIndex;
 };
 FluidSetupReadback readFluidSetup(GpuFluidSetup& s);

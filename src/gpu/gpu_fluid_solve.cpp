@@ -38,7 +38,7 @@ void writeSet(GpuFluidSolve& s, const GpuFluidGrid& grid, GpuFluidSetup& setup, 
     buffers[kernels::SD_FLUID_SOLVE_BINDING_KEY_START] = &gridKeyStart(grid);
     buffers[kernels::SD_FLUID_SOLVE_BINDING_FIRST] = &setup.first;
     buffers[kernels::SD_FLUID_SOLVE_BINDING_COUNTS] = &setup.counts;
-    buffers[kernels::SD_FLUID_SOLVE_BINDING_LIST_G] = &setup.listG;
+    buffers[kernels::SD_FLUID_SOLVE_BINDING_X] = &setup.x;
     buffers[kernels::SD_FLUID_SOLVE_BINDING_LIST_INDEX] = &setup.listIndex;
     buffers[kernels::SD_FLUID_SOLVE_BINDING_CONSTRAINTS] = &setup.constraints;
     buffers[kernels::SD_FLUID_SOLVE_BINDING_WARM] = &setup.warm;
@@ -103,6 +103,7 @@ void recordFluidSolve(VkCommandBuffer cmd, GpuFluidSolve& s, const GpuFluidGrid&
     push.split = params.split ? 1u : 0u;
     push.warmFraction = params.warmFraction;
     push.allowanceSlop = kernels::fluidAllowanceSlop(params.restDensity, params.baumgarte, params.h, params.dt);
+    push.invH2 = 1.0f / (params.h * params.h);  // as the setup's push: the same bits of g
 
     computeToCompute(cmd);  // the setup's results
     if (n == 0) {

@@ -139,6 +139,25 @@ SD_FN float fluidPairGradient(float offset, float w, float wOverR, bool apart, b
     return apart ? offset * wOverR : (xAxis ? side : 0.0f) * w;
 }
 
+// The pair's whole entry g = w dir (slide 35), from the offset x_j - x_i and
+// its squared length r2 as the setup's filter computes them (no fused
+// multiply-adds; z 0 in 2D). The device's setup adds it into its sums and its
+// solve computes it again at every visit from the positions instead of
+// storing it (an entry is then 4 bytes, not 12 in 2D: docs/performance.md,
+// "The fluid on the device"); the CPU's pairTerm (src/fluid/neighbours.cpp)
+// computes the same operations in its lanes and stores the result.
+SD_FN vec3 fluidPairG(vec3 offset, float r2, uint i, uint j, float invH2) {
+    SD_PRECISE float r = sqrt(r2);
+    bool apart = r2 > 0.0f;
+    SD_PRECISE float invR = apart ? 1.0f / r : 0.0f;
+    float w = fluidWeight(r2, invH2);
+    SD_PRECISE float wOverR = w * invR;
+    float side = fluidCoincidentSide(i, j);
+    return vec3(fluidPairGradient(offset.x, w, wOverR, apart, true, side),
+                fluidPairGradient(offset.y, w, wOverR, apart, false, side),
+                fluidPairGradient(offset.z, w, wOverR, apart, false, side));
+}
+
 // 1 / A, the effective mass of the Jacobian (g_n for each neighbour, -sum g
 // for the particle itself; the colliders' motionless ghosts in gSum):
 // A = sum |g|^2 + |sum g|^2, from sumW2 = sum w^2 and gSum (z 0 in 2D). The

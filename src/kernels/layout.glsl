@@ -239,11 +239,10 @@ SD_CONST uint SD_FLUID_SETUP_BINDING_COUNTS = 10u;      // uint[n]: neighbours s
 SD_CONST uint SD_FLUID_SETUP_BINDING_TILES = 11u;       // uint[tiles]: neighbours per tile, then the tile's first
 SD_CONST uint SD_FLUID_SETUP_BINDING_HEADER = 12u;      // FluidSetupHeader
 SD_CONST uint SD_FLUID_SETUP_BINDING_FIRST = 13u;       // uint[n]: first list entry of each particle
-SD_CONST uint SD_FLUID_SETUP_BINDING_LIST_G = 14u;      // float[dimension entries]: g = w dir of each entry
-SD_CONST uint SD_FLUID_SETUP_BINDING_LIST_INDEX = 15u;  // uint[entries]: the neighbour (grid order)
-SD_CONST uint SD_FLUID_SETUP_BINDING_CONSTRAINTS = 16u; // vec4[n]: bias (m/s), 1 / A, rho / rho0, fastest closing (m/s)
-SD_CONST uint SD_FLUID_SETUP_BINDING_WARM = 17u;        // vec4[n]: xyz the gathered warm start (m/s)
-SD_CONST uint SD_FLUID_SETUP_BINDINGS = 18u;
+SD_CONST uint SD_FLUID_SETUP_BINDING_LIST_INDEX = 14u;  // uint[entries]: the neighbour (grid order); g is recomputed (fluidPairG)
+SD_CONST uint SD_FLUID_SETUP_BINDING_CONSTRAINTS = 15u; // vec4[n]: bias (m/s), 1 / A, rho / rho0, fastest closing (m/s)
+SD_CONST uint SD_FLUID_SETUP_BINDING_WARM = 16u;        // vec4[n]: xyz the gathered warm start (m/s)
+SD_CONST uint SD_FLUID_SETUP_BINDINGS = 17u;
 
 // What the setup reports (std430, 16 bytes).
 struct FluidSetupHeader {
@@ -289,7 +288,7 @@ SD_CONST uint SD_FLUID_SOLVE_WORKGROUP = 64u;
 SD_CONST uint SD_FLUID_SOLVE_BINDING_KEY_START = 0u;       // uint[keyTotal + 1], the grid's
 SD_CONST uint SD_FLUID_SOLVE_BINDING_FIRST = 1u;           // uint[n], the setup's
 SD_CONST uint SD_FLUID_SOLVE_BINDING_COUNTS = 2u;          // uint[n]
-SD_CONST uint SD_FLUID_SOLVE_BINDING_LIST_G = 3u;          // float[dimension entries]
+SD_CONST uint SD_FLUID_SOLVE_BINDING_X = 3u;               // float[dimension n] (m): the setup's positions, grid order
 SD_CONST uint SD_FLUID_SOLVE_BINDING_LIST_INDEX = 4u;      // uint[entries]
 SD_CONST uint SD_FLUID_SOLVE_BINDING_CONSTRAINTS = 5u;     // vec4[n]: bias (m/s), 1 / A, ...
 SD_CONST uint SD_FLUID_SOLVE_BINDING_WARM = 6u;            // vec4[n]: xyz the gathered warm start (m/s)
@@ -311,7 +310,7 @@ struct FluidSolvePush {
     uint pad0;
     float warmFraction;   // of the last pressure the warm start applies
     float allowanceSlop;  // m/s (fluidAllowanceSlop)
-    float pad1;
+    float invH2;          // 1/m^2: 1 / (h h), as the setup's push (the pairs' g, fluidPairG)
     float pad2;
 };
 

@@ -193,7 +193,8 @@ void setSurfaces(DeviceFluid& g, const fluid::FluidState& f, std::span<const ker
         if (fluid::isFluidCollider(c)) fluidColliders.push_back(c);
     }
     if (g.surfacesSet && fluidColliders.size() == g.surfaces.size() &&
-        std::memcmp(fluidColliders.data(), g.surfaces.data(), fluidColliders.size() * sizeof(fluidColliders[0])) == 0) {
+        (fluidColliders.empty() || std::memcmp(fluidColliders.data(), g.surfaces.data(),
+                                               fluidColliders.size() * sizeof(fluidColliders[0])) == 0)) {
         return;
     }
     std::vector<glm::vec2> table(fluid::WallTable::kSize);

@@ -7,7 +7,11 @@
 // order (the same candidates in the same order, and the test r^2 < h^2 made
 // by the same correctly rounded subtractions, products and sums on both,
 // without fused multiply-adds); so the lists' neighbours, their counts and
-// the overflow count are compared exactly.
+// the overflow count are compared exactly. The device stores no g (its solve
+// computes each entry's again, fluidPairG): fluidPairG on the host, from the
+// device's gathered positions, must give the CPU's stored g bit for bit (the
+// same correctly rounded operations on the same floats); the device's own
+// evaluation of it is checked by the solve's bit-for-bit test.
 //
 // What may differ, and by how much: the values. The device may take a
 // square root and a division a few units in the last place (ulp) off the
@@ -26,6 +30,7 @@
 #include <spindrift/fluid.h>
 
 #include <algorithm>
+#include <bit>
 #include <cmath>
 #include <cstdint>
 #include <random>
@@ -121,11 +126,20 @@ protected:
                 const std::size_t entry = r.first[i] + e;
                 indexDiffs += r.listIndex[entry] != j;
                 double w2 = 0.0;
+                // The device stores no g: its solve computes each entry's
+                // again from the gathered positions (fluidPairG, the same
+                // operations as the CPU's pairTerm). Computed here from the
+                // device's positions, it must be the CPU's stored g bit for
+                // bit (same inputs, same correctly rounded operations).
+                glm::vec3 offset(0.0f);
+                for (int a = 0; a < D; ++a) offset[a] = r.x[D * j + a] - r.x[D * i + a];
+                float r2 = offset.x * offset.x + offset.y * offset.y;
+                if (D == 3) r2 += offset.z * offset.z;
+                const glm::vec3 recomputed = kernels::fluidPairG(offset, r2, static_cast<std::uint32_t>(i), j,
+                                                                  1.0f / (c.f.h * c.f.h));
                 for (int a = 0; a < D; ++a) {
                     const float g = list[e].g[a];
-                    // |g| <= w <= 1, each within a few ulp, plus w's own
-                    // rounding near h (1 - r^2 / h^2 cancels): 1e-6 absolute.
-                    gDiffs += !(std::abs(r.listG[D * entry + a] - g) <= 1.0e-6f);
+                    gDiffs += std::bit_cast<std::uint32_t>(recomputed[a]) != std::bit_cast<std::uint32_t>(g);
                     w2 += static_cast<double>(g) * g;
                     gSize[a] += std::abs(g);
                     warmSize[a] += std::abs(g) * (lambdaI + p.pressure[j] * k.warmFraction);

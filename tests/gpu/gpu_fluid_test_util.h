@@ -201,14 +201,13 @@ void uploadCpuSetup(gpu::Device& d, CpuSetup<D>& c, gpu::GpuFluidSetup& setup, g
     const fluid::Constraints& k = c.f.constraints;
     const std::size_t n = p.size();
     std::vector<std::uint32_t> first(n), counts(n), listIndex;
-    std::vector<float> listG, velocity(n * D), pressure(p.pressure);
+    std::vector<float> velocity(n * D), pressure(p.pressure);
     std::vector<glm::vec4> constraints(n), warm(n);
     for (std::size_t i = 0; i < n; ++i) {
         first[i] = static_cast<std::uint32_t>(listIndex.size());
         counts[i] = k.count[i];
         const fluid::Neighbour<D>* list = fluid::neighbourList<D>(c.f.template neighbours<D>(), k, i);
         for (std::uint32_t e = 0; e < k.count[i]; ++e) {
-            for (int a = 0; a < D; ++a) listG.push_back(list[e].g[a]);
             listIndex.push_back(list[e].index);
         }
         constraints[i] = glm::vec4(k.bias[i], k.invMass[i], p.density[i], 0.0f);
@@ -225,7 +224,6 @@ void uploadCpuSetup(gpu::Device& d, CpuSetup<D>& c, gpu::GpuFluidSetup& setup, g
     };
     add(setup.first, first);
     add(setup.counts, counts);
-    add(setup.listG, listG);
     add(setup.listIndex, listIndex);
     add(setup.constraints, constraints);
     add(setup.warm, warm);

@@ -11,8 +11,9 @@
 //              100k fluid has 1,563 tiles: a few microseconds of additions,
 //              and one fixed order);
 //   3 setup:   each particle's first list entry (the tile's first plus a
-//              prefix sum inside the workgroup), its list (g = w dir and the
-//              neighbour), density, bias, effective mass, the gathered warm
+//              prefix sum inside the workgroup), its list (the neighbours;
+//              the solve computes each pair's g = w dir again from the
+//              positions, fluidPairG), density, bias, effective mass, the gathered warm
 //              start and the fastest closing speed.
 // The candidates are visited in the CPU's order (the 3^D sub-cells z, y, x
 // outermost first, each in grid order), so the lists are the CPU's entry for
@@ -40,7 +41,6 @@ layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_COUNTS) buffer Counts {
 layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_TILES) buffer Tiles { uint tiles[]; };
 layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_HEADER) buffer Header { FluidSetupHeader header; };
 layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_FIRST) writeonly buffer First { uint first[]; };
-layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_LIST_G) writeonly buffer ListG { float listG[]; };
 layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_LIST_INDEX) writeonly buffer ListIndex { uint listIndex[]; };
 layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_CONSTRAINTS) writeonly buffer Constraints { vec4 constraints[]; };
 layout(std430, set = 0, binding = SD_FLUID_SETUP_BINDING_WARM) writeonly buffer Warm { vec4 warm[]; };
@@ -145,14 +145,14 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     bool apart = r2 > 0.0f;
                     precise float invR = apart ? 1.0f / r : 0.0f;
                     float w = fluidWeight(r2, args.invH2);
-                    precise float wOverR = w * invR;
-                    float side = fluidCoincidentSide(i, j);
                     vec3 vj = vAt(j);
-                    // One variable per component, no vector indexed by the
-                    // axis (see fluid_solve.comp, applyImpulse).
-                    precise float gx = fluidPairGradient(offset.x, w, wOverR, apart, true, side);
-                    precise float gy = fluidPairGradient(offset.y, w, wOverR, apart, false, side);
-                    precise float gz = d == 3u ? fluidPairGradient(offset.z, w, wOverR, apart, false, side) : 0.0f;
+                    // The entry's g, as the solve computes it again at each
+                    // visit; one variable per component, no vector indexed
+                    // by the axis (see fluid_solve.comp, applyImpulse).
+                    precise vec3 gOf = fluidPairG(offset, r2, i, j, args.invH2);
+                    precise float gx = gOf.x;
+                    precise float gy = gOf.y;
+                    precise float gz = d == 3u ? gOf.z : 0.0f;
                     precise float approachX = (vi.x - vj.x) * offset.x;
                     precise float approachY = (vi.y - vj.y) * offset.y;
                     precise float closing = approachX + approachY;
@@ -168,12 +168,7 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     s.fastest = closing > s.fastest ? closing : s.fastest;
                     s.mass += w * w;
                     uint e = entry + s.paired;
-                    if (e < args.listCapacity) {
-                        listG[d * e] = gx;
-                        listG[d * e + 1u] = gy;
-                        if (d == 3u) listG[d * e + 2u] = gz;
-                        listIndex[e] = j;
-                    }
+                    if (e < args.listCapacity) listIndex[e] = j;
                     s.paired += 1u;
                 }
             }

@@ -25,7 +25,7 @@ layout(local_size_x = SD_FLUID_SOLVE_WORKGROUP) in;
 layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_KEY_START) readonly buffer KeyStart { uint keyStart[]; };
 layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_FIRST) readonly buffer First { uint first[]; };
 layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_COUNTS) readonly buffer Counts { uint counts[]; };
-layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_LIST_G) readonly buffer ListG { float listG[]; };
+layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_X) readonly buffer X { float xs[]; };
 layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_LIST_INDEX) readonly buffer ListIndex { uint listIndex[]; };
 layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_CONSTRAINTS) readonly buffer Constraints { vec4 constraints[]; };
 layout(std430, set = 0, binding = SD_FLUID_SOLVE_BINDING_WARM) readonly buffer Warm { vec4 warm[]; };
@@ -55,15 +55,36 @@ float warmPressure(uint i) {
     return counts[i] != 0u ? pressure[i] * args.warmFraction : 0.0f;
 }
 
-// dot(g, m_j - m_i) of list entry e as glm computes it: (x + y) + z.
-float rateTerm(uint e, uint j, vec3 mi, uint part) {
+vec3 xAt(uint i) {
+    uint d = dimension();
+    return vec3(xs[d * i], xs[d * i + 1u], d == 3u ? xs[d * i + 2u] : 0.0f);
+}
+
+// g of particle i's pair with neighbour j, computed again from the positions
+// with the setup's operations (fluidPairG), so the same bits the setup would
+// have stored: 4 bytes an entry read instead of 12 (2D) or 16 (3D).
+vec3 pairG(uint i, vec3 xi, uint j) {
+    precise vec3 offset = xAt(j) - xi;
+    precise float r2x = offset.x * offset.x;
+    precise float r2y = offset.y * offset.y;
+    precise float r2 = r2x + r2y;
+    if (dimension() == 3u) {
+        precise float r2z = offset.z * offset.z;
+        r2 = r2 + r2z;
+    }
+    return fluidPairG(offset, r2, i, j, args.invH2);
+}
+
+// dot(g, m_j - m_i) of neighbour j as glm computes it: (x + y) + z.
+float rateTerm(uint i, vec3 xi, uint j, vec3 mi, uint part) {
     uint d = dimension();
     uint m = motionAt(j, part);
-    precise float x = listG[d * e] * (motion[m] - mi.x);
-    precise float y = listG[d * e + 1u] * (motion[m + 1u] - mi.y);
+    vec3 g = pairG(i, xi, j);
+    precise float x = g.x * (motion[m] - mi.x);
+    precise float y = g.y * (motion[m + 1u] - mi.y);
     precise float t = x + y;
     if (d == 3u) {
-        precise float z = listG[d * e + 2u] * (motion[m + 2u] - mi.z);
+        precise float z = g.z * (motion[m + 2u] - mi.z);
         t = t + z;
     }
     return t;
@@ -86,12 +107,13 @@ float rateOf(uint i, uint part) {
     precise float odd = 0.0f;
     uint begin = first[i];
     uint count = counts[i];
+    vec3 xi = xAt(i);
     uint k = 0u;
     for (; k + 1u < count; k += 2u) {
-        even = even + rateTerm(begin + k, listIndex[begin + k], mi, part);
-        odd = odd + rateTerm(begin + k + 1u, listIndex[begin + k + 1u], mi, part);
+        even = even + rateTerm(i, xi, listIndex[begin + k], mi, part);
+        odd = odd + rateTerm(i, xi, listIndex[begin + k + 1u], mi, part);
     }
-    if (k < count) even = even + rateTerm(begin + k, listIndex[begin + k], mi, part);
+    if (k < count) even = even + rateTerm(i, xi, listIndex[begin + k], mi, part);
     precise float rate = even + odd;
     return rate;
 }
@@ -111,11 +133,13 @@ void applyImpulse(uint i, float delta, uint part) {
     precise float selfZ = ghosts.z * delta;
     uint begin = first[i];
     uint count = counts[i];
+    vec3 xi = xAt(i);
     for (uint k = 0u; k < count; ++k) {
-        uint e = begin + k;
-        uint m = motionAt(listIndex[e], part);
-        precise float x = listG[d * e] * delta;
-        precise float y = listG[d * e + 1u] * delta;
+        uint j = listIndex[begin + k];
+        uint m = motionAt(j, part);
+        vec3 g = pairG(i, xi, j);
+        precise float x = g.x * delta;
+        precise float y = g.y * delta;
         precise float movedX = motion[m] + x;
         precise float movedY = motion[m + 1u] + y;
         motion[m] = movedX;
@@ -123,7 +147,7 @@ void applyImpulse(uint i, float delta, uint part) {
         selfX = selfX + x;
         selfY = selfY + y;
         if (d == 3u) {
-            precise float z = listG[d * e + 2u] * delta;
+            precise float z = g.z * delta;
             precise float movedZ = motion[m + 2u] + z;
             motion[m + 2u] = movedZ;
             selfZ = selfZ + z;

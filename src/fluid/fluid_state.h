@@ -337,6 +337,9 @@ template <int D> void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, 
 /// the particles' median (the device fluid, which knows only the box, too).
 template <int D> std::uint32_t placeGridInBox(Vec<D> lo, Vec<D> hi, std::size_t n, float h, Grid<D>& g);
 float cappedWindowOrigin(float median, float lo, float hi, float width);
+/// The median of the particles' coordinate a (unique for any order of the
+/// particles: deterministic); `scratch` holds the copy it partitions.
+template <int D> float medianAlong(const std::vector<Vec<D>>& x, int a, std::vector<float>& scratch);
 
 // The passes of one step, in order (fluid_step.cpp).
 template <int D> void buildGrid(WorkerPool& pool, FluidState& f);

@@ -43,17 +43,6 @@ Bounds<D> particleBounds(WorkerPool& pool, const std::vector<Vec<D>>& x) {
     return all;
 }
 
-/// The median of the particles' coordinate a (the value is unique for any
-/// order of the particles: deterministic).
-template <int D>
-float medianAlong(const std::vector<Vec<D>>& x, int a, std::vector<float>& scratch) {
-    scratch.resize(x.size());
-    for (std::size_t i = 0; i < x.size(); ++i) scratch[i] = x[i][a];
-    const auto middle = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
-    std::nth_element(scratch.begin(), middle, scratch.end());
-    return *middle;
-}
-
 /// x in 3D, for the kernels (z 0 in 2D).
 template <int D>
 glm::vec3 toVec3(Vec<D> x) {
@@ -87,6 +76,15 @@ std::uint32_t keyOf(const Grid<D>& g, Vec<D> x, float invH) {
 /// neighbour pair in adjacent sub-cells.
 float cappedWindowOrigin(float median, float lo, float hi, float width) {
     return std::max(lo, std::min(median - 0.5f * width, hi - width));  // hi - width may be below lo
+}
+
+template <int D>
+float medianAlong(const std::vector<Vec<D>>& x, int a, std::vector<float>& scratch) {
+    scratch.resize(x.size());
+    for (std::size_t i = 0; i < x.size(); ++i) scratch[i] = x[i][a];
+    const auto middle = scratch.begin() + static_cast<std::ptrdiff_t>(scratch.size() / 2);
+    std::nth_element(scratch.begin(), middle, scratch.end());
+    return *middle;
 }
 
 template <int D>
@@ -203,6 +201,8 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
     }
 }
 
+template float medianAlong<2>(const std::vector<Vec<2>>&, int, std::vector<float>&);
+template float medianAlong<3>(const std::vector<Vec<3>>&, int, std::vector<float>&);
 template std::uint32_t placeGridInBox<2>(Vec<2>, Vec<2>, std::size_t, float, Grid<2>&);
 template std::uint32_t placeGridInBox<3>(Vec<3>, Vec<3>, std::size_t, float, Grid<3>&);
 template void placeGrid<2>(WorkerPool&, const std::vector<Vec<2>>&, float, Grid<2>&);

@@ -221,15 +221,12 @@ gpu::FluidGridParams placeDeviceGrid(DeviceFluid& g, const fluid::FluidState& f)
     }
     const std::uint32_t capped = fluid::placeGridInBox<D>(lo, hi, g.count, f.h, grid);
     if (capped != 0) {
-        const std::vector<float> x = gpu::downloadArray<float>(*g.device, g.x, std::size_t{g.count} * D);
-        std::vector<float> axis(g.count);
+        const std::vector<fluid::Vec<D>> x = gpu::downloadArray<fluid::Vec<D>>(*g.device, g.x, g.count);
+        std::vector<float> scratch;
         for (int a = 0; a < D; ++a) {
             if ((capped & (1u << a)) == 0) continue;
-            for (std::size_t i = 0; i < g.count; ++i) axis[i] = x[D * i + a];
-            const auto middle = axis.begin() + static_cast<std::ptrdiff_t>(axis.size() / 2);
-            std::nth_element(axis.begin(), middle, axis.end());
             const float width = static_cast<float>(grid.cells[a]) * 2.0f * f.h;
-            grid.origin[a] = fluid::cappedWindowOrigin(*middle, lo[a], hi[a], width);
+            grid.origin[a] = fluid::cappedWindowOrigin(fluid::medianAlong<D>(x, a, scratch), lo[a], hi[a], width);
         }
     }
     gpu::FluidGridParams params;

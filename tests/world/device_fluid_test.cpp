@@ -514,6 +514,41 @@ TEST_F(DeviceFluidTest, ListsLongerThanTheirRoomAreGrownAndTheSubstepRunAgain) {
     EXPECT_LT(farthest, 0.01f * kSpacing);
 }
 
+TEST_F(DeviceFluidTest, AGridCappedByItsCellBudgetIsPlacedAsTheCpus) {
+    // A column of water against the right wall of a 61 m box and a small
+    // block 60 m to its left on the same floor: the particles' box spans more
+    // cells than the budget allows (256 a side for a small fluid), so both
+    // the CPU and the device centre the capped window on the particles'
+    // median, in the column (grid.cpp, cappedWindowOrigin; the device reads
+    // the coordinates back for it), and clamp the small block into the edge
+    // cells. A window anchored at the box's low end instead would clamp the
+    // whole column into one row of cells, where the crushed-cell bound cuts
+    // its lists. Tolerance: the same particles and neighbour overflows, each
+    // particle within a quarter spacing of the CPU's of the same serial after
+    // 20 steps.
+    constexpr float kSpacing = 0.025f;
+    FluidDef def = waterDef(2, kSpacing, glm::vec3(0.25f, 0.5f, 0.0f));
+    def.blocks[0].min.x = 60.75f;
+    def.blocks[0].max.x = 61.0f;
+    def.blocks.push_back({glm::vec3(0.0f), glm::vec3(0.1f, 0.1f, 0.0f), glm::vec3(0.0f)});
+    TwoRuns runs(*shared().device, def, glm::vec3(61.0f, 1.0f, 0.0f));
+    std::uint64_t overflows = 0;
+    for (int i = 0; i < 20; ++i) {
+        const auto [c, g] = runs.step();
+        ASSERT_EQ(g.particles, c.particles);
+        EXPECT_EQ(g.neighbourOverflows, c.neighbourOverflows) << "step " << i;
+        overflows += g.neighbourOverflows;
+    }
+    runs.devicePositions();
+    const std::vector<glm::vec3> cs = TwoRuns::bySerial(*runs.cpu), gs = TwoRuns::bySerial(runs.device);
+    int apart = 0;
+    for (std::size_t k = 0; k < cs.size(); ++k) apart += glm::length(gs[k] - cs[k]) > 0.25f * kSpacing ? 1 : 0;
+    std::printf("capped grid: %zu particles, %d apart from the CPU's, %llu neighbour overflows\n", cs.size(), apart,
+                static_cast<unsigned long long>(overflows));
+    EXPECT_GT(cs.size(), 200u);
+    EXPECT_EQ(apart, 0);
+}
+
 TEST_F(DeviceFluidTest, TheBackendIsChosenAsDocumented) {
     FluidDef def = waterDef(2, 0.05f, glm::vec3(0.5f, 0.25f, 0.0f));
     // Auto: the device only in a Vulkan world on a hardware GPU.

@@ -308,10 +308,9 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
 /// (issue 16): a Vulkan world, a fluid with backend gpu, a block of water
 /// (argument 0: particles; 1: dimension) on the floor of a closed box twice
 /// its width, released at rest; each step the automatic substeps (the CPU's
-/// rule on the statistics read back), every substep's passes, its read-back
-/// of a few hundred bytes, and the particles read back once a step for the
-/// host's readers (the renderer, snapshots) until the renderer draws from the
-/// device's buffers. One warm-up step, untimed. Counters: substeps a step,
+/// rule on the statistics read back), every substep's passes and its
+/// read-back of a few hundred bytes; no particle comes back (nothing on the
+/// host reads them here). One warm-up step, untimed. Counters: substeps a step,
 /// particles. On lavapipe the time measures the path only.
 void BM_FluidDeviceStep(benchmark::State& state) {
     using namespace spindrift;

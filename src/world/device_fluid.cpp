@@ -41,6 +41,7 @@ struct DeviceFluid {
     std::uint32_t dimension = 2;
     glm::vec3 boxLow{0.0f}, boxHigh{0.0f};  // of the particles now (m): places the next grid
     bool setUp = false;                     // a setup ran: its constraints hold the densities
+    bool onHost = true;                     // the fluid state's arrays hold the particles (deviceFluidOnHost)
     std::vector<kernels::ColliderParams> surfaces;  // the fluid colliders last uploaded
     bool surfacesSet = false;
 
@@ -368,6 +369,7 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
             substep<3>(g, f, h, stats);
         }
     }
+    g.onHost = g.onHost && g.count == 0;  // a step with particles leaves the host copy behind
     f.lastMeanDensityError = static_cast<float>(stats.meanDensityError);
     f.lastSubsteps = substeps;
     stats.substeps = static_cast<std::uint32_t>(substeps);
@@ -391,7 +393,10 @@ void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f) {
         uploadParticles<3>(g, f.p3);
     }
     g.setUp = false;
+    g.onHost = true;
 }
+
+bool deviceFluidOnHost(const DeviceFluid& g) { return g.onHost; }
 
 void readDeviceFluid(DeviceFluid& g, fluid::FluidState& f) {
     if (f.def.dimension == 2) {
@@ -399,6 +404,7 @@ void readDeviceFluid(DeviceFluid& g, fluid::FluidState& f) {
     } else {
         downloadParticles<3>(g, f.p3);
     }
+    g.onHost = true;
 }
 
 }  // namespace spindrift

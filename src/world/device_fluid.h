@@ -14,7 +14,7 @@
 // CPU, src/world/fluid_api.cpp), the Sequential solver order (an Error at
 // creation), the jets' births computed on the device (the host emits them
 // and appends them), the renderer reading the device's buffers (the world
-// reads the particles back after each step).
+// reads the particles back when the host reads them, src/world/fluid_api.cpp).
 #pragma once
 
 #include <spindrift/fluid.h>
@@ -64,6 +64,10 @@ void appendDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, std::size_t f
 /// `f`'s particles uploaded again, in place of the device's (after an edit
 /// on the host: a block added, particles removed or poured).
 void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f);
+
+/// Whether `f`'s arrays hold the device's particles (false after a step,
+/// until readDeviceFluid; true after uploads and appends of them).
+bool deviceFluidOnHost(const DeviceFluid& g);
 
 /// The device's particles into `f`'s arrays (positions, velocities,
 /// pressures, densities of the last setup, serials, sleep), in the device's

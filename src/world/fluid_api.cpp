@@ -29,20 +29,29 @@ void checkColliders(const World& w) {
     }
 }
 
-fluid::FluidState& fluidFromId(World& w, FluidId id) {
+/// Fluid i's state with its particle arrays current: a fluid on the device
+/// keeps its particles there, and its host arrays are a copy read back only
+/// when something on the host reads them (a snapshot, the renderer, a cache,
+/// a brush), not after every step.
+fluid::FluidState& hostFluid(const World& w, std::size_t i) {
+    fluid::FluidState& f = *w.fluids[i];
+    if (w.deviceFluids[i] && !deviceFluidOnHost(*w.deviceFluids[i])) readDeviceFluid(*w.deviceFluids[i], f);
+    return f;
+}
+
+std::size_t fluidIndex(const World& w, FluidId id) {
     if (id.index == 0 || id.index > w.fluids.size()) {
         throw Error(fmt::format("fluid id {} does not exist in this world", id.index));
     }
-    return *w.fluids[id.index - 1];
+    return id.index - 1;
 }
+
+fluid::FluidState& fluidFromId(World& w, FluidId id) { return hostFluid(w, fluidIndex(w, id)); }
 
 }  // namespace
 
 const fluid::FluidState& fluidStateFromId(const World& world, FluidId fluid) {
-    if (fluid.index == 0 || fluid.index > world.fluids.size()) {
-        throw Error(fmt::format("fluid id {} does not exist in this world", fluid.index));
-    }
-    return *world.fluids[fluid.index - 1];
+    return hostFluid(world, fluidIndex(world, fluid));
 }
 
 /// Whether fluid `def` is solved on the device of `w` (FluidBackend): Gpu
@@ -65,11 +74,11 @@ bool solvedOnDevice(const World& w, const FluidDef& def) {
     return false;
 }
 
-/// A fluid on the device moves to the CPU (its particles are read back after
-/// every step, so the CPU's solver continues from them) when it meets what
-/// the device does not run yet; with backend gpu that is an Error.
+/// A fluid on the device moves to the CPU (its particles read back, so the
+/// CPU's solver continues from them) when it meets what the device does not
+/// run yet; with backend gpu that is an Error.
 void leaveDevice(World& w, std::size_t i, const char* why) {
-    const fluid::FluidState& f = *w.fluids[i];
+    const fluid::FluidState& f = hostFluid(w, i);
     if (f.def.backend == FluidBackend::Gpu) {
         throw Error(fmt::format("fluid '{}' (backend gpu): {}; the device does not run that yet (use backend cpu or "
                                 "auto)",
@@ -86,21 +95,24 @@ void stepFluids(World& w, float dt, StepStats& stats) {
     for (std::size_t i = 0; i < w.fluids.size(); ++i) {
         fluid::FluidState& f = *w.fluids[i];
         const FluidId id{static_cast<std::uint32_t>(i + 1)};
-        if (w.deviceFluids[i] && f.def.dimension == 2 && bodies.gather(f, dt) != nullptr) {
+        // Whether bodies are near a 2D fluid is asked of its particles on
+        // the host: read back when the world has bodies (issue 16's next
+        // slice couples them on the device).
+        if (w.deviceFluids[i] && f.def.dimension == 2 && w.bodies && bodies.gather(hostFluid(w, i), dt) != nullptr) {
             leaveDevice(w, i, "rigid bodies are near it");
         }
         if (w.deviceFluids[i]) {
-            // The jets' births, emitted on the host (whose arrays hold the
-            // device's particles) and appended; the particles are read back
-            // for everything that reads them on the host (snapshots, the
-            // renderer, caches, the brushes) until the renderer draws from
-            // the device's buffers (issue 16).
-            const std::size_t before = f.size();
-            const std::uint64_t born = fluid::emitStepJets(context, f, dt);
-            appendDeviceFluid(*w.deviceFluids[i], f, before);
+            // The jets' births are emitted on the host, from arrays that
+            // hold the device's particles (read back first), and appended.
+            std::uint64_t born = 0;
+            if (!f.jets.empty()) {
+                hostFluid(w, i);
+                const std::size_t before = f.size();
+                born = fluid::emitStepJets(context, f, dt);
+                appendDeviceFluid(*w.deviceFluids[i], f, before);
+            }
             FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
             s.born = born;
-            readDeviceFluid(*w.deviceFluids[i], f);
             f.recentStrikes.clear();
             s.device = true;
             stats.fluids.push_back(s);

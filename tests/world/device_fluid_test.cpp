@@ -549,6 +549,35 @@ TEST_F(DeviceFluidTest, AGridCappedByItsCellBudgetIsPlacedAsTheCpus) {
     EXPECT_EQ(apart, 0);
 }
 
+TEST_F(DeviceFluidTest, AStepMovesAFewHundredBytesASubstepNotTheParticles) {
+    // The premise of a device fluid (issue 16): its particles stay on the
+    // device. A step reads back one report a substep (FluidSubstepReport,
+    // 336 bytes) and uploads nothing; reading the fluid (readFluid, the
+    // renderer) brings the particles back once, whatever the steps before.
+    // Bounds: at most 400 bytes down a substep and none up over 30 steps of a
+    // 400-particle tank (whose particles alone are 10 KB); one readFluid then
+    // brings at least the positions back.
+    OwnedWorld w(Backend::Vulkan);
+    test::closedBox(w.id, glm::vec3(0.0f), glm::vec3(1.0f, 0.5f, 0.0f), 2);
+    FluidDef def = waterDef(2, 0.025f, glm::vec3(1.0f, 0.25f, 0.0f));
+    def.backend = FluidBackend::Gpu;
+    const FluidId f = createFluid(w.id, def);
+    stepWorld(w.id, kDt);  // the first step makes the passes' buffers
+    const TransferStats before = transferStats(w.id);
+    std::uint64_t substeps = 0;
+    for (int i = 0; i < 30; ++i) substeps += stepWorld(w.id, kDt).fluids.at(0).substeps;
+    const TransferStats after = transferStats(w.id);
+    const std::uint64_t down = after.bytesDownloaded - before.bytesDownloaded;
+    std::printf("30 steps, %llu substeps: %llu bytes down, %llu up\n", static_cast<unsigned long long>(substeps),
+                static_cast<unsigned long long>(down),
+                static_cast<unsigned long long>(after.bytesUploaded - before.bytesUploaded));
+    EXPECT_LE(down, 400u * substeps);
+    EXPECT_EQ(after.bytesUploaded, before.bytesUploaded);
+    const FluidSnapshot s = readFluid(w.id, f);
+    EXPECT_EQ(s.count(), 400u);
+    EXPECT_GE(transferStats(w.id).bytesDownloaded - after.bytesDownloaded, 400u * 8u);
+}
+
 TEST_F(DeviceFluidTest, TheBackendIsChosenAsDocumented) {
     FluidDef def = waterDef(2, 0.05f, glm::vec3(0.5f, 0.25f, 0.0f));
     // Auto: the device only in a Vulkan world on a hardware GPU.

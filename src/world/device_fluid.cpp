@@ -21,6 +21,7 @@
 #include <algorithm>
 #include <array>
 #include <cstring>
+#include <utility>
 #include <vector>
 
 namespace spindrift {
@@ -112,15 +113,21 @@ void uploadParticles(DeviceFluid& g, const fluid::Particles<D>& p) {
 /// Room for `n` particles in every particle buffer, the particles there
 /// kept (a buffer that grows is copied into its successor on the device).
 void growKeeping(DeviceFluid& g, std::uint32_t n) {
+    std::vector<std::pair<ParticleArray, gpu::Buffer>> growing;  // the array, its successor
     for (const ParticleArray& a : particleArrays(g)) {
-        if (a.buffer->size >= n * a.each) continue;
-        gpu::Buffer grown = gpu::createStorageBuffer(*g.device, std::max(n * a.each, 2 * a.buffer->size));
-        if (g.count > 0) {
-            gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) {
+        if (a.buffer->size < n * a.each) {
+            growing.emplace_back(a, gpu::createStorageBuffer(*g.device, std::max(n * a.each, 2 * a.buffer->size)));
+        }
+    }
+    if (g.count > 0 && !growing.empty()) {
+        gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) {  // every copy in one submission
+            for (const auto& [a, grown] : growing) {
                 const VkBufferCopy region{0, 0, g.count * a.each};
                 vkCmdCopyBuffer(cmd, a.buffer->buffer, grown.buffer, 1, &region);
-            });
-        }
+            }
+        });
+    }
+    for (auto& [a, grown] : growing) {
         gpu::destroyBuffer(*g.device, *a.buffer);
         *a.buffer = grown;
     }
@@ -171,19 +178,18 @@ void downloadParticles(DeviceFluid& g, fluid::Particles<D>& p) {
     p.still.resize(n);
     p.motion.resize(n);
     if (n == 0) return;
+    std::vector<glm::vec4> constraints(g.setUp ? n : 0);
     std::vector<gpu::Transfer> down{{&g.x, p.position.data(), n * sizeof(p.position[0])},
                                     {&g.v, p.velocity.data(), n * sizeof(p.velocity[0])},
                                     {&g.p, p.pressure.data(), n * 4},
                                     {&g.anchors, p.anchor.data(), n * sizeof(p.anchor[0])},
                                     {&g.stills, p.still.data(), n * 4},
                                     {&g.ids, p.id.data(), n * 4}};
+    // The last setup's densities, in the order the particles are now (the
+    // setup's grid order, which the carry kept), in the same transfer.
+    if (g.setUp) down.push_back({&g.setup->constraints, constraints.data(), n * sizeof(glm::vec4)});
     gpu::download(*g.device, down);
-    if (g.setUp) {
-        // The last setup's densities, in the order the particles are now
-        // (the setup's grid order, which the carry kept).
-        const std::vector<glm::vec4> c = gpu::downloadArray<glm::vec4>(*g.device, g.setup->constraints, n);
-        for (std::size_t i = 0; i < n; ++i) p.density[i] = c[i].z;
-    }
+    for (std::size_t i = 0; i < constraints.size(); ++i) p.density[i] = constraints[i].z;
 }
 
 /// The fluid colliders (planes, spheres, boxes) and polygons for the
@@ -374,6 +380,7 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
     f.lastSubsteps = substeps;
     stats.substeps = static_cast<std::uint32_t>(substeps);
     stats.particles = g.count;
+    stats.device = true;
     f.steps += 1;
     return stats;
 }

@@ -114,7 +114,6 @@ void stepFluids(World& w, float dt, StepStats& stats) {
             FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
             s.born = born;
             f.recentStrikes.clear();
-            s.device = true;
             stats.fluids.push_back(s);
         } else {
             stats.fluids.push_back(fluid::stepFluid(context, f, id, dt));

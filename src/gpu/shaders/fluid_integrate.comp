@@ -10,7 +10,9 @@
 //             pressure, the particles' box; from the setup's constraints the
 //             closing-speed histogram, the largest compression and the
 //             neighbours) reduced with integer atomics (the same in any
-//             order), and each workgroup's sum of compression in a fixed tree;
+//             order; in shared memory first, then one global atomic per
+//             workgroup), and each workgroup's sum of compression in a
+//             fixed tree;
 //   1 totals: the workgroups' sums added in order (one invocation), so the
 //             mean compression is the same from run to run.
 // The arithmetic of the move is the CPU's, operation for operation, with one
@@ -62,15 +64,20 @@ shared float groupError[SD_FLUID_INTEGRATE_WORKGROUP];
 shared uint groupStored[SD_FLUID_INTEGRATE_WORKGROUP];
 shared uint groupWorst[SD_FLUID_INTEGRATE_WORKGROUP];
 shared uint groupBins[SD_FLUID_APPROACH_BINS];
+// The move's order-free extremes, gathered per workgroup with shared-memory
+// atomics and then given to the global statistics by one invocation: a
+// global atomic per particle on one address serialises a GPU's whole grid.
+shared uint groupFastest, groupPressedLow, groupPressedHigh;
+shared uint groupLowX, groupLowY, groupLowZ, groupHighX, groupHighY, groupHighZ;
 
 // The particles' box, which places the next substep's grid.
 void addToBox(vec3 x) {
-    atomicMin(stats.lowX, fluidOrderKey(x.x));
-    atomicMin(stats.lowY, fluidOrderKey(x.y));
-    atomicMin(stats.lowZ, fluidOrderKey(x.z));
-    atomicMax(stats.highX, fluidOrderKey(x.x));
-    atomicMax(stats.highY, fluidOrderKey(x.y));
-    atomicMax(stats.highZ, fluidOrderKey(x.z));
+    atomicMin(groupLowX, fluidOrderKey(x.x));
+    atomicMin(groupLowY, fluidOrderKey(x.y));
+    atomicMin(groupLowZ, fluidOrderKey(x.z));
+    atomicMax(groupHighX, fluidOrderKey(x.x));
+    atomicMax(groupHighY, fluidOrderKey(x.y));
+    atomicMax(groupHighZ, fluidOrderKey(x.z));
 }
 
 void move(uint i) {
@@ -88,8 +95,8 @@ void move(uint i) {
             precise float alongZ = x0.z * args.down.z;
             along = along + alongZ;
         }
-        atomicMin(stats.pressedLow, fluidOrderKey(along));
-        atomicMax(stats.pressedHigh, fluidOrderKey(along));
+        atomicMin(groupPressedLow, fluidOrderKey(along));
+        atomicMax(groupPressedHigh, fluidOrderKey(along));
     }
     // Sleeping, from the particle's anchor and time still (particle order in,
     // grid order out).
@@ -157,7 +164,7 @@ void move(uint i) {
         atomicAdd(stats.nonFinite, 1u);
         x1 = vec3(uintBitsToFloat(0x7FC00000u));
     } else {
-        atomicMax(stats.fastest, floatBitsToUint(fluidLength(vec3(v.x, v.y, d == 3u ? v.z : 0.0f))));
+        atomicMax(groupFastest, floatBitsToUint(fluidLength(vec3(v.x, v.y, d == 3u ? v.z : 0.0f))));
         addToBox(vec3(x1.x, x1.y, d == 3u ? x1.z : 0.0f));
     }
     xs[d * i] = x1.x;
@@ -190,6 +197,18 @@ void main() {
     for (uint b = local; b < SD_FLUID_APPROACH_BINS; b += SD_FLUID_INTEGRATE_WORKGROUP) {
         groupBins[b] = 0u;
     }
+    if (local == 0u) {
+        // Empty: no speed, empty ranges (as the host fills the statistics).
+        groupFastest = 0u;
+        groupPressedLow = 0xFFFFFFFFu;
+        groupPressedHigh = 0u;
+        groupLowX = 0xFFFFFFFFu;
+        groupLowY = 0xFFFFFFFFu;
+        groupLowZ = 0xFFFFFFFFu;
+        groupHighX = 0u;
+        groupHighY = 0u;
+        groupHighZ = 0u;
+    }
     barrier();
     // The setup's statistics (the CPU's setupConstraints counts them):
     // compression rho / rho0 - 1, neighbours, and the fastest closing speed.
@@ -220,6 +239,15 @@ void main() {
         partials[gl_WorkGroupID.x] = groupError[0];
         atomicAdd(stats.neighbours, groupStored[0]);
         atomicMax(stats.maxError, groupWorst[0]);
+        atomicMax(stats.fastest, groupFastest);
+        atomicMin(stats.pressedLow, groupPressedLow);
+        atomicMax(stats.pressedHigh, groupPressedHigh);
+        atomicMin(stats.lowX, groupLowX);
+        atomicMin(stats.lowY, groupLowY);
+        atomicMin(stats.lowZ, groupLowZ);
+        atomicMax(stats.highX, groupHighX);
+        atomicMax(stats.highY, groupHighY);
+        atomicMax(stats.highZ, groupHighZ);
     }
     for (uint b = local; b < SD_FLUID_APPROACH_BINS; b += SD_FLUID_INTEGRATE_WORKGROUP) {
         if (groupBins[b] != 0u) atomicAdd(stats.approach[b], groupBins[b]);

@@ -133,9 +133,33 @@ void gatherJoints(const BodyWorld& world, std::vector<std::uint32_t>& indexOfSlo
     }
 }
 
-/// Gathers the bodies whose fixtures overlap the fluid's particles (grown by
-/// what they can travel in dt) through b2World::QueryAABB. Calling thread
-/// only. False when there are none (then the fluid ignores bodies this step).
+/// What a particle of `f` moving at `fastest` can travel in a step of dt,
+/// as a speed (m/s): its speed plus the step's gravity.
+float reachSpeed(const fluid::FluidState& f, float fastest, float dt) {
+    return fastest + glm::length(glm::vec2(f.def.gravity)) * dt;
+}
+
+/// The bodies near a 2D fluid whose particles lie in [lo, hi] and reach at
+/// most `maxParticleSpeed` (reachSpeed): the 1-based slots, in creation
+/// order, of those whose fixtures overlap the box grown by what a particle
+/// travels in dt, h and a spacing. Calling thread only.
+std::vector<std::uint32_t> slotsNear(BodyWorld& world, const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi,
+                                     float maxParticleSpeed, float dt) {
+    const float margin = f.h + f.def.spacing + maxParticleSpeed * dt;
+    b2AABB box;
+    box.lowerBound = b2Vec2(lo.x - margin, lo.y - margin);
+    box.upperBound = b2Vec2(hi.x + margin, hi.y + margin);
+    SlotCollector query;
+    world.world.QueryAABB(&query, box);
+    // Creation order, whatever order the tree answered in.
+    std::sort(query.slots.begin(), query.slots.end());
+    query.slots.erase(std::unique(query.slots.begin(), query.slots.end()), query.slots.end());
+    return query.slots;
+}
+
+/// Gathers the bodies near the fluid's particles (slotsNear) into `out`.
+/// Calling thread only. False when there are none (then the fluid ignores
+/// bodies this step).
 bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid::FluidBodyStep& out) {
     out.bodies.clear();
     out.joints.clear();
@@ -152,20 +176,11 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid:
         hi = glm::max(hi, x[i]);
         fastest = std::max(fastest, glm::length(f.p2.velocity[i]));
     }
-    // What a particle can travel this step (m/s): its speed plus the step's gravity.
-    out.maxParticleSpeed = fastest + glm::length(glm::vec2(f.def.gravity)) * dt;
-    const float margin = f.h + f.def.spacing + out.maxParticleSpeed * dt;
-    b2AABB box;
-    box.lowerBound = b2Vec2(lo.x - margin, lo.y - margin);
-    box.upperBound = b2Vec2(hi.x + margin, hi.y + margin);
-    SlotCollector query;
-    world.world.QueryAABB(&query, box);
-    if (query.slots.empty()) return false;
-    // Creation order, whatever order the tree answered in.
-    std::sort(query.slots.begin(), query.slots.end());
-    query.slots.erase(std::unique(query.slots.begin(), query.slots.end()), query.slots.end());
+    out.maxParticleSpeed = reachSpeed(f, fastest, dt);
+    const std::vector<std::uint32_t> slots = slotsNear(world, f, lo, hi, out.maxParticleSpeed, dt);
+    if (slots.empty()) return false;
     std::vector<std::uint32_t> indexOfSlot(world.bodies.size(), kNotGathered);
-    for (std::uint32_t slot1 : query.slots) indexOfSlot[slot1 - 1] = addBody(world, slot1 - 1, out);
+    for (std::uint32_t slot1 : slots) indexOfSlot[slot1 - 1] = addBody(world, slot1 - 1, out);
     gatherJoints(world, indexOfSlot, out);
     out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
     out.particleInvMass = 1.0f / out.particleMass;
@@ -183,6 +198,11 @@ void FluidLink::applyRecoil(BodyId body, const fluid::JetMount& mount) {
 fluid::FluidBodyStep* FluidLink::gather(const fluid::FluidState& f, float dt) {
     if (bodies_ == nullptr || !gatherBodies(*bodies_, f, dt, bodies_->fluidStep)) return nullptr;
     return &bodies_->fluidStep;
+}
+
+bool FluidLink::anyNear(const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi, float fastest, float dt) {
+    return bodies_ != nullptr && f.def.dimension == 2 && bodies_->alive > 0 &&
+           !slotsNear(*bodies_, f, lo, hi, reachSpeed(f, fastest, dt), dt).empty();
 }
 
 fluid::FluidBodyStep* FluidLink::gatherMoved(const fluid::FluidState& f) {

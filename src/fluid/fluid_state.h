@@ -323,9 +323,23 @@ struct JetMount {
 };
 /// Direction angle (rad) of an aimed jet `t` s after it opened.
 float jetAimAngle(const std::vector<FluidJetAimKey>& aim, float t);
-/// Emits the jets' particles of the step [t0, t0 + dt) (one mount per jet);
-/// returns how many.
-std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>& mounts);
+/// Particles born during one step (the jets'), before they join a fluid's
+/// particles: world positions (m, z = 0 in 2D), velocities (m/s) and
+/// serials, in birth order.
+struct Births {
+    std::vector<glm::vec3> position;
+    std::vector<glm::vec3> velocity;
+    std::vector<std::uint32_t> id;
+    std::size_t size() const { return id.size(); }
+};
+/// Emits into `out` (cleared first) the jets' particles of the step
+/// [t0, t0 + dt) (one mount per jet), for a fluid of `alive` particles (the
+/// births stop at FluidState::capacity); returns how many. Reads none of
+/// the particles, so a fluid on the device emits without reading them back.
+std::uint64_t emitJets(FluidState& f, std::size_t alive, double t0, float dt, std::vector<JetMount>& mounts,
+                       Births& out);
+/// Appends `births` to `f`'s particle arrays (at rest density, unpressed).
+void appendBirths(FluidState& f, const Births& births);
 
 /// Where buildGrid puts the grid for particles at `x` (m) with sub-cells `h`
 /// m wide: sets g.h, g.origin and g.cells (uses g.scratchFloat), nothing
@@ -357,10 +371,11 @@ bool crossesCollider(std::span<const kernels::ColliderParams> colliders, const F
 template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& world, float dt,
                                          FluidStepStats& stats);
 
-/// The jets' particles born during the step [w.time, w.time + dt), appended
-/// to `f`'s arrays, and their recoil given to the bodies they sit on; returns
-/// how many (the device's step appends the same particles to its buffers).
-std::uint64_t emitStepJets(const StepContext& w, FluidState& f, float dt);
+/// The jets' particles born during the step [w.time, w.time + dt) for a
+/// fluid of `alive` particles, into `out`, and their recoil given to the
+/// bodies they sit on; returns how many. The CPU's step appends them to
+/// `f`'s arrays (appendBirths), the device's to its buffers.
+std::uint64_t emitStepJets(const StepContext& w, FluidState& f, std::size_t alive, float dt, Births& out);
 /// The substeps of this step when FluidDef::substeps is 0, from the last
 /// step's statistics (f.approach, which it empties, f.pressedDepth,
 /// f.lastMeanDensityError, f.lastSubsteps), so the count is deterministic;

@@ -215,12 +215,12 @@ int automaticSubsteps(FluidState& f, float dt) {
     return wanted <= 1.0f ? 1 : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted) : kMaxSubsteps;
 }
 
-std::uint64_t emitStepJets(const StepContext& w, FluidState& f, float dt) {
+std::uint64_t emitStepJets(const StepContext& w, FluidState& f, std::size_t alive, float dt, Births& out) {
     // Emission: the jets' particles born during this step join before binning.
     // A jet on a body moves with it and gives it the recoil.
     std::vector<JetMount> mounts;
     for (const Jet& jet : f.jets) mounts.push_back(w.bodies.jetMount(jet.def.body));
-    const std::uint64_t born = emitJets(f, w.time, dt, mounts);
+    const std::uint64_t born = emitJets(f, alive, w.time, dt, mounts, out);
     for (std::size_t j = 0; j < f.jets.size(); ++j) w.bodies.applyRecoil(f.jets[j].def.body, mounts[j]);
     return born;
 }
@@ -228,7 +228,9 @@ std::uint64_t emitStepJets(const StepContext& w, FluidState& f, float dt) {
 FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
     FluidStepStats stats;
     stats.fluid = id;
-    stats.born = emitStepJets(w, f, dt);
+    Births births;
+    stats.born = emitStepJets(w, f, f.size(), dt, births);
+    appendBirths(f, births);
     const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : automaticSubsteps(f, dt);
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as

@@ -437,7 +437,11 @@ float jetAimAngle(const std::vector<FluidJetAimKey>& aim, float t) {
     return aim.back().angle;
 }
 
-std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>& mounts) {
+std::uint64_t emitJets(FluidState& f, std::size_t alive, double t0, float dt, std::vector<JetMount>& mounts,
+                       Births& out) {
+    out.position.clear();
+    out.velocity.clear();
+    out.id.clear();
     const double t1 = t0 + dt;
     std::uint64_t born = 0;
     const float particleMass = f.def.density * std::pow(f.def.spacing, static_cast<float>(f.def.dimension));
@@ -466,7 +470,7 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
             mount.nozzle = p;
         }
         for (std::uint64_t k = 0; k < count; ++k) {
-            if (f.size() >= f.capacity) break;
+            if (alive + out.size() >= f.capacity) break;
             // Particle k is born when the running count crosses k + 1, and has
             // flown for the rest of the step.
             const double bornAt = from + (static_cast<double>(k) + 1.0 - jet.carry) / jet.def.rate;
@@ -490,7 +494,9 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
             const glm::vec3 offset = points[jet.emitted % points.size()];
             glm::vec3 x = nozzle + offset + v * age;
             if (f.def.dimension == 2) x.z = 0.0f;
-            push(f, x, v);
+            out.position.push_back(x);
+            out.velocity.push_back(v);
+            out.id.push_back(f.nextSerial++);
             // Newton's third law: the nozzle pushed the particle to its speed
             // relative to the body.
             mount.recoil -= glm::vec2(d * jet.def.speed) * particleMass;
@@ -500,6 +506,16 @@ std::uint64_t emitJets(FluidState& f, double t0, float dt, std::vector<JetMount>
         jet.carry = owed - static_cast<double>(count);
     }
     return born;
+}
+
+void appendBirths(FluidState& f, const Births& births) {
+    for (std::size_t i = 0; i < births.size(); ++i) {
+        if (f.def.dimension == 2) {
+            f.p2.push(glm::vec2(births.position[i]), glm::vec2(births.velocity[i]), births.id[i]);
+        } else {
+            f.p3.push(births.position[i], births.velocity[i], births.id[i]);
+        }
+    }
 }
 
 }  // namespace spindrift::fluid

@@ -41,6 +41,7 @@ struct DeviceFluid {
     std::uint32_t count = 0;
     std::uint32_t dimension = 2;
     glm::vec3 boxLow{0.0f}, boxHigh{0.0f};  // of the particles now (m): places the next grid
+    float fastest = 0.0f;                   // m/s, the largest speed now (bodies near, DeviceFluidExtent)
     bool setUp = false;                     // a setup ran: its constraints hold the densities
     bool onHost = true;                     // the fluid state's arrays hold the particles (deviceFluidOnHost)
     std::vector<kernels::ColliderParams> surfaces;  // the fluid colliders last uploaded
@@ -93,12 +94,14 @@ void uploadParticles(DeviceFluid& g, const fluid::Particles<D>& p) {
     reserveParticles(g, g.count);
     g.boxLow = glm::vec3(0.0f);
     g.boxHigh = glm::vec3(0.0f);
+    g.fastest = 0.0f;
     if (g.count == 0) return;
     g.boxLow = glm::vec3(3.0e38f);
     g.boxHigh = glm::vec3(-3.0e38f);
-    for (const fluid::Vec<D>& x : p.position) {
-        g.boxLow = glm::min(g.boxLow, to3<D>(x));
-        g.boxHigh = glm::max(g.boxHigh, to3<D>(x));
+    for (std::size_t i = 0; i < p.size(); ++i) {
+        g.boxLow = glm::min(g.boxLow, to3<D>(p.position[i]));
+        g.boxHigh = glm::max(g.boxHigh, to3<D>(p.position[i]));
+        g.fastest = std::max(g.fastest, glm::length(p.velocity[i]));
     }
     const auto host = [](const auto& array) { return const_cast<void*>(static_cast<const void*>(array.data())); };
     const std::vector<gpu::Transfer> up{{&g.x, host(p.position), p.position.size() * sizeof(p.position[0])},
@@ -134,18 +137,22 @@ void growKeeping(DeviceFluid& g, std::uint32_t n) {
     reserveParticles(g, n);  // the wall, which holds nothing between substeps
 }
 
-/// `p`'s particles from `from` on (born on the host this step) appended to
-/// the device's, and to the box the next grid covers.
+/// `births` appended to the device's particles (after the last), and to
+/// the box the next grid covers: the bytes of a birth, nothing read back.
 template <int D>
-void appendParticles(DeviceFluid& g, const fluid::Particles<D>& p, std::size_t from) {
-    const auto n = static_cast<std::uint32_t>(p.size());
-    if (n <= from) return;
+void appendParticles(DeviceFluid& g, const fluid::Births& births) {
+    if (births.size() == 0) return;
+    fluid::Particles<D> p;  // the births as the device's arrays hold them
+    for (std::size_t i = 0; i < births.size(); ++i) {
+        p.push(fluid::Vec<D>(births.position[i]), fluid::Vec<D>(births.velocity[i]), births.id[i]);
+    }
+    const std::uint32_t from = g.count;
+    const auto n = static_cast<std::uint32_t>(from + p.size());
     growKeeping(g, n);
-    const std::size_t added = n - from;
-    const auto host = [&](const auto& array) {
-        return const_cast<void*>(static_cast<const void*>(array.data() + from));  // upload only reads it
+    const auto host = [](const auto& array) {
+        return const_cast<void*>(static_cast<const void*>(array.data()));  // upload only reads it
     };
-    const VkDeviceSize vector = sizeof(fluid::Vec<D>);
+    const VkDeviceSize vector = sizeof(fluid::Vec<D>), added = p.size();
     const std::vector<gpu::Transfer> up{{&g.x, host(p.position), added * vector, from * vector},
                                         {&g.v, host(p.velocity), added * vector, from * vector},
                                         {&g.p, host(p.pressure), added * 4, from * 4},
@@ -156,13 +163,16 @@ void appendParticles(DeviceFluid& g, const fluid::Particles<D>& p, std::size_t f
     if (g.count == 0) {
         g.boxLow = glm::vec3(3.0e38f);
         g.boxHigh = glm::vec3(-3.0e38f);
+        g.fastest = 0.0f;
     }
-    for (std::size_t i = from; i < n; ++i) {
+    for (std::size_t i = 0; i < p.size(); ++i) {
         g.boxLow = glm::min(g.boxLow, to3<D>(p.position[i]));
         g.boxHigh = glm::max(g.boxHigh, to3<D>(p.position[i]));
+        g.fastest = std::max(g.fastest, glm::length(p.velocity[i]));
     }
     g.count = n;
     g.setUp = false;  // the last setup's densities are of fewer particles
+    g.onHost = false;  // the host's arrays lack the births
 }
 
 /// The device's particles into `p` (resized).
@@ -340,6 +350,7 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
     f.pressedDepth = r.pressedDepth;
     g.boxLow = r.boxLow;
     g.boxHigh = r.boxHigh;
+    g.fastest = r.maxSpeed;
     if (r.nonFinite > 0) stats.nonFinite += removeNonFinite<D>(g);
 }
 
@@ -385,13 +396,17 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
     return stats;
 }
 
-void appendDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, std::size_t from) {
-    if (f.def.dimension == 2) {
-        appendParticles<2>(g, f.p2, from);
+void appendDeviceBirths(DeviceFluid& g, const fluid::Births& births) {
+    if (g.dimension == 2) {
+        appendParticles<2>(g, births);
     } else {
-        appendParticles<3>(g, f.p3, from);
+        appendParticles<3>(g, births);
     }
 }
+
+std::size_t deviceFluidCount(const DeviceFluid& g) { return g.count; }
+
+DeviceFluidExtent deviceFluidExtent(const DeviceFluid& g) { return {g.count, g.boxLow, g.boxHigh, g.fastest}; }
 
 void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f) {
     if (f.def.dimension == 2) {

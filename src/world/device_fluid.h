@@ -13,7 +13,7 @@
 // Not yet here: rigid bodies (the world keeps a fluid near bodies on the
 // CPU, src/world/fluid_api.cpp), the Sequential solver order (an Error at
 // creation), the jets' births computed on the device (the host emits them
-// and appends them), the renderer reading the device's buffers (the world
+// from the jets' state alone and uploads them), the renderer reading the device's buffers (the world
 // reads the particles back when the host reads them, src/world/fluid_api.cpp).
 #pragma once
 
@@ -29,6 +29,7 @@ struct Device;
 }
 namespace fluid {
 struct FluidState;
+struct Births;
 }
 namespace kernels {
 struct ColliderParams;
@@ -47,7 +48,7 @@ DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f);
 
 /// One step of `f` on the device, as fluid::stepFluid takes it on the CPU
 /// for a fluid without bodies (the jets' births appended first,
-/// appendDeviceFluid): the automatic substeps from the same
+/// appendDeviceBirths): the automatic substeps from the same
 /// rule, the world's fluid colliders (planes, spheres, boxes; at most 32 with
 /// the fluid's polygons) and `f`'s polygons. `f`'s particle arrays are not
 /// touched (readDeviceFluid fills them); its counters and statistics are.
@@ -56,10 +57,23 @@ DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f);
 FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
                                std::span<const kernels::ColliderParams> colliders, FluidId id, float dt);
 
-/// `f`'s particles from `from` on appended to the device's (the jets'
-/// births of this step, emitted on the host by fluid::emitStepJets from
-/// arrays that hold the device's particles: a few bytes a birth).
-void appendDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, std::size_t from);
+/// The jets' births of this step (fluid::emitStepJets, which reads no
+/// particle) appended to the device's particles: 36 bytes a birth in 2D, 48
+/// in 3D, up; nothing down.
+void appendDeviceBirths(DeviceFluid& g, const fluid::Births& births);
+
+/// How many particles the device holds now.
+std::size_t deviceFluidCount(const DeviceFluid& g);
+
+/// Where the device's particles are now, from the last substep's report
+/// (or the last upload and births): whether bodies are near is asked of it
+/// without reading the particles back.
+struct DeviceFluidExtent {
+    std::size_t count = 0;
+    glm::vec3 low{0.0f}, high{0.0f};  // m, the particles' box
+    float fastest = 0.0f;             // m/s, the largest speed
+};
+DeviceFluidExtent deviceFluidExtent(const DeviceFluid& g);
 
 /// `f`'s particles uploaded again, in place of the device's (after an edit
 /// on the host: a block added, particles removed or poured).

@@ -87,6 +87,16 @@ void leaveDevice(World& w, std::size_t i, const char* why) {
     w.deviceFluids[i].reset();
 }
 
+/// Whether bodies are near fluid i, whose particles are on the device: its
+/// box and largest speed as the device last reported them (or the host's
+/// arrays while they hold the particles, before the first step).
+bool bodiesNearDevice(World& w, std::size_t i, coupling::FluidLink& bodies, float dt) {
+    const fluid::FluidState& f = *w.fluids[i];
+    if (deviceFluidOnHost(*w.deviceFluids[i])) return bodies.gather(f, dt) != nullptr;
+    const DeviceFluidExtent e = deviceFluidExtent(*w.deviceFluids[i]);
+    return e.count > 0 && bodies.anyNear(f, glm::vec2(e.low), glm::vec2(e.high), e.fastest, dt);
+}
+
 void stepFluids(World& w, float dt, StepStats& stats) {
     if (w.fluids.empty()) return;
     checkColliders(w);
@@ -95,21 +105,21 @@ void stepFluids(World& w, float dt, StepStats& stats) {
     for (std::size_t i = 0; i < w.fluids.size(); ++i) {
         fluid::FluidState& f = *w.fluids[i];
         const FluidId id{static_cast<std::uint32_t>(i + 1)};
-        // Whether bodies are near a 2D fluid is asked of its particles on
-        // the host: read back when the world has bodies (issue 16's next
-        // slice couples them on the device).
-        if (w.deviceFluids[i] && f.def.dimension == 2 && w.bodies && bodies.gather(hostFluid(w, i), dt) != nullptr) {
+        // Whether bodies are near a 2D fluid on the device is asked of the
+        // box and largest speed its last substep reported (the same query
+        // as the CPU's gather, no particle read back); bodies are coupled
+        // on the CPU only so far (issue 16).
+        if (w.deviceFluids[i] && f.def.dimension == 2 && w.bodies && bodiesNearDevice(w, i, bodies, dt)) {
             leaveDevice(w, i, "rigid bodies are near it");
         }
         if (w.deviceFluids[i]) {
-            // The jets' births are emitted on the host, from arrays that
-            // hold the device's particles (read back first), and appended.
+            // The jets' births are emitted on the host (from the jets' own
+            // state: no particle is read) and appended to the device's.
             std::uint64_t born = 0;
             if (!f.jets.empty()) {
-                hostFluid(w, i);
-                const std::size_t before = f.size();
-                born = fluid::emitStepJets(context, f, dt);
-                appendDeviceFluid(*w.deviceFluids[i], f, before);
+                fluid::Births births;
+                born = fluid::emitStepJets(context, f, deviceFluidCount(*w.deviceFluids[i]), dt, births);
+                appendDeviceBirths(*w.deviceFluids[i], births);
             }
             FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
             s.born = born;

@@ -6,6 +6,7 @@
 // (tests/gpu/gpu_fluid_setup_test.cpp), so a moving fluid's two runs part
 // after a few steps the way any two runs a rounding apart do; the tolerances
 // below are stated against that spread.
+#include "coupling/fluid_link.h"
 #include "fluid/fluid_state.h"
 #include "fluid/fluid_test_util.h"
 #include "fluid/number_density.h"
@@ -576,6 +577,121 @@ TEST_F(DeviceFluidTest, AStepMovesAFewHundredBytesASubstepNotTheParticles) {
     const FluidSnapshot s = readFluid(w.id, f);
     EXPECT_EQ(s.count(), 400u);
     EXPECT_GE(transferStats(w.id).bytesDownloaded - after.bytesDownloaded, 400u * 8u);
+}
+
+TEST_F(DeviceFluidTest, AJetsBirthsGoUpAndNothingComesBack) {
+    // A jet's births are emitted on the host from the jets' own state and
+    // uploaded; the device's particles are not read for it. A 2D jet (600
+    // particles/s, open 0.4 s) into a closed box on the device, 30 steps:
+    // exactly the births' bytes go up (36 a birth in 2D: position,
+    // velocity and anchor 8 each, pressure, time still and serial 4 each)
+    // and at most a report a substep (400 bytes) comes down; the particles
+    // then read once are exactly the births (the jet's count, 600 x 0.4,
+    // less the first step's, which the world steps before measuring).
+    OwnedWorld w(Backend::Vulkan);
+    test::closedBox(w.id, glm::vec3(0.0f), glm::vec3(0.8f, 0.6f, 0.0f), 2);
+    FluidDef def;
+    def.name = "water";
+    def.dimension = 2;
+    def.spacing = 0.02f;
+    def.backend = FluidBackend::Gpu;
+    FluidJetDef jet;
+    jet.position = glm::vec3(0.1f, 0.45f, 0.0f);
+    jet.direction = glm::vec3(1.0f, 0.2f, 0.0f);
+    jet.speed = 3.0f;
+    jet.rate = 600.0f;
+    jet.radius = 0.04f;
+    jet.duration = 0.4f;
+    def.jets.push_back(jet);
+    const FluidId f = createFluid(w.id, def);
+    const std::uint64_t first = stepWorld(w.id, kDt).fluids.at(0).born;  // the passes' buffers made
+    const TransferStats before = transferStats(w.id);
+    std::uint64_t substeps = 0, born = 0;
+    for (int i = 0; i < 30; ++i) {
+        const FluidStepStats s = stepWorld(w.id, kDt).fluids.at(0);
+        ASSERT_TRUE(s.device);
+        substeps += s.substeps;
+        born += s.born;
+    }
+    const TransferStats after = transferStats(w.id);
+    std::printf("a jet on the device, 30 steps: %llu births, %llu bytes up, %llu down over %llu substeps\n",
+                static_cast<unsigned long long>(born),
+                static_cast<unsigned long long>(after.bytesUploaded - before.bytesUploaded),
+                static_cast<unsigned long long>(after.bytesDownloaded - before.bytesDownloaded),
+                static_cast<unsigned long long>(substeps));
+    EXPECT_EQ(first + born, 240u);
+    EXPECT_EQ(after.bytesUploaded - before.bytesUploaded, 36u * born);
+    EXPECT_LE(after.bytesDownloaded - before.bytesDownloaded, 400u * substeps);
+    EXPECT_EQ(readFluid(w.id, f).count(), first + born);
+}
+
+TEST_F(DeviceFluidTest, BodiesAreFoundNearFromTheReportedBoxWithoutReadingParticles) {
+    // Whether bodies are near a 2D fluid on the device is asked of the box
+    // and largest speed its last substep reported, by the CPU gather's own
+    // query (its margin: h, a spacing and a step's travel, 0.075 + 0.025 +
+    // at most 0.003 m here, against Box2D's fattened boxes). A kinematic
+    // slab comes down at 0.5 m/s (8.3 mm a step) from 0.75 m over a resting
+    // 0.25 m tank whose fluid is on the device (backend gpu: bodies near it
+    // stop the step with an Error), and the same over a CPU twin whose
+    // gather is asked before every step. Bounds:
+    // - until then no particle comes back (at most a report a substep, 400
+    //   bytes) and nothing goes up;
+    // - the device's Error comes within a step of the step at which the
+    //   CPU's gather first finds the slab (the two tanks agree within a
+    //   quarter spacing; one step is 8.3 mm of the slab's travel);
+    // - and with the slab's bottom between the margin less a step (Box2D's
+    //   boxes contain the shape) and the margin plus Box2D's fattening (0.1
+    //   m, and 4 times a step's travel ahead of a moving body) plus a step,
+    //   each with 5 mm for the top row's settling: not at the first step,
+    //   as asking of every body in the world would be.
+    constexpr float kHalfHeight = 0.02f, kMargin = 0.103f, kStep = 0.5f * kDt;
+    OwnedWorld gpuWorld(Backend::Vulkan), cpuWorld(Backend::Cpu);
+    FluidDef def = waterDef(2, 0.025f, glm::vec3(1.0f, 0.25f, 0.0f));
+    BodyDef slab;
+    slab.type = BodyType::Kinematic;
+    slab.position = glm::vec2(0.5f, 0.75f);
+    slab.shapes = {boxShape(glm::vec2(0.1f, kHalfHeight))};
+    for (WorldId w : {gpuWorld.id, cpuWorld.id}) {
+        test::closedBox(w, glm::vec3(0.0f), glm::vec3(1.0f, 1.0f, 0.0f), 2);
+        def.backend = w.index == gpuWorld.id.index ? FluidBackend::Gpu : FluidBackend::Cpu;
+        createFluid(w, def);
+        createBody(w, slab);
+        stepWorld(w, kDt);  // the passes' buffers made; the slab still at rest
+        setBodyVelocity(w, BodyId{1}, glm::vec2(0.0f, -0.5f), 0.0f);
+    }
+    // The CPU's answer: the first step whose gather finds the slab.
+    int cpuNear = -1;
+    for (int step = 0; step < 120 && cpuNear < 0; ++step) {
+        World& c = worldFromId(cpuWorld.id);
+        coupling::FluidLink link(c.bodies.get());
+        if (link.gather(*c.fluids.at(0), kDt) != nullptr) cpuNear = step;
+        stepWorld(cpuWorld.id, kDt);
+    }
+    const TransferStats before = transferStats(gpuWorld.id);
+    TransferStats beforeStop = before;
+    std::uint64_t substeps = 0;
+    int deviceNear = -1;
+    for (int step = 0; step < 120 && deviceNear < 0; ++step) {
+        try {
+            substeps += stepWorld(gpuWorld.id, kDt).fluids.at(0).substeps;
+            beforeStop = transferStats(gpuWorld.id);
+        } catch (const Error& e) {
+            EXPECT_NE(std::string(e.what()).find("rigid bodies are near it"), std::string::npos) << e.what();
+            deviceNear = step;
+        }
+    }
+    ASSERT_GE(deviceNear, 0) << "the slab reached the water and the fluid stayed on the device";
+    EXPECT_EQ(beforeStop.bytesUploaded, before.bytesUploaded);
+    EXPECT_LE(beforeStop.bytesDownloaded - before.bytesDownloaded, 400u * substeps);
+    float top = -1.0f;
+    for (const glm::vec3& x : readFluid(gpuWorld.id, FluidId{1}).position) top = std::max(top, x.y);
+    const float bottom = readBodies(gpuWorld.id).at(0).position.y - kHalfHeight;
+    std::printf("the slab found near at step %d on the device, %d by the CPU's gather: its bottom %.4f m, the "
+                "water's top %.4f m, gap %.4f m\n",
+                deviceNear, cpuNear, bottom, top, bottom - top);
+    EXPECT_NEAR(deviceNear, cpuNear, 1);
+    EXPECT_GT(bottom - top, kMargin - kStep - 0.005f);
+    EXPECT_LT(bottom - top, kMargin + 0.1f + 5.0f * kStep + 0.005f);
 }
 
 TEST_F(DeviceFluidTest, TheBackendIsChosenAsDocumented) {

@@ -26,9 +26,7 @@
 namespace spindrift::fluid {
 namespace {
 
-/// As for static colliders (fluid.glsl): fraction of an overlap removed per
-/// step, and the distance a put-back particle keeps from the surface (m).
-constexpr float kOverlapPush = kernels::SD_FLUID_OVERLAP_PUSH;
+/// Distance (m) a put-back particle keeps from the surface (fluid.glsl).
 constexpr float kSkin = kernels::SD_FLUID_SKIN;
 
 glm::vec2 rotate(float angle, glm::vec2 v) {
@@ -36,7 +34,6 @@ glm::vec2 rotate(float angle, glm::vec2 v) {
     return {c * v.x - s * v.y, s * v.x + c * v.y};
 }
 
-float cross(glm::vec2 a, glm::vec2 b) { return a.x * b.y - a.y * b.x; }
 
 /// World geometry of one local shape at its body's pose.
 kernels::FluidBodyShape place(const LocalShape& local, const StepBody& b, std::uint32_t bodyIndex) {
@@ -101,60 +98,36 @@ glm::ivec2 cellCoords(const Grid<2>& g, glm::vec2 x) {
     return {clampCell(c.x, g.cells[0]), clampCell(c.y, g.cells[1])};
 }
 
+/// The fluid's view of body b (fluid.glsl).
+kernels::FluidBodyMotion motionOf(const StepBody& b) {
+    kernels::FluidBodyMotion m;
+    m.centre = b.centre;
+    m.velocity = b.velocity;
+    m.angularVelocity = b.angularVelocity;
+    m.invMass = b.invMass;
+    m.invInertia = b.invInertia;
+    m.friction = b.friction;
+    return m;
+}
+
 /// One visit of a contact (see the file comment for who calls it how).
 template <bool Dynamic>
 void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyStep& s, float invDt,
                   float radius, float fluidFriction, bool split) {
     Motion<2>& m = p.motion[c.particle];
-    const glm::vec2 n = c.normal;
-    glm::vec2 vp = m.velocity;
-    const glm::vec2 vb = kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
-    // Real velocity: close the gap, no more; an overlap is pushed out by the
-    // pseudo velocity when impulses are split (kinetic energy otherwise).
-    const float target = c.separation >= 0.0f ? -c.separation * invDt
-                         : split              ? 0.0f
-                                              : -c.separation * kOverlapPush * invDt;
-    const kernels::FluidImpulse normal =
-        kernels::fluidBodyNormalImpulse(glm::dot(vp - vb, n), target, c.normalMass, c.normalImpulse);
-    c.normalImpulse = normal.accumulated;
-    glm::vec2 impulse = n * normal.delta;  // N s, on the particle
-    const float mu = std::sqrt(fluidFriction * b.friction);
-    if (mu > 0.0f) {
-        const glm::vec2 t(-n.y, n.x);
-        const glm::vec2 vAfter = vp + impulse * s.particleInvMass;
-        const glm::vec2 vbAfter = Dynamic ? kernels::fluidBodyPointVelocity(b.velocity - impulse * b.invMass,
-                                                                            b.angularVelocity -
-                                                                                cross(c.r, impulse) * b.invInertia,
-                                                                            c.r)
-                                          : vb;
-        const kernels::FluidImpulse friction = kernels::fluidBodyFrictionImpulse(
-            glm::dot(vAfter - vbAfter, t), c.tangentMass, c.tangentImpulse, mu * c.normalImpulse);
-        c.tangentImpulse = friction.accumulated;
-        impulse += t * friction.delta;
-    }
-    if (impulse.x != 0.0f || impulse.y != 0.0f) {
-        vp += impulse * s.particleInvMass;
-        m.velocity = vp;
-        if constexpr (Dynamic) {
-            // Newton's third law: the body takes the opposite impulse, now (its
-            // local velocity) and at the step's end (the exchange).
-            const float angular = cross(c.r, impulse);
-            b.velocity -= impulse * b.invMass;
-            b.angularVelocity -= angular * b.invInertia;
-            b.linearImpulse -= impulse;
-            b.angularImpulse -= angular;
+    const kernels::FluidBodyVisit visit = kernels::fluidSolveBodyContact(
+        c, motionOf(b), m.velocity, m.pseudo, s.particleInvMass, invDt, radius, fluidFriction, split, Dynamic);
+    c.normalImpulse = visit.normalImpulse;
+    c.tangentImpulse = visit.tangentImpulse;
+    m.velocity = visit.velocity;
+    m.pseudo = visit.pseudo;
+    if constexpr (Dynamic) {
+        if (visit.impulse.x != 0.0f || visit.impulse.y != 0.0f) {
+            b.velocity = visit.bodyVelocity;
+            b.angularVelocity = visit.bodyAngularVelocity;
+            b.linearImpulse -= visit.impulse;
+            b.angularImpulse -= visit.angular;
         }
-    }
-    if (split) {
-        // The particle's motion this substep, real plus pseudo, relative to
-        // the body may not enter it; the pseudo part pushes an overlap out.
-        // Position only: no momentum, and no reaction on the body.
-        const glm::vec2 vbNow = kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
-        const glm::vec2 rel = vp + m.pseudo - vbNow;
-        const glm::vec3 moved = kernels::fluidContactVelocity(
-            glm::vec3(rel, 0.0f), kernels::makeSurface(c.separation + radius, glm::vec3(n, 0.0f)), radius, invDt,
-            kOverlapPush, 0.0f);
-        m.pseudo += glm::vec2(moved) - rel;
     }
 }
 
@@ -221,18 +194,11 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const G
                 const kernels::FluidBodyShape& shape = s.shapes[s.cellShapes[k]];
                 const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f));
                 const StepBody& b = s.bodies[shape.body];
-                const glm::vec2 n(surface.normal);
-                const glm::vec2 r = x - n * surface.distance - b.centre;
-                const glm::vec2 rel = p.velocity[i] - kernels::fluidBodyPointVelocity(b.velocity, b.angularVelocity, r);
-                // Speculative, as for static colliders: reachable this substep.
-                if (!(surface.distance < radius + glm::length(rel) * dt + f.def.spacing)) continue;
-                BodyContact c{};
-                c.normal = n;
-                c.r = r;
-                c.separation = surface.distance - radius;
-                c.normalMass = kernels::fluidBodyNormalMass(s.particleInvMass, b.invMass, b.invInertia, r, n);
-                c.tangentMass =
-                    kernels::fluidBodyNormalMass(s.particleInvMass, b.invMass, b.invInertia, r, glm::vec2(-n.y, n.x));
+                const kernels::FluidBodyFound found =
+                    kernels::fluidFindBodyContact(surface, x, p.velocity[i], motionOf(b), s.particleInvMass, radius,
+                                                  f.def.spacing, dt, kFluidImpactSpeed);
+                if (found.found == 0u) continue;
+                BodyContact c = found.contact;
                 c.particle = static_cast<std::uint32_t>(i);
                 c.body = shape.body;
                 (b.invMass > 0.0f ? dynamic : fixed).push_back(c);
@@ -242,12 +208,7 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const G
                 // solved velocity stayed under the wake speed and was zeroed;
                 // docs/fluid.md).
                 if (b.invMass > 0.0f) f.p2.still[i] = 0.0f;
-                // An impact: reaching the surface this substep, fast. The
-                // solve then removes the approach, so one strike is one event.
-                const float approach = -glm::dot(rel, n);
-                if (approach > kFluidImpactSpeed && c.separation < approach * dt) {
-                    s.impacts[chunk].push_back({p.id[i], b.slot, x, approach});
-                }
+                if (found.impact != 0u) s.impacts[chunk].push_back({p.id[i], b.slot, x, found.approach});
             }
         }
     });
@@ -282,32 +243,6 @@ void advanceBodies(FluidBodyStep& s, float dt) {
 
 namespace {
 
-/// The path x0 -> x1 stopped before the segment a-b if it crosses it (an end
-/// on the line counts): kSkin short of the crossing along the path and kSkin
-/// off the line on x0's side, so the end is strictly on x0's side of this
-/// segment and, at a corner where two segments join, of the other one too
-/// (the crossing point is then the shared vertex, and backing along the path
-/// goes back inside). A path that starts on the line has no side: left alone.
-/// A stopped particle also stops moving into the segment, as at a collider
-/// (collide.cpp): its velocity v keeps no part toward the line.
-bool stopBeforeSegment(glm::vec2 a, glm::vec2 b, glm::vec2 x0, glm::vec2& x1, glm::vec2& v) {
-    const glm::vec2 edge = b - a;
-    const float len2 = glm::dot(edge, edge);
-    const float s0 = cross(edge, x0 - a), s1 = cross(edge, x1 - a);
-    if (len2 <= 0.0f || s0 == 0.0f || (s0 > 0.0f ? s1 > 0.0f : s1 < 0.0f)) return false;
-    const float t = s0 / (s0 - s1);  // in (0, 1]: where the path meets the line
-    const glm::vec2 path = x1 - x0;
-    const glm::vec2 p = x0 + path * t;
-    const float u = glm::dot(p - a, edge) / len2;
-    const float slack = kSkin / std::sqrt(len2);  // the vertices themselves stop a path
-    if (u < -slack || u > 1.0f + slack) return false;
-    const glm::vec2 side = glm::vec2(-edge.y, edge.x) * ((s0 > 0.0f ? 1.0f : -1.0f) / std::sqrt(len2));
-    const float length = glm::length(path);
-    x1 = p + side * kSkin - (length > 0.0f ? path / length : glm::vec2(0.0f)) * kSkin;
-    v = glm::vec2(kernels::fluidWithoutInward(glm::vec3(v, 0.0f), glm::vec3(side, 0.0f)));
-    return true;
-}
-
 /// The path from -> to stopped before the edges and segments of still shapes
 /// it crosses. The cell lists the shapes within binnedReach of origin; a path
 /// that leaves that disc (the solver can throw a particle at a corner far
@@ -339,18 +274,10 @@ glm::vec2 stopBeforeStillEdges(const FluidBodyStep& s, std::uint32_t cell, float
             // at its end pose here (the contacts keep those out).
             const StepBody& b = s.bodies[shape.body];
             if (b.velocity != glm::vec2(0.0f) || b.angularVelocity != 0.0f) return;
-            if (shape.kind == kernels::SD_BODY_SHAPE_SEGMENT) {
-                const glm::vec4 g = shape.geometry;
-                crossed = stopBeforeSegment(glm::vec2(g.x, g.y), glm::vec2(g.z, g.w), from, to, v) || crossed;
-                return;
-            }
-            for (std::uint32_t e = 0; e < shape.polygon.count; ++e) {
-                const glm::vec2 a(shape.polygon.vertices[e]);
-                const glm::vec2 c(shape.polygon.vertices[(e + 1) % shape.polygon.count]);
-                if (cross(c - a, from - a) < 0.0f) {  // counter-clockwise: outside is to the right
-                    crossed = stopBeforeSegment(a, c, from, to, v) || crossed;
-                }
-            }
+            const kernels::FluidPathEnd end = kernels::fluidStopBeforeShapeEdges(shape, from, to, v);
+            to = end.x1;
+            v = end.v;
+            crossed = crossed || end.stopped != 0u;
         });
         if (!crossed) break;
     }
@@ -366,8 +293,7 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
     // An end point inside a shape goes out through its nearest surface.
     const glm::vec2 stopped = x1;
     forShapesNear(s, cell, glm::distance(x0, x1) > binnedReach, [&](const kernels::FluidBodyShape& shape) {
-        const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(shape, glm::vec3(x1, 0.0f));
-        if (surface.distance < 0.0f) x1 += glm::vec2(surface.normal) * (kSkin - surface.distance);
+        x1 = kernels::fluidPushOutOfShape(shape, x1);
     });
     // That push may not cross a still wall either: a particle wedged
     // between a crate and a tank's wall of edges was pushed out of the crate

@@ -46,19 +46,10 @@ struct StepBody {
     float angularImpulse = 0.0f;    // N m s, about the centre of mass
 };
 
-/// A particle touching (or about to touch) a body shape this substep. 44 bytes.
-struct BodyContact {
-    glm::vec2 normal;      // unit, out of the body
-    glm::vec2 r;           // m, centre of mass to the contact point
-    float separation;      // m, surface distance minus the particle radius
-    float normalMass;      // kg
-    float tangentMass;     // kg
-    float normalImpulse;   // N s, accumulated
-    float tangentImpulse;  // N s, accumulated
-    std::uint32_t particle;
-    std::uint32_t body;    // index in FluidBodyStep::bodies
-};
-static_assert(sizeof(BodyContact) == 44);
+/// A particle touching (or about to touch) a body shape this substep
+/// (fluid.glsl; 48 bytes).
+using BodyContact = kernels::FluidBodyContact;
+static_assert(sizeof(BodyContact) == 48);
 
 /// A particle that struck a body (approaching faster than kFluidImpactSpeed
 /// along the normal, touching within the substep): one collision event.

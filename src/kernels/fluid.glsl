@@ -612,5 +612,257 @@ SD_FN FluidImpulse fluidBodyFrictionImpulse(float vt, float tangentMass, float a
     return r;
 }
 
+// A body as the fluid's contacts see it during a substep (the CPU's StepBody,
+// its motion part; 32 bytes on the device): centre of mass (m), velocity of
+// the centre (m/s), angular velocity (rad/s), inverse mass (1/kg) and
+// inertia (1/(kg m^2), 0 for a static or kinematic body), friction.
+struct FluidBodyMotion {
+    vec2 centre;
+    vec2 velocity;
+    float angularVelocity;
+    float invMass;
+    float invInertia;
+    float friction;
+};
+
+// A particle touching (or about to touch) a body shape this substep: the
+// CPU's BodyContact and a slot of the device's contacts. 48 bytes.
+struct FluidBodyContact {
+    vec2 normal;           // unit, out of the body
+    vec2 r;                // m, centre of mass to the contact point
+    float separation;      // m, surface distance minus the particle radius
+    float normalMass;      // kg
+    float tangentMass;     // kg
+    float normalImpulse;   // N s, accumulated
+    float tangentImpulse;  // N s, accumulated
+    uint particle;
+    uint body;             // index in the step's body list
+    uint pad0;
+};
+
+// What a particle at x moving at v finds at a body shape whose surface at x
+// is `surface`: a contact when it touches the shape or can within dt (its
+// speed relative to the body's material point, plus a spacing for what the
+// solve adds: speculative, as for colliders), and an impact when it reaches
+// the surface this substep faster than kFluidImpactSpeed along the normal
+// (one strike, one event: the solve then removes the approach).
+struct FluidBodyFound {
+    uint found;
+    uint impact;
+    float approach;  // m/s along the normal, toward the body
+    FluidBodyContact contact;  // particle and body left to the caller
+};
+
+SD_FN FluidBodyFound fluidFindBodyContact(FluidSurface surface, vec2 x, vec2 v, SD_IN(FluidBodyMotion) b,
+                                          float particleInvMass, float radius, float spacing, float dt,
+                                          float impactSpeed) {
+    FluidBodyFound f;
+    f.found = 0u;
+    f.impact = 0u;
+    f.approach = 0.0f;
+    vec2 n = vec2(surface.normal.x, surface.normal.y);
+    SD_PRECISE vec2 onSurface = x - n * surface.distance;
+    SD_PRECISE vec2 r = onSurface - b.centre;
+    SD_PRECISE vec2 rel = v - fluidBodyPointVelocity(b.velocity, b.angularVelocity, r);
+    SD_PRECISE float travel = fluidLength(vec3(rel.x, rel.y, 0.0f)) * dt;
+    SD_PRECISE float reach = radius + travel + spacing;
+    if (!(surface.distance < reach)) {
+        return f;
+    }
+    f.found = 1u;
+    f.contact.normal = n;
+    f.contact.r = r;
+    f.contact.separation = surface.distance - radius;
+    f.contact.normalMass = fluidBodyNormalMass(particleInvMass, b.invMass, b.invInertia, r, n);
+    f.contact.tangentMass = fluidBodyNormalMass(particleInvMass, b.invMass, b.invInertia, r, vec2(-n.y, n.x));
+    f.contact.normalImpulse = 0.0f;
+    f.contact.tangentImpulse = 0.0f;
+    f.contact.particle = 0u;
+    f.contact.body = 0u;
+    f.contact.pad0 = 0u;
+    SD_PRECISE float approach = -dot(rel, n);
+    f.approach = approach;
+    f.impact = approach > impactSpeed && f.contact.separation < approach * dt ? 1u : 0u;
+    return f;
+}
+
+// One visit of a particle-body contact (slide 51): the particle's velocity
+// vp and pseudo velocity (m/s) after it, the accumulated impulses, the
+// impulse on the particle (N s) and its moment about the body's centre, and
+// the body's velocities after the opposite impulse (a dynamic body's; a
+// static or kinematic one keeps its own). Real velocity: close the gap, no
+// more; an overlap is pushed out by the pseudo velocity when impulses are
+// split (kinetic energy otherwise). With split impulses the particle's
+// motion this substep, real plus pseudo, relative to the body may not enter
+// it: position only, no momentum, no reaction on the body.
+struct FluidBodyVisit {
+    vec2 velocity;
+    vec2 pseudo;
+    float normalImpulse;
+    float tangentImpulse;
+    vec2 impulse;
+    float angular;
+    vec2 bodyVelocity;
+    float bodyAngularVelocity;
+};
+
+SD_FN FluidBodyVisit fluidSolveBodyContact(SD_IN(FluidBodyContact) c, SD_IN(FluidBodyMotion) b, vec2 vp,
+                                           vec2 pseudo, float particleInvMass, float invDt, float radius,
+                                           float fluidFriction, bool split, bool dynamic) {
+    FluidBodyVisit out1;
+    vec2 n = c.normal;
+    vec2 vb = fluidBodyPointVelocity(b.velocity, b.angularVelocity, c.r);
+    SD_PRECISE float gap = -c.separation * invDt;
+    SD_PRECISE float overlap = -c.separation * SD_FLUID_OVERLAP_PUSH * invDt;
+    float target = c.separation >= 0.0f ? gap : (split ? 0.0f : overlap);
+    FluidImpulse normal = fluidBodyNormalImpulse(dot(vp - vb, n), target, c.normalMass, c.normalImpulse);
+    out1.normalImpulse = normal.accumulated;
+    out1.tangentImpulse = c.tangentImpulse;
+    SD_PRECISE vec2 impulse = n * normal.delta;  // N s, on the particle
+    float mu = sqrt(fluidFriction * b.friction);
+    if (mu > 0.0f) {
+        vec2 t = vec2(-n.y, n.x);
+        SD_PRECISE vec2 vAfter = vp + impulse * particleInvMass;
+        vec2 vbAfter = vb;
+        if (dynamic) {
+            SD_PRECISE float turn = c.r.x * impulse.y - c.r.y * impulse.x;
+            SD_PRECISE vec2 bv = b.velocity - impulse * b.invMass;
+            SD_PRECISE float bw = b.angularVelocity - turn * b.invInertia;
+            vbAfter = fluidBodyPointVelocity(bv, bw, c.r);
+        }
+        FluidImpulse friction =
+            fluidBodyFrictionImpulse(dot(vAfter - vbAfter, t), c.tangentMass, c.tangentImpulse, mu * normal.accumulated);
+        out1.tangentImpulse = friction.accumulated;
+        impulse = impulse + t * friction.delta;
+    }
+    out1.impulse = impulse;
+    out1.angular = 0.0f;
+    out1.bodyVelocity = b.velocity;
+    out1.bodyAngularVelocity = b.angularVelocity;
+    if (impulse.x != 0.0f || impulse.y != 0.0f) {
+        SD_PRECISE vec2 moved = vp + impulse * particleInvMass;
+        vp = moved;
+        if (dynamic) {
+            // Newton's third law: the body takes the opposite impulse, now
+            // (its local velocity) and at the step's end (the caller's sum).
+            SD_PRECISE float angular = c.r.x * impulse.y - c.r.y * impulse.x;
+            SD_PRECISE vec2 bv = b.velocity - impulse * b.invMass;
+            SD_PRECISE float bw = b.angularVelocity - angular * b.invInertia;
+            out1.angular = angular;
+            out1.bodyVelocity = bv;
+            out1.bodyAngularVelocity = bw;
+        }
+    }
+    out1.velocity = vp;
+    out1.pseudo = pseudo;
+    if (split) {
+        vec2 vbNow = fluidBodyPointVelocity(out1.bodyVelocity, out1.bodyAngularVelocity, c.r);
+        SD_PRECISE vec2 total = vp + pseudo;
+        SD_PRECISE vec2 rel = total - vbNow;
+        vec3 moved = fluidContactVelocity(vec3(rel.x, rel.y, 0.0f),
+                                          makeSurface(c.separation + radius, vec3(n.x, n.y, 0.0f)), radius, invDt,
+                                          SD_FLUID_OVERLAP_PUSH, 0.0f);
+        SD_PRECISE vec2 change = vec2(moved.x, moved.y) - rel;
+        SD_PRECISE vec2 p = pseudo + change;
+        out1.pseudo = p;
+    }
+    return out1;
+}
+
+// A path x0 -> x1 stopped before the segment a-b if it crosses it (an end
+// on the line counts): SD_FLUID_SKIN short of the crossing along the path
+// and SD_FLUID_SKIN off the line on x0's side, so the end is strictly on
+// x0's side of this segment and, at a corner where two segments join, of the
+// other one too (the crossing point is then the shared vertex, and backing
+// along the path goes back inside). A path that starts on the line has no
+// side: left alone. A stopped particle also stops moving into the segment,
+// as at a collider: its velocity v keeps no part toward the line.
+struct FluidPathEnd {
+    uint stopped;
+    vec2 x1;
+    vec2 v;
+};
+
+SD_FN float fluidCross2(vec2 a, vec2 b) {
+    SD_PRECISE float ab = a.x * b.y;
+    SD_PRECISE float ba = a.y * b.x;
+    SD_PRECISE float c = ab - ba;
+    return c;
+}
+
+SD_FN FluidPathEnd fluidStopBeforeSegment(vec2 a, vec2 b, vec2 x0, vec2 x1, vec2 v) {
+    FluidPathEnd end;
+    end.stopped = 0u;
+    end.x1 = x1;
+    end.v = v;
+    vec2 edge = b - a;
+    SD_PRECISE float len2 = dot(edge, edge);
+    float s0 = fluidCross2(edge, x0 - a);
+    float s1 = fluidCross2(edge, x1 - a);
+    if (len2 <= 0.0f || s0 == 0.0f || (s0 > 0.0f ? s1 > 0.0f : s1 < 0.0f)) {
+        return end;
+    }
+    SD_PRECISE float t = s0 / (s0 - s1);  // in (0, 1]: where the path meets the line
+    SD_PRECISE vec2 path = x1 - x0;
+    SD_PRECISE vec2 p = x0 + path * t;
+    SD_PRECISE float u = dot(p - a, edge) / len2;
+    SD_PRECISE float slack = SD_FLUID_SKIN / sqrt(len2);  // the vertices themselves stop a path
+    if (u < -slack || u > 1.0f + slack) {
+        return end;
+    }
+    SD_PRECISE vec2 side = vec2(-edge.y, edge.x) * ((s0 > 0.0f ? 1.0f : -1.0f) / sqrt(len2));
+    SD_PRECISE float length1 = fluidLength(vec3(path.x, path.y, 0.0f));
+    SD_PRECISE vec2 along = length1 > 0.0f ? path / length1 : vec2(0.0f);
+    SD_PRECISE vec2 stop = p + side * SD_FLUID_SKIN - along * SD_FLUID_SKIN;
+    end.stopped = 1u;
+    end.x1 = stop;
+    vec3 kept = fluidWithoutInward(vec3(v.x, v.y, 0.0f), vec3(side.x, side.y, 0.0f));
+    end.v = vec2(kept.x, kept.y);
+    return end;
+}
+
+// A path from -> to stopped before the edges of one still body shape it
+// crosses (fluidStopBeforeSegment): a segment's two sides, and a polygon's
+// edges that `from` lies outside of (counter-clockwise: outside is to the
+// right), in vertex order; a circle stops nothing (a particle found inside
+// is pushed out through the nearest surface instead).
+SD_FN FluidPathEnd fluidStopBeforeShapeEdges(SD_IN(FluidBodyShape) shape, vec2 from, vec2 to, vec2 v) {
+    FluidPathEnd end;
+    end.stopped = 0u;
+    end.x1 = to;
+    end.v = v;
+    if (shape.kind == SD_BODY_SHAPE_SEGMENT) {
+        vec4 g = shape.geometry;
+        return fluidStopBeforeSegment(vec2(g.x, g.y), vec2(g.z, g.w), from, to, v);
+    }
+    if (shape.kind != SD_BODY_SHAPE_POLYGON) {
+        return end;
+    }
+    for (uint e = 0u; e < shape.polygon.count; ++e) {
+        vec2 a = vec2(shape.polygon.vertices[e].x, shape.polygon.vertices[e].y);
+        uint next = (e + 1u) % shape.polygon.count;
+        vec2 c = vec2(shape.polygon.vertices[next].x, shape.polygon.vertices[next].y);
+        if (fluidCross2(c - a, from - a) < 0.0f) {
+            FluidPathEnd edge = fluidStopBeforeSegment(a, c, from, end.x1, end.v);
+            end.x1 = edge.x1;
+            end.v = edge.v;
+            end.stopped = end.stopped | edge.stopped;
+        }
+    }
+    return end;
+}
+
+// A point inside a body shape moved out through its nearest surface, to
+// SD_FLUID_SKIN outside it; a point outside stays.
+SD_FN vec2 fluidPushOutOfShape(SD_IN(FluidBodyShape) shape, vec2 x) {
+    FluidSurface surface = fluidBodyShapeSurface(shape, vec3(x.x, x.y, 0.0f));
+    if (surface.distance < 0.0f) {
+        SD_PRECISE float depth = SD_FLUID_SKIN - surface.distance;
+        SD_PRECISE vec2 out1 = x + vec2(surface.normal.x, surface.normal.y) * depth;
+        return out1;
+    }
+    return x;
+}
+
 SD_END
 #endif

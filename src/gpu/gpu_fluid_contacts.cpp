@@ -20,6 +20,10 @@ namespace {
 constexpr std::uint32_t kBindings = kernels::SD_FLUID_CONTACTS_BINDINGS;
 constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_CONTACTS_WORKGROUP;
 using kernels::FluidContactsPush;
+static_assert(sizeof(kernels::FluidBodyShape) == 304);
+static_assert(sizeof(kernels::FluidBodyMotion) == 32);
+static_assert(sizeof(kernels::FluidBodyContact) == 48);
+static_assert(sizeof(glm::ivec4) == 16);
 
 // Uploads `bytes` of `data` into `b`, grown to hold them (16 bytes at least:
 // an empty list still binds a buffer).
@@ -34,7 +38,7 @@ void uploadInto(Device& d, Buffer& b, const void* data, VkDeviceSize bytes) {
 }
 
 void writeSet(GpuFluidContacts& c, VkDescriptorSet set, const Buffer& x, const Buffer& v, const Buffer& wall,
-              const Buffer& motion) {
+              const Buffer& motion, const Buffer& order, const Buffer& ids) {
     std::array<const Buffer*, kBindings> buffers{};
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_X] = &x;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_V] = &v;
@@ -44,6 +48,14 @@ void writeSet(GpuFluidContacts& c, VkDescriptorSet set, const Buffer& x, const B
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_WALL] = &wall;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_MASK] = &c.masks;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_MOTION] = &motion;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_SHAPES] = &c.shapes;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_SHAPE_CELLS] = &c.shapeCells;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODIES] = &c.bodies;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODY_CONTACTS] = &c.bodyContacts;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODY_COUNTS] = &c.bodyCounts;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODY_REPORT] = &c.bodyReport;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_ORDER] = &order;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_IDS] = &ids;
     writeStorageSet(*c.device, set, buffers);
 }
 
@@ -61,6 +73,10 @@ FluidContactsPush pushOf(const GpuFluidContacts& c) {
     push.tableStep = c.tableStep;
     push.tableSize = c.tableSize;
     push.split = c.params.split ? 1u : 0u;
+    push.grid = c.grid;
+    push.cells = glm::ivec4(c.cells, static_cast<int>(c.shapeCount), static_cast<int>(c.bodySlots));
+    push.impactSpeed = c.impactSpeed;
+    push.impactRoom = c.impactRoom;
     return push;
 }
 
@@ -70,7 +86,10 @@ GpuFluidContacts::~GpuFluidContacts() {
     if (device == nullptr || device->device == VK_NULL_HANDLE) {
         return;
     }
-    for (Buffer* b : {&colliders, &polygons, &wallTable, &masks}) destroyBuffer(*device, *b);
+    for (Buffer* b : {&colliders, &polygons, &wallTable, &masks, &shapes, &shapesAtEnd, &shapeCells, &bodies,
+                      &bodyContacts, &bodyCounts, &bodyReport}) {
+        destroyBuffer(*device, *b);
+    }
     destroyComputePasses(*device, passes);
 }
 
@@ -82,6 +101,8 @@ std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d) {
                         c->passes);
     const glm::vec2 empty[2] = {glm::vec2(0.0f), glm::vec2(0.0f)};
     setFluidSurfaces(*c, {{}, {}, empty, 0.0f, 1.0f});
+    setFluidBodies(*c, {});
+    reserveFluidBodyRoom(*c, c->bodySlots, c->impactRoom);
     return c;
 }
 
@@ -105,8 +126,41 @@ void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces) {
     c.tableStep = surfaces.tableStep;
 }
 
+void setFluidBodies(GpuFluidContacts& c, const FluidBodies& bodies) {
+    Device& d = *c.device;
+    uploadInto(d, c.shapes, bodies.shapes.data(), bodies.shapes.size_bytes());
+    uploadInto(d, c.shapesAtEnd, bodies.shapesAtEnd.data(), bodies.shapesAtEnd.size_bytes());
+    uploadInto(d, c.shapeCells, bodies.shapeCells.data(), bodies.shapeCells.size_bytes());
+    uploadInto(d, c.bodies, bodies.bodies.data(), bodies.bodies.size_bytes());
+    c.shapeCount = static_cast<std::uint32_t>(bodies.shapes.size());
+    c.grid = glm::vec4(bodies.gridOrigin, bodies.gridInvH, bodies.particleInvMass);
+    c.cells = bodies.cells;
+    c.binnedReach = bodies.binnedReach;
+    c.impactSpeed = bodies.impactSpeed;
+}
+
+void reserveFluidBodyRoom(GpuFluidContacts& c, std::uint32_t slots, std::uint32_t impacts) {
+    c.bodySlots = std::max(slots, 1u);
+    c.impactRoom = std::max(impacts, 1u);
+    recreateStorageBuffer(*c.device, c.bodyReport,
+                          sizeof(kernels::FluidBodyReport) + VkDeviceSize{c.impactRoom} * sizeof(kernels::FluidBodyImpact));
+    c.bodyCapacity = 0;  // the contacts are made anew at the next find with bodies
+}
+
+/// Room for the body contacts of `n` particles (a few bytes while there
+/// are no bodies: the bindings still need buffers).
+void reserveBodyContacts(GpuFluidContacts& c, std::uint32_t n) {
+    const std::uint32_t want = c.shapeCount > 0 ? n : 0;
+    if (c.bodyContacts.buffer != VK_NULL_HANDLE && want <= c.bodyCapacity) return;
+    const std::uint32_t room = std::max(want, 2 * c.bodyCapacity);
+    recreateStorageBuffer(*c.device, c.bodyContacts,
+                          std::max<VkDeviceSize>(VkDeviceSize{room} * c.bodySlots * sizeof(kernels::FluidBodyContact), 16));
+    recreateStorageBuffer(*c.device, c.bodyCounts, std::max<VkDeviceSize>(VkDeviceSize{room} * 4, 16));
+    c.bodyCapacity = room;
+}
+
 void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
-                             const FluidContactParams& params) {
+                             const FluidContactParams& params, const Buffer* order, const Buffer* ids) {
     const std::uint32_t n = setup.count;
     requireBufferBytes(&wall, VkDeviceSize{n} * 16, "gpu fluid contacts", "wall");
     const std::uint32_t groups = workgroupsFor(*c.device, n, kWorkgroup, "gpu fluid contacts", "particles");
@@ -121,10 +175,24 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
     c.boundX = &setup.x;
     c.boundV = &setup.v;
     c.boundWall = &wall;
+    if (c.shapeCount > 0 && (order == nullptr || ids == nullptr)) {
+        throw Error("gpu fluid contacts: bodies need the grid order and the particles' serials");
+    }
+    reserveBodyContacts(c, n);
+    // Placeholders where there are no bodies (not read).
+    c.boundOrder = order != nullptr ? order : &c.masks;
+    c.boundIds = ids != nullptr ? ids : &c.masks;
     // The solve pass's set names the masks too; it is written when a solve
     // is recorded. Here the motion binding is a placeholder (not read).
-    writeSet(c, c.passes.sets[0], setup.x, setup.v, wall, c.masks);
+    writeSet(c, c.passes.sets[0], setup.x, setup.v, wall, c.masks, *c.boundOrder, *c.boundIds);
     const FluidContactsPush push = pushOf(c);
+    // The body report starts empty.
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
+                  VK_ACCESS_SHADER_WRITE_BIT | VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_TRANSFER_READ_BIT,
+                  VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT);
+    vkCmdFillBuffer(cmd, c.bodyReport.buffer, 0, sizeof(kernels::FluidBodyReport), 0u);
+    memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                  VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
     computeToCompute(cmd);  // the gather
     if (n > 0) {
         dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND], c.passes.pipelineLayout,
@@ -134,17 +202,31 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
 }
 
 void recordFluidContactsSolve(VkCommandBuffer cmd, GpuFluidContacts& c, const Buffer& motion, bool firstAfterFind) {
-    if (c.count == 0 || c.colliderCount + c.polygonCount == 0) {
+    if (c.count == 0 || c.colliderCount + c.polygonCount + c.shapeCount == 0) {
         return;
     }
     if (firstAfterFind) {
-        writeSet(c, c.passes.sets[1], *c.boundX, *c.boundV, *c.boundWall, motion);
+        writeSet(c, c.passes.sets[1], *c.boundX, *c.boundV, *c.boundWall, motion, *c.boundOrder, *c.boundIds);
     }
     const FluidContactsPush push = pushOf(c);
     const std::uint32_t groups = workgroupsFor(*c.device, c.count, kWorkgroup, "gpu fluid contacts", "particles");
     dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_SOLVE], c.passes.pipelineLayout,
                     c.passes.sets[1], &push, sizeof(push), groups);
     computeToCompute(cmd);
+}
+
+FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c) {
+    FluidBodyReadback r;
+    const Transfer header{&c.bodyReport, &r.report, sizeof r.report};
+    download(*c.device, std::span(&header, 1));
+    const std::uint32_t impacts = std::min(r.report.impacts, c.impactRoom);
+    if (impacts > 0) {
+        r.impacts.resize(impacts);
+        const Transfer records{&c.bodyReport, r.impacts.data(), impacts * sizeof(kernels::FluidBodyImpact),
+                               sizeof(kernels::FluidBodyReport)};
+        download(*c.device, std::span(&records, 1));
+    }
+    return r;
 }
 
 }  // namespace spindrift::gpu

@@ -7,7 +7,11 @@
 // (recordFluidSolve). On a device that rounds to nearest both are the CPU's
 // bit for bit.
 //
-// Not yet here: rigid bodies' contacts, the integration with its path tests.
+// Rigid bodies the fluid does not move (static and kinematic, 2D) are found
+// and solved in the same passes, from shapes the host places each substep
+// (setFluidBodies): each such contact changes only its particle. Not yet
+// here: dynamic bodies (their contacts change the body too, solved on the
+// CPU in one fixed order).
 #pragma once
 
 #include "gpu/gpu_fluid_setup.h"
@@ -35,6 +39,27 @@ struct FluidSurfaces {
     float tableStep = 1.0f;   // m between entries
 };
 
+/// The rigid bodies near a 2D fluid this substep, as the CPU's
+/// fluid::FluidBodyStep holds them (bodies the fluid does not move only).
+struct FluidBodies {
+    std::span<const kernels::FluidBodyShape> shapes;       // at the substep's start poses
+    std::span<const kernels::FluidBodyShape> shapesAtEnd;  // at its end poses; pad0 1: the body does not move
+    std::span<const glm::ivec4> shapeCells;                // each shape's grid cells: first x, y, last x, y
+    std::span<const kernels::FluidBodyMotion> bodies;
+    glm::vec2 gridOrigin{0.0f};  // m, the substep's grid (FluidGridParams)
+    float gridInvH = 1.0f;       // 1/m
+    glm::ivec2 cells{1, 1};
+    float particleInvMass = 0.0f;  // 1/kg
+    float binnedReach = 0.0f;      // m: every shape this near a particle is in its cell's list
+    float impactSpeed = 0.0f;      // m/s: a faster approach is an impact (kFluidImpactSpeed)
+};
+
+/// What the body contacts' find reported, and its impacts (unordered).
+struct FluidBodyReadback {
+    kernels::FluidBodyReport report{};
+    std::vector<kernels::FluidBodyImpact> impacts;
+};
+
 /// A contact pass's constants, as fluid::FluidState holds them.
 struct FluidContactParams {
     float radius = 0.0f;   // m, FluidState::radius
@@ -54,6 +79,19 @@ struct GpuFluidContacts {
     Buffer colliders, polygons, wallTable;
     Buffer masks;  // uint per particle: the surfaces within reach
     std::uint32_t colliderCount = 0, polygonCount = 0, tableSize = 0;
+    // The bodies (FluidBodies), and each particle's contacts with them.
+    Buffer shapes, shapesAtEnd, shapeCells, bodies;
+    Buffer bodyContacts;  // FluidBodyContact[bodySlots capacity]
+    Buffer bodyCounts;    // uint[capacity]
+    Buffer bodyReport;    // FluidBodyReport, FluidBodyImpact[impactRoom]
+    std::uint32_t shapeCount = 0;
+    std::uint32_t bodySlots = 4;    // contacts a particle holds
+    std::uint32_t impactRoom = 256;
+    std::uint32_t bodyCapacity = 0;  // particles bodyContacts and bodyCounts hold
+    glm::vec4 grid{0.0f};            // origin xy, invH, the particle's inverse mass
+    glm::ivec2 cells{1, 1};
+    float binnedReach = 0.0f;
+    float impactSpeed = 0.0f;
     float tableStart = 0.0f, tableStep = 1.0f;
     std::uint32_t capacity = 0;  // particles `masks` holds
     // Of the last recorded find.
@@ -63,6 +101,8 @@ struct GpuFluidContacts {
     const Buffer* boundX = nullptr;     // the find's positions (the setup's, grid order)
     const Buffer* boundV = nullptr;
     const Buffer* boundWall = nullptr;
+    const Buffer* boundOrder = nullptr;  // grid order -> particle index
+    const Buffer* boundIds = nullptr;    // particle order: serials
 
     GpuFluidContacts() = default;
     GpuFluidContacts(const GpuFluidContacts&) = delete;
@@ -78,13 +118,29 @@ std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d);
 /// fewer than two entries.
 void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces);
 
+/// Uploads the bodies of this substep (between submissions), or none (an
+/// empty FluidBodies).
+void setFluidBodies(GpuFluidContacts& c, const FluidBodies& bodies);
+
+/// Room for `slots` body contacts a particle and `impacts` impacts a
+/// substep (after a find that reported more; the substep runs again).
+void reserveFluidBodyRoom(GpuFluidContacts& c, std::uint32_t slots, std::uint32_t impacts);
+
 /// Records the find pass for the particles of `setup`'s last gather (its
 /// grid-order positions and velocities) into `cmd`: writes `wall` (vec4 per
-/// particle: the colliders' density, xyz their g sum), the setup's input.
-/// Waits for earlier compute writes; its results are visible to later
-/// compute passes. Throws Error for a `wall` buffer too small.
+/// particle: the colliders' density, xyz their g sum), the setup's input,
+/// and the body contacts and impacts (naming a particle by its serial in
+/// `ids`, particle order, through `order`, grid order to particle index;
+/// both needed only with bodies). Waits for earlier compute writes; its
+/// results are visible to later compute passes. Throws Error for a `wall`
+/// buffer too small, or bodies without `order` and `ids`.
 void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
-                             const FluidContactParams& params);
+                             const FluidContactParams& params, const Buffer* order = nullptr,
+                             const Buffer* ids = nullptr);
+
+/// The last find's body report and impacts (two transfers when there are
+/// impacts, one otherwise): waits for the device.
+FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c);
 
 /// Records the solve pass on `motion` (the solve's working velocities, 2 x
 /// dimension floats a particle) of the last recorded find. The first call

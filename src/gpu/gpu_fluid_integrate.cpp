@@ -87,6 +87,8 @@ void recordFluidIntegrate(VkCommandBuffer cmd, GpuFluidIntegrate& g, const GpuFl
     buffers[kernels::SD_FLUID_INTEGRATE_BINDING_PARTIALS] = &g.partials;
     buffers[kernels::SD_FLUID_INTEGRATE_BINDING_ID_IN] = sleep.ids != nullptr ? sleep.ids : &g.ids;  // unread without
     buffers[kernels::SD_FLUID_INTEGRATE_BINDING_ID] = &g.ids;
+    buffers[kernels::SD_FLUID_INTEGRATE_BINDING_SHAPES] = &contacts.shapesAtEnd;
+    buffers[kernels::SD_FLUID_INTEGRATE_BINDING_SHAPE_CELLS] = &contacts.shapeCells;
     writeStorageSet(*g.device, g.passes.sets[0], buffers);
 
     // The constants as the CPU's integratePositions computes them.
@@ -105,6 +107,8 @@ void recordFluidIntegrate(VkCommandBuffer cmd, GpuFluidIntegrate& g, const GpuFl
     push.sleeps = params.sleepSpeed > 0.0f ? 1u : 0u;
     push.groups = n > 0 ? groups : 0u;
     push.carriesIds = sleep.ids != nullptr ? 1u : 0u;
+    push.grid = glm::vec4(contacts.grid.x, contacts.grid.y, contacts.grid.z, contacts.binnedReach);
+    push.cells = glm::ivec4(contacts.cells, static_cast<int>(contacts.shapeCount), 0);
 
     // The statistics start empty: no speed, empty ranges (low keys at the
     // most, high keys at the least), no counts. Fills of disjoint ranges.

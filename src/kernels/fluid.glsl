@@ -864,5 +864,16 @@ SD_FN vec2 fluidPushOutOfShape(SD_IN(FluidBodyShape) shape, vec2 x) {
     return x;
 }
 
+// Whether the grid cell of a 2D particle's key (fluidGridKey) lies in a body
+// shape's cells, first.xy to last.xy inclusive (the cells the shape's box,
+// grown by what can reach it this substep, covers): the shapes a particle
+// tests are those of its cell, in shape order, on both backends.
+SD_FN bool fluidCellInShapeCells(uint key, ivec4 shapeCells, int cellsX) {
+    uint cell = key >> 2u;
+    int cx = int(cell % uint(cellsX));
+    int cy = int(cell / uint(cellsX));
+    return cx >= shapeCells.x && cx <= shapeCells.z && cy >= shapeCells.y && cy <= shapeCells.w;
+}
+
 SD_END
 #endif

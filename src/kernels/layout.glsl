@@ -331,10 +331,43 @@ SD_CONST uint SD_FLUID_CONTACTS_BINDING_WALL_TABLE = 4u; // vec2[size]: density,
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_WALL = 5u;       // vec4[n] out: colliders' density, xyz their g sum
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_MASK = 6u;       // uint[n]: the surfaces within reach
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_MOTION = 7u;     // float[2 dimension n]: the solve's velocity, pseudo velocity
-SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 8u;
+// Rigid bodies the fluid does not move (static, kinematic; 2D): their shapes
+// at the substep's start poses, each shape's grid cells (the CPU's bins),
+// the bodies, each particle's contacts (`bodySlots` a particle) and their
+// count, the report with the impacts, and what names a particle in an
+// impact (grid order -> particle index, particle order -> serial).
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_SHAPES = 8u;        // FluidBodyShape[shapes]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_SHAPE_CELLS = 9u;   // ivec4[shapes]: first cell x, y, last cell x, y
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_BODIES = 10u;       // FluidBodyMotion[]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_BODY_CONTACTS = 11u;  // FluidBodyContact[bodySlots n]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_BODY_COUNTS = 12u;  // uint[n]: contacts found (may exceed bodySlots)
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_BODY_REPORT = 13u;  // FluidBodyReport, then FluidBodyImpact[impactRoom]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_ORDER = 14u;        // uint[n]: grid order -> particle index
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_IDS = 15u;          // uint[n], particle order: creation serials
+SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 16u;
 
-// The contact passes' push constants (std430: eight uints or floats, then
-// four). 48 bytes.
+// What the body contacts' find reports (std430, 16 bytes), followed in its
+// buffer by the impacts it found.
+struct FluidBodyReport {
+    uint contacts;      // contacts found, all particles
+    uint mostContacts;  // the most one particle found (> bodySlots: the find runs again with more room)
+    uint impacts;       // impacts found (> impactRoom: the same)
+    uint pad0;
+};
+// A particle's strike on a body shape (the CPU's BodyImpact, and where it
+// came from: sorted by place, then shape, it is the CPU's order). 32 bytes.
+struct FluidBodyImpact {
+    uint place;      // grid-order index of the particle this substep
+    uint shape;      // index in the shapes
+    uint id;         // the particle's creation serial
+    uint body;       // index in the step's body list
+    vec2 position;   // m
+    float approach;  // m/s along the normal
+    uint pad0;
+};
+
+// The contact passes' push constants (std430: eight uints or floats, four,
+// then the bodies' vec4, ivec4 and four). 96 bytes.
 struct FluidContactsPush {
     uint count;           // particles
     uint dimension;
@@ -348,6 +381,12 @@ struct FluidContactsPush {
     float tableStep;      // m between entries
     uint tableSize;
     uint split;           // 1: split impulses
+    vec4 grid;            // the grid's origin xy (m), 1 / its sub-cell size (1/m), the particle's inverse mass (1/kg)
+    ivec4 cells;          // the grid's cells x, y; body shapes; contact slots a particle (bodySlots)
+    float impactSpeed;    // m/s (kFluidImpactSpeed)
+    uint impactRoom;      // impacts the report's buffer holds
+    uint pad0;
+    uint pad1;
 };
 
 // The constraint fluid's integration on the device (src/gpu/shaders/
@@ -373,7 +412,11 @@ SD_CONST uint SD_FLUID_INTEGRATE_BINDING_COUNTS = 13u;    // uint[n], the setup'
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_PARTIALS = 14u;  // float[workgroups]: each workgroup's compression sum
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ID_IN = 15u;     // uint[n], particle order: creation serials (carriesIds)
 SD_CONST uint SD_FLUID_INTEGRATE_BINDING_ID = 16u;        // uint[n], grid order, out
-SD_CONST uint SD_FLUID_INTEGRATE_BINDINGS = 17u;
+// Rigid bodies (2D): their shapes at the substep's end poses (pad0 1: its
+// body does not move), and each shape's grid cells (the contacts').
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_SHAPES = 17u;      // FluidBodyShape[shapes]
+SD_CONST uint SD_FLUID_INTEGRATE_BINDING_SHAPE_CELLS = 18u; // ivec4[shapes]
+SD_CONST uint SD_FLUID_INTEGRATE_BINDINGS = 19u;
 
 // The closing-speed histogram's bins (fluid.glsl, fluidApproachBin): m/s wide,
 // and how many (the last one open-ended).
@@ -421,6 +464,8 @@ struct FluidIntegratePush {
     uint sleeps;        // 1: FluidDef::sleepSpeed > 0
     uint groups;        // workgroups of the MOVE pass (partials the TOTALS pass adds)
     uint carriesIds;    // 1: the creation serials are carried into grid order too
+    vec4 grid;          // the grid's origin xy (m), 1 / its sub-cell size (1/m), the shapes' binned reach (m)
+    ivec4 cells;        // the grid's cells x, y; body shapes; unused
 };
 
 // The renderer (src/render): what every render pipeline reads, the camera and
@@ -598,8 +643,13 @@ static_assert(offsetof(FluidSetupPush, restDensity) == 64);
 static_assert(offsetof(FluidSetupPush, invRest) == 80);
 static_assert(sizeof(FluidSetupHeader) == 16);
 static_assert(sizeof(FluidSolvePush) == 48);
-static_assert(sizeof(FluidContactsPush) == 48);
-static_assert(sizeof(FluidIntegratePush) == 64);
+static_assert(sizeof(FluidContactsPush) == 96);
+static_assert(offsetof(FluidContactsPush, grid) == 48);
+static_assert(offsetof(FluidContactsPush, impactSpeed) == 80);
+static_assert(sizeof(FluidBodyReport) == 16);
+static_assert(sizeof(FluidBodyImpact) == 32);
+static_assert(sizeof(FluidIntegratePush) == 96);
+static_assert(offsetof(FluidIntegratePush, grid) == 64);
 static_assert(offsetof(FluidIntegratePush, dt) == 32);
 static_assert(offsetof(FluidContactsPush, radius) == 16);
 static_assert(offsetof(FluidContactsPush, tableStart) == 32);

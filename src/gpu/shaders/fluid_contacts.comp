@@ -1,6 +1,9 @@
 #version 450
 // The constraint fluid's contacts with static colliders on the device (the
 // CPU's findContacts and solveContacts in src/fluid/collide.cpp; slide 51).
+// Rigid bodies the fluid does not move (static and kinematic, 2D; the CPU's
+// findBodyContacts and solveBodyContacts in src/fluid/body_contacts.cpp) are
+// found and solved here too, after the colliders.
 // Passes (a specialization constant):
 //   0 find:  each particle's surfaces within reach this substep (speculative:
 //            what it could reach, plus a spacing for what the solve adds), as
@@ -27,6 +30,17 @@ layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_WALL_TABLE) readonly
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_WALL) writeonly buffer Wall { vec4 wall[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_MASK) buffer Mask { uint masks[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_MOTION) buffer Motion { float motion[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_SHAPES) readonly buffer Shapes { FluidBodyShape shapes[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_SHAPE_CELLS) readonly buffer ShapeCells { ivec4 shapeCells[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODIES) readonly buffer Bodies { FluidBodyMotion bodies[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_CONTACTS) buffer BodyContacts { FluidBodyContact bodyContacts[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_COUNTS) buffer BodyCounts { uint bodyCounts[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_REPORT) buffer BodyReport {
+    FluidBodyReport report;
+    FluidBodyImpact impacts[];
+};
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_ORDER) readonly buffer Order { uint order[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_IDS) readonly buffer Ids { uint ids[]; };
 
 layout(push_constant) uniform Contacts { FluidContactsPush args; };  // FluidContactsPush in layout.glsl
 
@@ -44,6 +58,50 @@ FluidSurface surfaceOf(uint k, vec3 x) {
         return args.dimension == 2u ? fluidFlatSurface(s) : s;
     }
     return fluidPolygonSurface(polygons[k - args.colliders], x);
+}
+
+// The body shapes of the particle's grid cell, in shape order (the CPU's
+// findBodyContacts): its contacts into its slots, counted (a count over the
+// slots makes the host run the substep again with more), and its impacts
+// appended (the host sorts them into the CPU's order).
+void findBodies(uint i, vec3 x, vec3 v) {
+    uint key = fluidGridKey(x, 2u, vec3(args.grid.x, args.grid.y, 0.0f), args.grid.z, ivec3(args.cells.x, args.cells.y, 1));
+    uint slots = uint(args.cells.w);
+    uint found = 0u;
+    for (uint k = 0u; k < uint(args.cells.z); ++k) {
+        if (!fluidCellInShapeCells(key, shapeCells[k], args.cells.x)) continue;
+        FluidBodyShape shape = shapes[k];
+        FluidSurface surface = fluidBodyShapeSurface(shape, x);
+        FluidBodyFound f = fluidFindBodyContact(surface, vec2(x.x, x.y), vec2(v.x, v.y), bodies[shape.body], args.grid.w,
+                                                args.radius, args.spacing, args.dt, args.impactSpeed);
+        if (f.found == 0u) continue;
+        if (found < slots) {
+            FluidBodyContact c = f.contact;
+            c.particle = i;
+            c.body = shape.body;
+            bodyContacts[i * slots + found] = c;
+        }
+        found += 1u;
+        if (f.impact != 0u) {
+            uint at = atomicAdd(report.impacts, 1u);
+            if (at < args.impactRoom) {
+                FluidBodyImpact hit;
+                hit.place = i;
+                hit.shape = k;
+                hit.id = ids[order[i]];
+                hit.body = shape.body;
+                hit.position = vec2(x.x, x.y);
+                hit.approach = f.approach;
+                hit.pad0 = 0u;
+                impacts[at] = hit;
+            }
+        }
+    }
+    bodyCounts[i] = found;
+    if (found > 0u) {
+        atomicAdd(report.contacts, found);
+        atomicMax(report.mostContacts, found);
+    }
 }
 
 void find(uint i) {
@@ -92,12 +150,35 @@ void find(uint i) {
     }
     masks[i] = mask;
     wall[i] = vec4(density, gx, gy, gz);
+    if (args.cells.z > 0) {
+        findBodies(i, x, v);
+    }
 }
 
-void solve(uint i) {
-    if (i >= args.count) {
-        return;
+// The particle's body contacts after its colliders' (the CPU's
+// solveBodyContacts for bodies the fluid does not move: each changes only
+// its particle, so per particle in the find's order is the CPU's order).
+void solveBodies(uint i) {
+    uint slots = uint(args.cells.w);
+    uint n = min(bodyCounts[i], slots);
+    precise float invDt = 1.0f / args.dt;
+    uint m = 4u * i;
+    for (uint j = 0u; j < n; ++j) {
+        FluidBodyContact c = bodyContacts[i * slots + j];
+        vec2 vp = vec2(motion[m], motion[m + 1u]);
+        vec2 pseudo = vec2(motion[m + 2u], motion[m + 3u]);
+        FluidBodyVisit visit = fluidSolveBodyContact(c, bodies[c.body], vp, pseudo, args.grid.w, invDt, args.radius,
+                                                     args.friction, args.split != 0u, false);
+        bodyContacts[i * slots + j].normalImpulse = visit.normalImpulse;
+        bodyContacts[i * slots + j].tangentImpulse = visit.tangentImpulse;
+        motion[m] = visit.velocity.x;
+        motion[m + 1u] = visit.velocity.y;
+        motion[m + 2u] = visit.pseudo.x;
+        motion[m + 3u] = visit.pseudo.y;
     }
+}
+
+void solveColliders(uint i) {
     uint mask = masks[i];
     if (mask == 0u) {
         return;
@@ -140,6 +221,16 @@ void solve(uint i) {
             motion[m + 2u] = real.z;
             motion[m + d + 2u] = pz;
         }
+    }
+}
+
+void solve(uint i) {
+    if (i >= args.count) {
+        return;
+    }
+    solveColliders(i);
+    if (args.cells.z > 0) {
+        solveBodies(i);
     }
 }
 

@@ -1,6 +1,6 @@
 #version 450
 // The constraint fluid's integration on the device (the CPU's
-// integratePositions in src/fluid/collide.cpp, without rigid bodies). Passes
+// integratePositions in src/fluid/collide.cpp; rigid bodies in 2D). Passes
 // (a specialization constant):
 //   0 move:   each particle's sleep and creation serial carried into grid
 //             order, its sleep (fluid.glsl, fluidSleepStep), its move by
@@ -51,6 +51,8 @@ layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_COUNTS) readonly bu
 layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_PARTIALS) buffer Partials { float partials[]; };
 layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_ID_IN) readonly buffer IdIn { uint idIn[]; };
 layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_ID) writeonly buffer Id { uint ids[]; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_SHAPES) readonly buffer Shapes { FluidBodyShape shapes[]; };
+layout(std430, set = 0, binding = SD_FLUID_INTEGRATE_BINDING_SHAPE_CELLS) readonly buffer ShapeCells { ivec4 shapeCells[]; };
 
 layout(push_constant) uniform Integrate { FluidIntegratePush args; };  // FluidIntegratePush in layout.glsl
 
@@ -78,6 +80,61 @@ void addToBox(vec3 x) {
     atomicMax(groupHighX, fluidOrderKey(x.x));
     atomicMax(groupHighY, fluidOrderKey(x.y));
     atomicMax(groupHighZ, fluidOrderKey(x.z));
+}
+
+// The body shapes near a particle (its grid cell's, or every shape when the
+// path leaves the distance within which the cell lists them all).
+bool nearShape(uint key, uint k, bool everyShape) {
+    return everyShape || fluidCellInShapeCells(key, shapeCells[k], args.cells.x);
+}
+
+float distance2(vec2 a, vec2 b) {
+    vec2 d = a - b;
+    return fluidLength(vec3(d.x, d.y, 0.0f));
+}
+
+// The path from -> to stopped before the edges of the still shapes it
+// crosses, a few passes for a corner of joined segments (the CPU's
+// stopBeforeStillEdges, src/fluid/body_contacts.cpp).
+FluidPathEnd stopBeforeStillEdges(uint key, vec2 origin, vec2 from, vec2 to, vec2 v) {
+    float reach = args.grid.w;
+    bool everyShape = distance2(origin, from) > reach || distance2(origin, to) > reach;
+    FluidPathEnd end;
+    end.stopped = 0u;
+    end.x1 = to;
+    end.v = v;
+    for (int pass = 0; pass < 3; ++pass) {
+        bool crossed = false;
+        for (uint k = 0u; k < uint(args.cells.z); ++k) {
+            if (!nearShape(key, k, everyShape) || shapes[k].pad0 == 0u) continue;
+            FluidPathEnd edge = fluidStopBeforeShapeEdges(shapes[k], from, end.x1, end.v);
+            end.x1 = edge.x1;
+            end.v = edge.v;
+            crossed = crossed || edge.stopped != 0u;
+        }
+        if (!crossed) break;
+    }
+    return end;
+}
+
+// Rigid bodies at their end-of-substep poses (the CPU's pushOutOfBodies): a
+// path across a still shape's edge stops before it, an end point inside a
+// shape goes out through its nearest surface, and that push may not cross a
+// still edge either.
+FluidPathEnd pushOutOfBodies(vec3 x0, vec2 x1, vec2 v) {
+    uint key = fluidGridKey(x0, 2u, vec3(args.grid.x, args.grid.y, 0.0f), args.grid.z, ivec3(args.cells.x, args.cells.y, 1));
+    vec2 origin = vec2(x0.x, x0.y);
+    FluidPathEnd end = stopBeforeStillEdges(key, origin, origin, x1, v);
+    vec2 stopped = end.x1;
+    bool everyShape = distance2(origin, stopped) > args.grid.w;
+    vec2 pushed = stopped;
+    for (uint k = 0u; k < uint(args.cells.z); ++k) {
+        if (nearShape(key, k, everyShape)) pushed = fluidPushOutOfShape(shapes[k], pushed);
+    }
+    if (pushed == stopped) {
+        return end;
+    }
+    return stopBeforeStillEdges(key, origin, stopped, pushed, end.v);
 }
 
 void move(uint i) {
@@ -132,6 +189,11 @@ void move(uint i) {
     vec3 x1 = vec3(x1x, x1y, x1z);
     bool lost = !fluidFinite(x1) || !fluidFiniteSpeed(v);
     if (!lost) {
+        if (args.cells.z > 0) {
+            FluidPathEnd end = pushOutOfBodies(x0, vec2(x1.x, x1.y), vec2(v.x, v.y));
+            x1 = vec3(end.x1.x, end.x1.y, 0.0f);
+            v = vec3(end.v.x, end.v.y, 0.0f);
+        }
         // Path tests: a path that crosses a plane, sphere or box ends at the
         // contact, moving no further in.
         for (uint k = 0u; k < args.colliders; ++k) {

@@ -157,25 +157,23 @@ std::vector<std::uint32_t> slotsNear(BodyWorld& world, const fluid::FluidState& 
     return query.slots;
 }
 
-/// Gathers the bodies near the fluid's particles (slotsNear) into `out`.
-/// Calling thread only. False when there are none (then the fluid ignores
-/// bodies this step).
-bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid::FluidBodyStep& out) {
+/// A fluid step's proxy emptied: no bodies, joints, shapes, contacts or impacts.
+void clearStep(fluid::FluidBodyStep& out) {
     out.bodies.clear();
     out.joints.clear();
     out.shapeBody.clear();
     out.shapeSource.clear();
     out.contactCount = 0;
     for (std::vector<fluid::BodyImpact>& chunk : out.impacts) chunk.clear();
-    const std::vector<glm::vec2>& x = f.p2.position;
-    if (f.def.dimension != 2 || world.alive == 0 || x.empty()) return false;
-    glm::vec2 lo(x[0]), hi(x[0]);
-    float fastest = 0.0f;
-    for (std::size_t i = 0; i < x.size(); ++i) {
-        lo = glm::min(lo, x[i]);
-        hi = glm::max(hi, x[i]);
-        fastest = std::max(fastest, glm::length(f.p2.velocity[i]));
-    }
+}
+
+/// Gathers into `out` the bodies near a 2D fluid whose particles lie in
+/// [lo, hi] and move at most `fastest` (m/s) (slotsNear). Calling thread
+/// only. False when there are none (then the fluid ignores bodies this step).
+bool gatherBodiesIn(BodyWorld& world, const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi, float fastest, float dt,
+                    fluid::FluidBodyStep& out) {
+    clearStep(out);
+    if (f.def.dimension != 2 || world.alive == 0) return false;
     out.maxParticleSpeed = reachSpeed(f, fastest, dt);
     const std::vector<std::uint32_t> slots = slotsNear(world, f, lo, hi, out.maxParticleSpeed, dt);
     if (slots.empty()) return false;
@@ -185,6 +183,23 @@ bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid:
     out.particleMass = f.def.density * f.def.spacing * f.def.spacing;
     out.particleInvMass = 1.0f / out.particleMass;
     return true;
+}
+
+/// gatherBodiesIn for the fluid's particles (their box and largest speed).
+bool gatherBodies(BodyWorld& world, const fluid::FluidState& f, float dt, fluid::FluidBodyStep& out) {
+    const std::vector<glm::vec2>& x = f.p2.position;
+    if (f.def.dimension != 2 || x.empty()) {
+        clearStep(out);
+        return false;
+    }
+    glm::vec2 lo(x[0]), hi(x[0]);
+    float fastest = 0.0f;
+    for (std::size_t i = 0; i < x.size(); ++i) {
+        lo = glm::min(lo, x[i]);
+        hi = glm::max(hi, x[i]);
+        fastest = std::max(fastest, glm::length(f.p2.velocity[i]));
+    }
+    return gatherBodiesIn(world, f, lo, hi, fastest, dt, out);
 }
 
 }  // namespace
@@ -200,9 +215,10 @@ fluid::FluidBodyStep* FluidLink::gather(const fluid::FluidState& f, float dt) {
     return &bodies_->fluidStep;
 }
 
-bool FluidLink::anyNear(const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi, float fastest, float dt) {
-    return bodies_ != nullptr && f.def.dimension == 2 && bodies_->alive > 0 &&
-           !slotsNear(*bodies_, f, lo, hi, reachSpeed(f, fastest, dt), dt).empty();
+fluid::FluidBodyStep* FluidLink::gatherNear(const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi, float fastest,
+                                             float dt) {
+    if (bodies_ == nullptr || !gatherBodiesIn(*bodies_, f, lo, hi, fastest, dt, bodies_->fluidStep)) return nullptr;
+    return &bodies_->fluidStep;
 }
 
 fluid::FluidBodyStep* FluidLink::gatherMoved(const fluid::FluidState& f) {

@@ -23,10 +23,10 @@ public:
     /// left them, with their shapes (for fluid::carryOutOfMovedBodies), or
     /// null when there are none. Calling thread only.
     fluid::FluidBodyStep* gatherMoved(const fluid::FluidState& f);
-    /// Whether gather would find bodies near 2D fluid `f` if its particles
-    /// lay in [lo, hi] (m) and moved at most `fastest` (m/s): the same box
-    /// and query, asked of a fluid whose particles are on the device.
-    bool anyNear(const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi, float fastest, float dt);
+    /// gather for 2D fluid `f` whose particles lie in [lo, hi] (m) and move
+    /// at most `fastest` (m/s): the same box and query, for a fluid whose
+    /// particles are on the device (its last report's box and speed).
+    fluid::FluidBodyStep* gatherNear(const fluid::FluidState& f, glm::vec2 lo, glm::vec2 hi, float fastest, float dt);
 
 private:
     BodyWorld* bodies_;

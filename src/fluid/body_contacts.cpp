@@ -98,25 +98,13 @@ glm::ivec2 cellCoords(const Grid<2>& g, glm::vec2 x) {
     return {clampCell(c.x, g.cells[0]), clampCell(c.y, g.cells[1])};
 }
 
-/// The fluid's view of body b (fluid.glsl).
-kernels::FluidBodyMotion motionOf(const StepBody& b) {
-    kernels::FluidBodyMotion m;
-    m.centre = b.centre;
-    m.velocity = b.velocity;
-    m.angularVelocity = b.angularVelocity;
-    m.invMass = b.invMass;
-    m.invInertia = b.invInertia;
-    m.friction = b.friction;
-    return m;
-}
-
 /// One visit of a contact (see the file comment for who calls it how).
 template <bool Dynamic>
 void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyStep& s, float invDt,
                   float radius, float fluidFriction, bool split) {
     Motion<2>& m = p.motion[c.particle];
     const kernels::FluidBodyVisit visit = kernels::fluidSolveBodyContact(
-        c, motionOf(b), m.velocity, m.pseudo, s.particleInvMass, invDt, radius, fluidFriction, split, Dynamic);
+        c, bodyMotion(b), m.velocity, m.pseudo, s.particleInvMass, invDt, radius, fluidFriction, split, Dynamic);
     c.normalImpulse = visit.normalImpulse;
     c.tangentImpulse = visit.tangentImpulse;
     m.velocity = visit.velocity;
@@ -132,6 +120,23 @@ void solveContact(BodyContact& c, StepBody& b, Particles<2>& p, const FluidBodyS
 }
 
 }  // namespace
+
+kernels::FluidBodyMotion bodyMotion(const StepBody& b) {
+    kernels::FluidBodyMotion m;
+    m.centre = b.centre;
+    m.velocity = b.velocity;
+    m.angularVelocity = b.angularVelocity;
+    m.invMass = b.invMass;
+    m.invInertia = b.invInertia;
+    m.friction = b.friction;
+    return m;
+}
+
+glm::ivec4 shapeCells(const FluidBodyStep& s, const Grid<2>& g, std::size_t k) {
+    const glm::ivec2 a = cellCoords(g, glm::vec2(s.shapeBox[k].x, s.shapeBox[k].y));
+    const glm::ivec2 b = cellCoords(g, glm::vec2(s.shapeBox[k].z, s.shapeBox[k].w));
+    return {a, b};
+}
 
 std::uint32_t cellOf(const Grid<2>& g, glm::vec2 x) {
     const glm::ivec2 c = cellCoords(g, x);
@@ -157,10 +162,9 @@ void beginSubstep(FluidBodyStep& s, const FluidState& f, const Grid<2>& g, float
     const std::size_t cells = static_cast<std::size_t>(g.cells[0]) * static_cast<std::size_t>(g.cells[1]);
     assignInRoom(s.cellStart, cells + 1, 0u);
     auto forCells = [&](std::size_t k, auto&& fn) {
-        const glm::ivec2 a = cellCoords(g, glm::vec2(s.shapeBox[k].x, s.shapeBox[k].y));
-        const glm::ivec2 b = cellCoords(g, glm::vec2(s.shapeBox[k].z, s.shapeBox[k].w));
-        for (int y = a.y; y <= b.y; ++y) {
-            for (int x = a.x; x <= b.x; ++x) fn(static_cast<std::size_t>(y) * g.cells[0] + x);
+        const glm::ivec4 r = shapeCells(s, g, k);
+        for (int y = r.y; y <= r.w; ++y) {
+            for (int x = r.x; x <= r.z; ++x) fn(static_cast<std::size_t>(y) * g.cells[0] + x);
         }
     };
     for (std::size_t k = 0; k < count; ++k) forCells(k, [&](std::size_t c) { s.cellStart[c + 1] += 1; });
@@ -195,7 +199,7 @@ void findBodyContacts(WorkerPool& pool, FluidBodyStep& s, FluidState& f, const G
                 const kernels::FluidSurface surface = kernels::fluidBodyShapeSurface(shape, glm::vec3(x, 0.0f));
                 const StepBody& b = s.bodies[shape.body];
                 const kernels::FluidBodyFound found =
-                    kernels::fluidFindBodyContact(surface, x, p.velocity[i], motionOf(b), s.particleInvMass, radius,
+                    kernels::fluidFindBodyContact(surface, x, p.velocity[i], bodyMotion(b), s.particleInvMass, radius,
                                                   f.def.spacing, dt, kFluidImpactSpeed);
                 if (found.found == 0u) continue;
                 BodyContact c = found.contact;

@@ -118,5 +118,11 @@ glm::vec2 pushOutOfBodies(const FluidBodyStep& s, std::uint32_t cell, float binn
                           glm::vec2& v);
 /// Grid cell (2h wide) of a point, clamped into the grid.
 std::uint32_t cellOf(const Grid<2>& grid, glm::vec2 x);
+/// The grid cells shape k's grown box covers this substep (after
+/// beginSubstep): first x, y, last x, y, inclusive; the cells whose lists
+/// hold it.
+glm::ivec4 shapeCells(const FluidBodyStep& s, const Grid<2>& grid, std::size_t k);
+/// The fluid's view of body b (fluid.glsl).
+kernels::FluidBodyMotion bodyMotion(const StepBody& b);
 
 }  // namespace spindrift::fluid

@@ -226,19 +226,21 @@ std::uint64_t emitStepJets(const StepContext& w, FluidState& f, std::size_t aliv
 }
 
 FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
+    Births births;
+    const std::uint64_t born = emitStepJets(w, f, f.size(), dt, births);
+    appendBirths(f, births);
+    return stepFluidBorn(w, f, id, dt, born);
+}
+
+FluidStepStats stepFluidBorn(const StepContext& w, FluidState& f, FluidId id, float dt, std::uint64_t born) {
     FluidStepStats stats;
     stats.fluid = id;
-    Births births;
-    stats.born = emitStepJets(w, f, f.size(), dt, births);
-    appendBirths(f, births);
+    stats.born = born;
     const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : automaticSubsteps(f, dt);
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as
     // local copies during the substeps, and given their impulses at the end.
     f.bodies = w.bodies.gather(f, dt);
-    if (f.bodies == nullptr) {
-        f.recentStrikes.clear();
-    }
     for (int k = 0; k < substeps; ++k) {
         if (f.def.dimension == 2) {
             stepPasses<2>(w, f, h, stats);
@@ -246,23 +248,29 @@ FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float 
             stepPasses<3>(w, f, h, stats);
         }
     }
-    f.bodiesAtEnd.clear();
-    if (f.bodies != nullptr) {
-        // Still bodies too: the carry may not pass through their edges.
-        for (const StepBody& b : f.bodies->bodies) f.bodiesAtEnd.push_back({b.slot, b.centre, b.angle});
-        std::sort(f.bodiesAtEnd.begin(), f.bodiesAtEnd.end(),
-                  [](const BodyEndPose& a, const BodyEndPose& b) { return a.slot < b.slot; });
-        addImpactEvents(w, f, *f.bodies, id);
-        w.bodies.exchange(*f.bodies);
-        stats.bodyContacts = f.bodies->contactCount;
-        f.bodies = nullptr;
-    }
+    endBodyStep(w, f, id, stats);
     f.lastMeanDensityError = static_cast<float>(stats.meanDensityError);
     f.lastSubsteps = substeps;
     stats.substeps = static_cast<std::uint32_t>(substeps);
     stats.particles = f.size();
     f.steps += 1;
     return stats;
+}
+
+void endBodyStep(const StepContext& w, FluidState& f, FluidId id, FluidStepStats& stats) {
+    f.bodiesAtEnd.clear();
+    if (f.bodies == nullptr) {
+        f.recentStrikes.clear();
+        return;
+    }
+    // Still bodies too: the carry may not pass through their edges.
+    for (const StepBody& b : f.bodies->bodies) f.bodiesAtEnd.push_back({b.slot, b.centre, b.angle});
+    std::sort(f.bodiesAtEnd.begin(), f.bodiesAtEnd.end(),
+              [](const BodyEndPose& a, const BodyEndPose& b) { return a.slot < b.slot; });
+    addImpactEvents(w, f, *f.bodies, id);
+    w.bodies.exchange(*f.bodies);
+    stats.bodyContacts = f.bodies->contactCount;
+    f.bodies = nullptr;
 }
 
 }  // namespace spindrift::fluid

@@ -3,6 +3,7 @@
 // numbers read back that the host's substep rule and grid placement need.
 #include "world/device_fluid.h"
 
+#include "fluid/body_contacts.h"
 #include "fluid/fluid_state.h"
 #include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
@@ -15,6 +16,7 @@
 #include "kernels/layout.glsl"
 
 #include <spindrift/errors.h>
+#include <spindrift/world.h>
 
 #include <fmt/format.h>
 
@@ -229,8 +231,7 @@ void setSurfaces(DeviceFluid& g, const fluid::FluidState& f, std::span<const ker
 /// back then (a fluid spread over more than about 2 x 10^5 cells of 2h a
 /// side in 2D; the device's median is a later slice).
 template <int D>
-gpu::FluidGridParams placeDeviceGrid(DeviceFluid& g, const fluid::FluidState& f) {
-    fluid::Grid<D> grid;
+gpu::FluidGridParams placeDeviceGrid(DeviceFluid& g, const fluid::FluidState& f, fluid::Grid<D>& grid) {
     fluid::Vec<D> lo, hi;
     for (int a = 0; a < D; ++a) {
         lo[a] = g.boxLow[a];
@@ -257,6 +258,7 @@ gpu::FluidGridParams placeDeviceGrid(DeviceFluid& g, const fluid::FluidState& f)
 /// The passes' settings of one substep of `dt` s, as the CPU's passes
 /// compute them from the fluid's state.
 struct SubstepParams {
+    fluid::Grid<2> cells2;  // the grid as the CPU's passes hold it (2D: the bodies' bins)
     gpu::FluidGridParams grid;
     gpu::FluidSetupParams setup;
     gpu::FluidContactParams contacts;
@@ -267,7 +269,12 @@ struct SubstepParams {
 template <int D>
 SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt) {
     SubstepParams s;
-    s.grid = placeDeviceGrid<D>(g, f);
+    if constexpr (D == 2) {
+        s.grid = placeDeviceGrid<2>(g, f, s.cells2);
+    } else {
+        fluid::Grid<3> grid;
+        s.grid = placeDeviceGrid<3>(g, f, grid);
+    }
     // The warm start's share: as setupConstraints (neighbours.cpp) scales it.
     const float warmFraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
     s.setup = {f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, dt, warmFraction};
@@ -282,7 +289,7 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
 void recordSubstep(VkCommandBuffer cmd, DeviceFluid& g, const SubstepParams& s) {
     gpu::recordFluidGrid(cmd, *g.grid, g.x, g.count, s.grid);
     gpu::recordFluidGather(cmd, *g.setup, *g.grid, {&g.x, &g.v, &g.p, &g.wall, g.count}, s.setup.velocityChange);
-    gpu::recordFluidContactsFind(cmd, *g.contacts, *g.setup, g.wall, s.contacts);
+    gpu::recordFluidContactsFind(cmd, *g.contacts, *g.setup, g.wall, s.contacts, &gpu::gridOrder(*g.grid), &g.ids);
     gpu::recordFluidConstraints(cmd, *g.setup, *g.grid, s.setup);
     gpu::recordFluidSolve(cmd, *g.solve, *g.grid, *g.setup, g.wall, s.solve, g.contacts.get());
     gpu::recordFluidIntegrate(cmd, *g.integrate, *g.grid, *g.setup, *g.solve, *g.contacts,
@@ -322,18 +329,84 @@ std::uint64_t removeNonFinite(DeviceFluid& g) {
     return removed;
 }
 
+/// The bodies near the fluid at this substep (the CPU's beginSubstep, on
+/// the fluid's own copies of them), and at its end (advanceBodies: bodies
+/// the fluid does not move end where their velocities take them), uploaded
+/// for the contacts and the integration.
+void setSubstepBodies(DeviceFluid& g, const fluid::FluidState& f, fluid::FluidBodyStep& s,
+                      const fluid::Grid<2>& grid, const gpu::FluidGridParams& params, float dt) {
+    fluid::beginSubstep(s, f, grid, dt);
+    const std::vector<kernels::FluidBodyShape> start = s.shapes;
+    std::vector<glm::ivec4> cells(s.shapes.size());
+    for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = fluid::shapeCells(s, grid, k);
+    std::vector<kernels::FluidBodyMotion> bodies;
+    for (const fluid::StepBody& b : s.bodies) bodies.push_back(fluid::bodyMotion(b));
+    fluid::advanceBodies(s, dt);
+    std::vector<kernels::FluidBodyShape> end = s.shapes;
+    for (kernels::FluidBodyShape& shape : end) {
+        const fluid::StepBody& b = s.bodies[shape.body];
+        shape.pad0 = b.velocity == glm::vec2(0.0f) && b.angularVelocity == 0.0f ? 1u : 0u;
+    }
+    gpu::FluidBodies up;
+    up.shapes = start;
+    up.shapesAtEnd = end;
+    up.shapeCells = cells;
+    up.bodies = bodies;
+    up.gridOrigin = glm::vec2(params.origin);
+    up.gridInvH = params.invH;
+    up.cells = glm::ivec2(params.cells);
+    up.particleInvMass = s.particleInvMass;
+    up.binnedReach = f.radius + f.def.spacing;  // as integratePositions's (collide.cpp)
+    up.impactSpeed = kFluidImpactSpeed;
+    gpu::setFluidBodies(*g.contacts, up);
+}
+
+/// The substep's strikes on bodies, in the CPU's order: by chunk of
+/// particles (grid order), then the particle, then the shape (the CPU's
+/// findBodyContacts appends each chunk's impacts of every substep to that
+/// chunk's list).
+void keepImpacts(const gpu::FluidBodyReadback& r, fluid::FluidBodyStep& s, std::uint32_t count) {
+    std::vector<kernels::FluidBodyImpact> impacts = r.impacts;
+    std::sort(impacts.begin(), impacts.end(), [](const kernels::FluidBodyImpact& a, const kernels::FluidBodyImpact& b) {
+        return a.place != b.place ? a.place < b.place : a.shape < b.shape;
+    });
+    s.impacts.resize(std::max(s.impacts.size(), WorkerPool::chunkCount(count, fluid::kParticleChunk)));
+    for (const kernels::FluidBodyImpact& hit : impacts) {
+        s.impacts[hit.place / fluid::kParticleChunk].push_back(
+            {hit.id, s.bodies[hit.body].slot, hit.position, hit.approach});
+    }
+    s.contactCount += r.report.contacts;
+}
+
 template <int D>
 void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& stats) {
     const SubstepParams params = substepParams<D>(g, f, dt);
-    // The lists hold what the setup found, or the substep runs again with
-    // room for them (its inputs are untouched until the carry).
+    fluid::FluidBodyStep* bodies = D == 2 ? f.bodies : nullptr;
+    if (bodies != nullptr) {
+        setSubstepBodies(g, f, *bodies, params.cells2, params.grid, dt);
+    } else if (g.contacts->shapeCount > 0) {
+        gpu::setFluidBodies(*g.contacts, {});
+    }
+    // The lists and the body contacts hold what the setup and the find
+    // found, or the substep runs again with room for them (its inputs are
+    // untouched until the carry).
     gpu::FluidSubstepReport r;
+    gpu::FluidBodyReadback b;
     for (;;) {
         gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) { recordSubstep(cmd, g, params); });
         r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
-        if (r.listEntries <= g.setup->listCapacity) break;
-        gpu::reserveFluidLists(*g.setup, r.listEntries + r.listEntries / 4);
+        if (bodies != nullptr) b = gpu::readFluidBodyReport(*g.contacts);
+        const bool listsFit = r.listEntries <= g.setup->listCapacity;
+        const bool bodiesFit =
+            b.report.mostContacts <= g.contacts->bodySlots && b.report.impacts <= g.contacts->impactRoom;
+        if (listsFit && bodiesFit) break;
+        if (!listsFit) gpu::reserveFluidLists(*g.setup, r.listEntries + r.listEntries / 4);
+        if (!bodiesFit) {
+            gpu::reserveFluidBodyRoom(*g.contacts, std::max(g.contacts->bodySlots, b.report.mostContacts),
+                                      std::max(g.contacts->impactRoom, 2 * b.report.impacts));
+        }
     }
+    if (bodies != nullptr) keepImpacts(b, *bodies, g.count);
     carry(g);
     g.setUp = true;
     f.lastSubstep = dt;  // as solveConstraints records it

@@ -10,11 +10,15 @@
 // statistics the substep rule of the next step reads (fluid_step.cpp,
 // automaticSubsteps, the same function the CPU's step calls).
 //
-// Not yet here: rigid bodies (the world keeps a fluid near bodies on the
-// CPU, src/world/fluid_api.cpp), the Sequential solver order (an Error at
-// creation), the jets' births computed on the device (the host emits them
-// from the jets' state alone and uploads them), the renderer reading the device's buffers (the world
-// reads the particles back when the host reads them, src/world/fluid_api.cpp).
+// Rigid bodies the fluid does not move (static, kinematic) are placed by the
+// host each substep (a few hundred bytes a shape) and met on the device.
+//
+// Not yet here: rigid bodies the fluid moves (the world keeps a fluid near
+// dynamic bodies on the CPU, src/world/fluid_api.cpp), the Sequential
+// solver order (an Error at creation), the jets' births computed on the
+// device (the host emits them from the jets' state alone and uploads them),
+// the renderer reading the device's buffers (the world reads the particles
+// back when the host reads them, src/world/fluid_api.cpp).
 #pragma once
 
 #include <spindrift/fluid.h>
@@ -46,9 +50,11 @@ using DeviceFluidPtr = std::unique_ptr<DeviceFluid, DeviceFluidDeleter>;
 /// the device fluid does not run: the Sequential solver.
 DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f);
 
-/// One step of `f` on the device, as fluid::stepFluid takes it on the CPU
-/// for a fluid without bodies (the jets' births appended first,
-/// appendDeviceBirths): the automatic substeps from the same
+/// One step of `f` on the device, as fluid::stepFluidBorn takes it on the
+/// CPU (the jets' births appended first, appendDeviceBirths), with the
+/// bodies of f.bodies (gathered by the caller; static and kinematic ones
+/// only: the device does not move bodies yet), whose strikes it adds to
+/// their impacts: the automatic substeps from the same
 /// rule, the world's fluid colliders (planes, spheres, boxes; at most 32 with
 /// the fluid's polygons) and `f`'s polygons. `f`'s particle arrays are not
 /// touched (readDeviceFluid fills them); its counters and statistics are.

@@ -4,6 +4,7 @@
 // through coupling's link.
 #include "coupling/body_world.h"
 #include "coupling/fluid_link.h"
+#include "fluid/body_contacts.h"
 #include "fluid/body_link.h"
 #include "fluid/fluid_world.h"
 #include "fluid/number_density.h"
@@ -14,6 +15,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 
 namespace spindrift {
@@ -87,14 +89,19 @@ void leaveDevice(World& w, std::size_t i, const char* why) {
     w.deviceFluids[i].reset();
 }
 
-/// Whether bodies are near fluid i, whose particles are on the device: its
-/// box and largest speed as the device last reported them (or the host's
-/// arrays while they hold the particles, before the first step).
-bool bodiesNearDevice(World& w, std::size_t i, coupling::FluidLink& bodies, float dt) {
+/// The bodies near fluid i, whose particles are on the device (null: none):
+/// gathered from its box and largest speed as the device last reported
+/// them, or from the host's arrays while they hold the particles.
+fluid::FluidBodyStep* gatherForDevice(World& w, std::size_t i, coupling::FluidLink& bodies, float dt) {
     const fluid::FluidState& f = *w.fluids[i];
-    if (deviceFluidOnHost(*w.deviceFluids[i])) return bodies.gather(f, dt) != nullptr;
+    if (deviceFluidOnHost(*w.deviceFluids[i])) return bodies.gather(f, dt);
     const DeviceFluidExtent e = deviceFluidExtent(*w.deviceFluids[i]);
-    return e.count > 0 && bodies.anyNear(f, glm::vec2(e.low), glm::vec2(e.high), e.fastest, dt);
+    return e.count > 0 ? bodies.gatherNear(f, glm::vec2(e.low), glm::vec2(e.high), e.fastest, dt) : nullptr;
+}
+
+/// Whether the fluid would move one of the gathered bodies (a dynamic one).
+bool movesBodies(const fluid::FluidBodyStep& s) {
+    return std::any_of(s.bodies.begin(), s.bodies.end(), [](const fluid::StepBody& b) { return b.invMass > 0.0f; });
 }
 
 void stepFluids(World& w, float dt, StepStats& stats) {
@@ -105,29 +112,34 @@ void stepFluids(World& w, float dt, StepStats& stats) {
     for (std::size_t i = 0; i < w.fluids.size(); ++i) {
         fluid::FluidState& f = *w.fluids[i];
         const FluidId id{static_cast<std::uint32_t>(i + 1)};
-        // Whether bodies are near a 2D fluid on the device is asked of the
-        // box and largest speed its last substep reported (the same query
-        // as the CPU's gather, no particle read back); bodies are coupled
-        // on the CPU only so far (issue 16).
-        if (w.deviceFluids[i] && f.def.dimension == 2 && w.bodies && bodiesNearDevice(w, i, bodies, dt)) {
-            leaveDevice(w, i, "rigid bodies are near it");
-        }
-        if (w.deviceFluids[i]) {
-            // The jets' births are emitted on the host (from the jets' own
-            // state: no particle is read) and appended to the device's.
-            std::uint64_t born = 0;
-            if (!f.jets.empty()) {
-                fluid::Births births;
-                born = fluid::emitStepJets(context, f, deviceFluidCount(*w.deviceFluids[i]), dt, births);
-                appendDeviceBirths(*w.deviceFluids[i], births);
-            }
-            FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
-            s.born = born;
-            f.recentStrikes.clear();
-            stats.fluids.push_back(s);
-        } else {
+        if (!w.deviceFluids[i]) {
             stats.fluids.push_back(fluid::stepFluid(context, f, id, dt));
+            continue;
         }
+        // The jets' births are emitted on the host (from the jets' own
+        // state: no particle is read) and appended to the device's.
+        std::uint64_t born = 0;
+        if (!f.jets.empty()) {
+            fluid::Births births;
+            born = fluid::emitStepJets(context, f, deviceFluidCount(*w.deviceFluids[i]), dt, births);
+            appendDeviceBirths(*w.deviceFluids[i], births);
+        }
+        // Bodies near a 2D fluid are gathered from the box and largest speed
+        // its last substep reported (the same query as the CPU's gather, no
+        // particle read back). The device meets bodies the fluid does not
+        // move; one it would move takes the fluid to the CPU (issue 16).
+        fluid::FluidBodyStep* near =
+            f.def.dimension == 2 && w.bodies ? gatherForDevice(w, i, bodies, dt) : nullptr;
+        if (near != nullptr && movesBodies(*near)) {
+            leaveDevice(w, i, "dynamic rigid bodies are near it");
+            stats.fluids.push_back(fluid::stepFluidBorn(context, f, id, dt, born));
+            continue;
+        }
+        f.bodies = near;
+        FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
+        s.born = born;
+        fluid::endBodyStep(context, f, id, s);
+        stats.fluids.push_back(s);
     }
 }
 
@@ -140,9 +152,13 @@ void fluidEdited(World& w, std::size_t i) {
 void settleFluids(World& w) {
     if (!w.bodies) return;
     coupling::FluidLink bodies(w.bodies.get());
-    for (const auto& f : w.fluids) {
-        if (fluid::FluidBodyStep* moved = bodies.gatherMoved(*f)) {
-            fluid::carryOutOfMovedBodies(w.pool, *f, *moved, w.colliders);
+    for (std::size_t i = 0; i < w.fluids.size(); ++i) {
+        // A fluid on the device met no body it moves, and only those carry
+        // particles (carryOutOfMovedBodies).
+        if (w.deviceFluids[i]) continue;
+        fluid::FluidState& f = *w.fluids[i];
+        if (fluid::FluidBodyStep* moved = bodies.gatherMoved(f)) {
+            fluid::carryOutOfMovedBodies(w.pool, f, *moved, w.colliders);
         }
     }
 }

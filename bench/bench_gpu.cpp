@@ -32,6 +32,7 @@
 #include "gpu/vulkan_device.h"
 #include "particles/params.h"
 
+#include <spindrift/bodies.h>
 #include <spindrift/world.h>
 
 #include <benchmark/benchmark.h>
@@ -310,12 +311,17 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
 /// its width, released at rest; each step the automatic substeps (the CPU's
 /// rule on the statistics read back), every substep's passes and its
 /// read-back of a few hundred bytes; no particle comes back (nothing on the
-/// host reads them here). One warm-up step, untimed. Counters: substeps a step,
-/// particles. On lavapipe the time measures the path only.
+/// host reads them here). Argument 2 (2D): 1 makes the box's floor and
+/// side walls one static Box2D body of three boxes instead of planes (the
+/// usual Box2D level), which the device meets from shapes the host uploads
+/// each substep. One warm-up step, untimed. Counters: substeps a step,
+/// particles, body contacts a step. On lavapipe the time measures the path
+/// only.
 void BM_FluidDeviceStep(benchmark::State& state) {
     using namespace spindrift;
     const auto n = static_cast<std::uint32_t>(state.range(0));
     const auto dimension = static_cast<std::uint32_t>(state.range(1));
+    const bool bodyWalls = state.range(2) != 0;
     try {
         WorldDef wd;
         wd.backend = Backend::Vulkan;
@@ -328,7 +334,16 @@ void BM_FluidDeviceStep(benchmark::State& state) {
         const float side = def.spacing * std::pow(static_cast<float>(n), 1.0f / static_cast<float>(dimension));
         const glm::vec3 box(2.0f * side, 2.0f * side, dimension == 3 ? side : 0.0f);
         def.blocks.push_back({glm::vec3(0.0f), glm::vec3(side, side, dimension == 3 ? side : 0.0f), glm::vec3(0.0f)});
-        for (int a = 0; a < static_cast<int>(dimension); ++a) {
+        if (bodyWalls) {
+            BodyDef tank;
+            tank.type = BodyType::Static;
+            const float width = box.x, height = box.y;
+            tank.shapes = {boxShape(glm::vec2(0.5f * width + 0.1f, 0.05f), glm::vec2(0.5f * width, -0.05f)),
+                           boxShape(glm::vec2(0.05f, 0.5f * height + 0.1f), glm::vec2(-0.05f, 0.5f * height)),
+                           boxShape(glm::vec2(0.05f, 0.5f * height + 0.1f), glm::vec2(width + 0.05f, 0.5f * height))};
+            createBody(w, tank);
+        }
+        for (int a = 0; a < static_cast<int>(dimension) && !bodyWalls; ++a) {
             for (const float sign : {1.0f, -1.0f}) {
                 ColliderDef c;
                 c.kind = ColliderKind::Plane;
@@ -340,11 +355,14 @@ void BM_FluidDeviceStep(benchmark::State& state) {
         }
         const FluidId f = createFluid(w, def);
         stepWorld(w, kDt);  // the first allocates
-        double substeps = 0.0;
+        double substeps = 0.0, contacts = 0.0;
         for (auto _ : state) {
-            substeps += stepWorld(w, kDt).fluids.at(0).substeps;
+            const FluidStepStats s = stepWorld(w, kDt).fluids.at(0);
+            substeps += s.substeps;
+            contacts += static_cast<double>(s.bodyContacts);
         }
         state.counters["substeps"] = substeps / static_cast<double>(state.iterations());
+        state.counters["body_contacts"] = contacts / static_cast<double>(state.iterations());
         state.counters["particles"] = static_cast<double>(readFluid(w, f).count());
         destroyWorld(w);
     } catch (const std::exception& e) {
@@ -352,8 +370,8 @@ void BM_FluidDeviceStep(benchmark::State& state) {
     }
 }
 
-/// The device fluid's cases: 2D and 3D at 100k particles, 3 iterations
-/// (each is seconds on lavapipe).
+/// The device fluid substep's cases: 2D and 3D at 100k particles, 3
+/// iterations (each is seconds on lavapipe).
 void fluidDeviceCases(benchmark::internal::Benchmark* b) {
     b->ArgNames({"particles", "dimension"})
         ->Args({100'000, 2})
@@ -365,7 +383,14 @@ void fluidDeviceCases(benchmark::internal::Benchmark* b) {
 
 }  // namespace
 
-BENCHMARK(BM_FluidDeviceStep)->Apply(fluidDeviceCases);
+BENCHMARK(BM_FluidDeviceStep)
+    ->ArgNames({"particles", "dimension", "body_walls"})
+    ->Args({100'000, 2, 0})
+    ->Args({100'000, 3, 0})
+    ->Args({100'000, 2, 1})
+    ->Iterations(3)
+    ->Unit(benchmark::kMillisecond)
+    ->UseRealTime();
 BENCHMARK(BM_FluidDeviceSubstep)->Apply(fluidDeviceCases);
 
 BENCHMARK(BM_SubEmit)

@@ -129,6 +129,9 @@ kernels::FluidBodyMotion bodyMotion(const StepBody& b) {
     m.invMass = b.invMass;
     m.invInertia = b.invInertia;
     m.friction = b.friction;
+    m.linearImpulse = b.linearImpulse;
+    m.angularImpulse = b.angularImpulse;
+    m.pad0 = 0.0f;
     return m;
 }
 

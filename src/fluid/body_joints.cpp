@@ -53,7 +53,7 @@ struct RowBuilder {
         const float k = (bodyA.invMass + bodyB.invMass) * glm::dot(n, n) + bodyA.invInertia * sA * sA +
                         bodyB.invInertia * sB * sB;
         if (!(k > 0.0f)) return;  // neither body can move along it
-        JointRow r;
+        JointRow r{};
         r.a = joint.bodyA;
         r.b = joint.bodyB;
         r.n = n;
@@ -124,15 +124,12 @@ void solveJointRows(std::vector<JointRow>& rows, std::vector<StepBody>& bodies) 
         for (JointRow& r : rows) {
             StepBody& a = bodies[r.a];
             StepBody& b = bodies[r.b];
-            const float cdot = glm::dot(r.n, b.velocity - a.velocity) + r.sB * b.angularVelocity -
-                               r.sA * a.angularVelocity;
-            const float total = std::clamp(r.impulse + r.mass * (r.bias - cdot), r.lowerImpulse, r.upperImpulse);
-            const float delta = total - r.impulse;
-            r.impulse = total;
-            a.velocity -= r.n * (delta * a.invMass);
-            a.angularVelocity -= r.sA * delta * a.invInertia;
-            b.velocity += r.n * (delta * b.invMass);
-            b.angularVelocity += r.sB * delta * b.invInertia;
+            const kernels::FluidJointVisit v = kernels::fluidSolveJointRow(r, bodyMotion(a), bodyMotion(b));
+            r.impulse = v.impulse;
+            a.velocity = v.velocityA;
+            a.angularVelocity = v.angularA;
+            b.velocity = v.velocityB;
+            b.angularVelocity = v.angularB;
         }
     }
 }

@@ -6,6 +6,8 @@
 // real body (docs/fluid.md, "Bodies that joints hold").
 #pragma once
 
+#include "kernels/fluid.glsl"
+
 #include <glm/glm.hpp>
 
 #include <cstdint>
@@ -36,21 +38,8 @@ struct StepJoint {
     float maxMotor = 0.0f;            // N m or N
 };
 
-/// One scalar velocity constraint between bodies a and b:
-/// Cdot = n . (vB - vA) + sB wB - sA wA, driven to `bias` with an accumulated
-/// impulse kept within [lowerImpulse, upperImpulse] (N s).
-struct JointRow {
-    std::uint32_t a = 0;
-    std::uint32_t b = 0;
-    glm::vec2 n{0.0f};
-    float sA = 0.0f;
-    float sB = 0.0f;
-    float mass = 0.0f;          // 1 / (the row's inverse effective mass)
-    float bias = 0.0f;          // m/s or rad/s
-    float lowerImpulse = 0.0f;
-    float upperImpulse = 0.0f;
-    float impulse = 0.0f;
-};
+/// One scalar velocity constraint between bodies a and b (fluid.glsl).
+using JointRow = kernels::FluidJointRow;
 
 /// The rows of every joint at the bodies' poses of this substep (dt, s).
 void setUpJointRows(const std::vector<StepJoint>& joints, const std::vector<StepBody>& bodies, float dt,

@@ -21,7 +21,8 @@ constexpr std::uint32_t kBindings = kernels::SD_FLUID_CONTACTS_BINDINGS;
 constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_CONTACTS_WORKGROUP;
 using kernels::FluidContactsPush;
 static_assert(sizeof(kernels::FluidBodyShape) == 304);
-static_assert(sizeof(kernels::FluidBodyMotion) == 32);
+static_assert(sizeof(kernels::FluidBodyMotion) == 48);
+static_assert(sizeof(kernels::FluidJointRow) == 48);
 static_assert(sizeof(kernels::FluidBodyContact) == 48);
 static_assert(sizeof(glm::ivec4) == 16);
 

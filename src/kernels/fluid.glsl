@@ -613,9 +613,10 @@ SD_FN FluidImpulse fluidBodyFrictionImpulse(float vt, float tangentMass, float a
 }
 
 // A body as the fluid's contacts see it during a substep (the CPU's StepBody,
-// its motion part; 32 bytes on the device): centre of mass (m), velocity of
+// its motion part; 48 bytes on the device): centre of mass (m), velocity of
 // the centre (m/s), angular velocity (rad/s), inverse mass (1/kg) and
-// inertia (1/(kg m^2), 0 for a static or kinematic body), friction.
+// inertia (1/(kg m^2), 0 for a static or kinematic body), friction, and the
+// impulses the fluid gave it this step (N s, N m s about the centre).
 struct FluidBodyMotion {
     vec2 centre;
     vec2 velocity;
@@ -623,6 +624,9 @@ struct FluidBodyMotion {
     float invMass;
     float invInertia;
     float friction;
+    vec2 linearImpulse;
+    float angularImpulse;
+    float pad0;
 };
 
 // A particle touching (or about to touch) a body shape this substep: the
@@ -873,6 +877,56 @@ SD_FN bool fluidCellInShapeCells(uint key, ivec4 shapeCells, int cellsX) {
     int cx = int(cell % uint(cellsX));
     int cy = int(cell / uint(cellsX));
     return cx >= shapeCells.x && cx <= shapeCells.z && cy >= shapeCells.y && cy <= shapeCells.w;
+}
+
+// One scalar velocity constraint of a joint between bodies a and b (the
+// CPU's JointRow, src/fluid/body_joints.h; 48 bytes on the device):
+// Cdot = n . (vB - vA) + sB wB - sA wA, driven to `bias` with an accumulated
+// impulse kept within [lowerImpulse, upperImpulse] (N s).
+struct FluidJointRow {
+    uint a;
+    uint b;
+    vec2 n;
+    float sA;
+    float sB;
+    float mass;          // 1 / (the row's inverse effective mass)
+    float bias;          // m/s or rad/s
+    float lowerImpulse;
+    float upperImpulse;
+    float impulse;
+    float pad0;
+};
+
+// One visit of a joint row (Box2D 2.4's joints, b2_*_joint.cpp): the
+// accumulated impulse after it and both bodies' velocities.
+struct FluidJointVisit {
+    float impulse;
+    vec2 velocityA;
+    float angularA;
+    vec2 velocityB;
+    float angularB;
+};
+
+SD_FN FluidJointVisit fluidSolveJointRow(SD_IN(FluidJointRow) r, SD_IN(FluidBodyMotion) a, SD_IN(FluidBodyMotion) b) {
+    SD_PRECISE vec2 dv = b.velocity - a.velocity;
+    SD_PRECISE float along = dot(r.n, dv);
+    SD_PRECISE float spinB = r.sB * b.angularVelocity;
+    SD_PRECISE float spinA = r.sA * a.angularVelocity;
+    SD_PRECISE float cdot = along + spinB - spinA;
+    SD_PRECISE float wanted = r.impulse + r.mass * (r.bias - cdot);
+    float total = clamp(wanted, r.lowerImpulse, r.upperImpulse);
+    SD_PRECISE float delta = total - r.impulse;
+    FluidJointVisit v;
+    v.impulse = total;
+    SD_PRECISE vec2 va = a.velocity - r.n * (delta * a.invMass);
+    SD_PRECISE float wa = a.angularVelocity - r.sA * delta * a.invInertia;
+    SD_PRECISE vec2 vb = b.velocity + r.n * (delta * b.invMass);
+    SD_PRECISE float wb = b.angularVelocity + r.sB * delta * b.invInertia;
+    v.velocityA = va;
+    v.angularA = wa;
+    v.velocityB = vb;
+    v.angularB = wb;
+    return v;
 }
 
 SD_END

@@ -326,15 +326,15 @@ bool blocked(const FluidBodyStep& s, std::span<const kernels::ColliderParams> co
 
 }  // namespace
 
-void carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
-                           std::span<const kernels::ColliderParams> colliders) {
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
+                                    std::span<const kernels::ColliderParams> colliders) {
     placeShapes(s);
     // Only a dynamic body's shapes hold particles to carry.
     std::vector<std::uint32_t> moving;
     for (std::uint32_t k = 0; k < s.shapes.size(); ++k) {
         if (s.bodies[s.shapes[k].body].invMass > 0.0f) moving.push_back(k);
     }
-    if (moving.empty()) return;
+    if (moving.empty()) return 0;
     // Each body's pose at the end of the fluid's step (bodiesAtEnd is by slot).
     std::vector<BodyEndPose> was(s.bodies.size());
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
@@ -345,7 +345,8 @@ void carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
                      : BodyEndPose{s.bodies[b].slot, s.bodies[b].centre, s.bodies[b].angle};
     }
     Particles<2>& p = f.p2;
-    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+    std::vector<std::uint64_t> carried(WorkerPool::chunkCount(p.size(), kParticleChunk), 0);
+    pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         for (std::size_t i = begin; i < end; ++i) {
             const glm::vec2 x = p.position[i];
             for (std::uint32_t k : moving) {
@@ -362,18 +363,22 @@ void carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
                 // it out once there is room (as pushOutOfBodies does).
                 const StepBody& now = s.bodies[shape.body];
                 const BodyEndPose& then = was[shape.body];
-                glm::vec2 carried = now.centre + rotate(now.angle - then.angle, x - then.centre);
-                if (blocked(s, colliders, f, x, carried)) break;
-                const kernels::FluidSurface out = kernels::fluidBodyShapeSurface(shape, glm::vec3(carried, 0.0f));
+                glm::vec2 to = now.centre + rotate(now.angle - then.angle, x - then.centre);
+                if (blocked(s, colliders, f, x, to)) break;
+                const kernels::FluidSurface out = kernels::fluidBodyShapeSurface(shape, glm::vec3(to, 0.0f));
                 if (out.distance < 0.0f) {
-                    const glm::vec2 pushed = carried + glm::vec2(out.normal) * (kSkin - out.distance);
-                    if (!blocked(s, colliders, f, carried, pushed)) carried = pushed;
+                    const glm::vec2 pushed = to + glm::vec2(out.normal) * (kSkin - out.distance);
+                    if (!blocked(s, colliders, f, to, pushed)) to = pushed;
                 }
-                p.position[i] = carried;
+                carried[chunk] += p.position[i] != to ? 1u : 0u;
+                p.position[i] = to;
                 break;
             }
         }
     });
+    std::uint64_t moved = 0;
+    for (std::uint64_t c : carried) moved += c;
+    return moved;
 }
 
 }  // namespace spindrift::fluid

@@ -105,9 +105,9 @@ void advanceBodies(FluidBodyStep& s, float dt);
 /// (f.bodiesAtEnd), which puts it back on the side it was on; if that is
 /// still inside, out through the nearest surface. Never through a still
 /// body's edge or a collider (`colliders`, the world's): such a particle
-/// stays.
-void carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
-                           std::span<const kernels::ColliderParams> colliders);
+/// stays. Returns how many particles moved.
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
+                                    std::span<const kernels::ColliderParams> colliders);
 /// Ends a path x0 -> x1 that crosses an edge of a still shape (edges and
 /// chains have no inside to test) on x0's side of it, with no velocity v
 /// left toward it; then puts an end point that lies inside a body shape back

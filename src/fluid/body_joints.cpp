@@ -104,9 +104,8 @@ void addRows(RowBuilder& rb, float dt) {
     if (j.motor) rb.motor(glm::vec2(0.0f), 1.0f, 1.0f, j.motorSpeed, j.maxMotor * dt);
 }
 
-/// Passes over the rows per call: the rows are few (a handful per joint) and
-/// a chain of joints needs a few to pass a push along.
-constexpr int kJointPasses = 2;
+/// Passes over the rows per call (fluid.glsl).
+constexpr int kJointPasses = kernels::SD_FLUID_JOINT_PASSES;
 
 }  // namespace
 

@@ -385,8 +385,6 @@ int automaticSubsteps(FluidState& f, float dt);
 bool isFluidCollider(const kernels::ColliderParams& c);
 
 FluidStepStats stepFluid(const StepContext& world, FluidState& f, FluidId id, float dt);
-/// stepFluid after its jets' births (`born` of them) joined the arrays.
-FluidStepStats stepFluidBorn(const StepContext& world, FluidState& f, FluidId id, float dt, std::uint64_t born);
 /// The end of a step with the bodies of f.bodies (null: none were near):
 /// their end poses kept for the carry after Box2D's step, the strikes as
 /// collision events, the impulses handed to Box2D; f.bodies cleared.

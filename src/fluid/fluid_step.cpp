@@ -226,16 +226,11 @@ std::uint64_t emitStepJets(const StepContext& w, FluidState& f, std::size_t aliv
 }
 
 FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float dt) {
-    Births births;
-    const std::uint64_t born = emitStepJets(w, f, f.size(), dt, births);
-    appendBirths(f, births);
-    return stepFluidBorn(w, f, id, dt, born);
-}
-
-FluidStepStats stepFluidBorn(const StepContext& w, FluidState& f, FluidId id, float dt, std::uint64_t born) {
     FluidStepStats stats;
     stats.fluid = id;
-    stats.born = born;
+    Births births;
+    stats.born = emitStepJets(w, f, f.size(), dt, births);
+    appendBirths(f, births);
     const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : automaticSubsteps(f, dt);
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as

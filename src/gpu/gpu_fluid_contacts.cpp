@@ -39,7 +39,7 @@ void uploadInto(Device& d, Buffer& b, const void* data, VkDeviceSize bytes) {
 }
 
 void writeSet(GpuFluidContacts& c, VkDescriptorSet set, const Buffer& x, const Buffer& v, const Buffer& wall,
-              const Buffer& motion, const Buffer& order, const Buffer& ids) {
+              const Buffer& motion) {
     std::array<const Buffer*, kBindings> buffers{};
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_X] = &x;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_V] = &v;
@@ -55,8 +55,11 @@ void writeSet(GpuFluidContacts& c, VkDescriptorSet set, const Buffer& x, const B
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODY_CONTACTS] = &c.bodyContacts;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODY_COUNTS] = &c.bodyCounts;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_BODY_REPORT] = &c.bodyReport;
-    buffers[kernels::SD_FLUID_CONTACTS_BINDING_ORDER] = &order;
-    buffers[kernels::SD_FLUID_CONTACTS_BINDING_IDS] = &ids;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_ORDER] = c.boundOrder;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_IDS] = c.boundIds;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_DYNAMIC] = &c.dynamicList;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_JOINT_ROWS] = &c.jointRows;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_STILLS] = c.boundStills;
     writeStorageSet(*c.device, set, buffers);
 }
 
@@ -78,6 +81,7 @@ FluidContactsPush pushOf(const GpuFluidContacts& c) {
     push.cells = glm::ivec4(c.cells, static_cast<int>(c.shapeCount), static_cast<int>(c.bodySlots));
     push.impactSpeed = c.impactSpeed;
     push.impactRoom = c.impactRoom;
+    push.jointRows = c.jointRowCount;
     return push;
 }
 
@@ -88,7 +92,7 @@ GpuFluidContacts::~GpuFluidContacts() {
         return;
     }
     for (Buffer* b : {&colliders, &polygons, &wallTable, &masks, &shapes, &shapesAtEnd, &shapeCells, &bodies,
-                      &bodyContacts, &bodyCounts, &bodyReport}) {
+                      &bodyContacts, &bodyCounts, &bodyReport, &dynamicList, &jointRows}) {
         destroyBuffer(*device, *b);
     }
     destroyComputePasses(*device, passes);
@@ -98,7 +102,7 @@ std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d) {
     auto c = std::make_unique<GpuFluidContacts>();  // destroys what was made if a step throws
     c->device = &d;
     createComputePasses(d, kBindings, sizeof(FluidContactsPush), 2,
-                        std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), 2, "fluid_contacts",
+                        std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), 4, "fluid_contacts",
                         c->passes);
     const glm::vec2 empty[2] = {glm::vec2(0.0f), glm::vec2(0.0f)};
     setFluidSurfaces(*c, {{}, {}, empty, 0.0f, 1.0f});
@@ -133,7 +137,11 @@ void setFluidBodies(GpuFluidContacts& c, const FluidBodies& bodies) {
     uploadInto(d, c.shapesAtEnd, bodies.shapesAtEnd.data(), bodies.shapesAtEnd.size_bytes());
     uploadInto(d, c.shapeCells, bodies.shapeCells.data(), bodies.shapeCells.size_bytes());
     uploadInto(d, c.bodies, bodies.bodies.data(), bodies.bodies.size_bytes());
+    uploadInto(d, c.jointRows, bodies.jointRows.data(), bodies.jointRows.size_bytes());
     c.shapeCount = static_cast<std::uint32_t>(bodies.shapes.size());
+    c.jointRowCount = static_cast<std::uint32_t>(bodies.jointRows.size());
+    c.bodyCount = static_cast<std::uint32_t>(bodies.bodies.size());
+    c.moves = bodies.moves;
     c.grid = glm::vec4(bodies.gridOrigin, bodies.gridInvH, bodies.particleInvMass);
     c.cells = bodies.cells;
     c.binnedReach = bodies.binnedReach;
@@ -157,11 +165,21 @@ void reserveBodyContacts(GpuFluidContacts& c, std::uint32_t n) {
     recreateStorageBuffer(*c.device, c.bodyContacts,
                           std::max<VkDeviceSize>(VkDeviceSize{room} * c.bodySlots * sizeof(kernels::FluidBodyContact), 16));
     recreateStorageBuffer(*c.device, c.bodyCounts, std::max<VkDeviceSize>(VkDeviceSize{room} * 4, 16));
+    recreateStorageBuffer(*c.device, c.dynamicList, std::max<VkDeviceSize>(VkDeviceSize{room} * c.bodySlots * 4, 16));
     c.bodyCapacity = room;
 }
 
+void setFluidBodyShapesAtEnd(GpuFluidContacts& c, std::span<const kernels::FluidBodyShape> shapes) {
+    uploadInto(*c.device, c.shapesAtEnd, shapes.data(), shapes.size_bytes());
+}
+
+std::vector<kernels::FluidBodyMotion> readFluidBodyMotions(GpuFluidContacts& c) {
+    return downloadArray<kernels::FluidBodyMotion>(*c.device, c.bodies, c.bodyCount);
+}
+
 void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
-                             const FluidContactParams& params, const Buffer* order, const Buffer* ids) {
+                             const FluidContactParams& params, const Buffer* order, const Buffer* ids,
+                             Buffer* stills) {
     const std::uint32_t n = setup.count;
     requireBufferBytes(&wall, VkDeviceSize{n} * 16, "gpu fluid contacts", "wall");
     const std::uint32_t groups = workgroupsFor(*c.device, n, kWorkgroup, "gpu fluid contacts", "particles");
@@ -176,16 +194,17 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
     c.boundX = &setup.x;
     c.boundV = &setup.v;
     c.boundWall = &wall;
-    if (c.shapeCount > 0 && (order == nullptr || ids == nullptr)) {
-        throw Error("gpu fluid contacts: bodies need the grid order and the particles' serials");
+    if (c.shapeCount > 0 && (order == nullptr || ids == nullptr || stills == nullptr)) {
+        throw Error("gpu fluid contacts: bodies need the grid order, the particles' serials and times still");
     }
     reserveBodyContacts(c, n);
     // Placeholders where there are no bodies (not read).
     c.boundOrder = order != nullptr ? order : &c.masks;
     c.boundIds = ids != nullptr ? ids : &c.masks;
+    c.boundStills = stills != nullptr ? stills : &c.masks;
     // The solve pass's set names the masks too; it is written when a solve
     // is recorded. Here the motion binding is a placeholder (not read).
-    writeSet(c, c.passes.sets[0], setup.x, setup.v, wall, c.masks, *c.boundOrder, *c.boundIds);
+    writeSet(c, c.passes.sets[0], setup.x, setup.v, wall, c.masks);
     const FluidContactsPush push = pushOf(c);
     // The body report starts empty.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -198,6 +217,11 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
     if (n > 0) {
         dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND], c.passes.pipelineLayout,
                         c.passes.sets[0], &push, sizeof(push), groups);
+        if (c.moves) {
+            computeToCompute(cmd);
+            dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_ORDER], c.passes.pipelineLayout,
+                            c.passes.sets[0], &push, sizeof(push), 1);
+        }
     }
     computeToCompute(cmd);
 }
@@ -207,13 +231,19 @@ void recordFluidContactsSolve(VkCommandBuffer cmd, GpuFluidContacts& c, const Bu
         return;
     }
     if (firstAfterFind) {
-        writeSet(c, c.passes.sets[1], *c.boundX, *c.boundV, *c.boundWall, motion, *c.boundOrder, *c.boundIds);
+        writeSet(c, c.passes.sets[1], *c.boundX, *c.boundV, *c.boundWall, motion);
     }
     const FluidContactsPush push = pushOf(c);
     const std::uint32_t groups = workgroupsFor(*c.device, c.count, kWorkgroup, "gpu fluid contacts", "particles");
     dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_SOLVE], c.passes.pipelineLayout,
                     c.passes.sets[1], &push, sizeof(push), groups);
     computeToCompute(cmd);
+    if (c.moves) {
+        // After every particle's colliders and still bodies: the CPU's order.
+        dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_DYNAMIC], c.passes.pipelineLayout,
+                        c.passes.sets[1], &push, sizeof(push), 1);
+        computeToCompute(cmd);
+    }
 }
 
 FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c) {

@@ -40,10 +40,15 @@ struct FluidSurfaces {
 };
 
 /// The rigid bodies near a 2D fluid this substep, as the CPU's
-/// fluid::FluidBodyStep holds them (bodies the fluid does not move only).
+/// fluid::FluidBodyStep holds them.
 struct FluidBodies {
     std::span<const kernels::FluidBodyShape> shapes;       // at the substep's start poses
-    std::span<const kernels::FluidBodyShape> shapesAtEnd;  // at its end poses; pad0 1: the body does not move
+    /// At its end poses; pad0 1: the body does not move. Empty when a body
+    /// the fluid moves is among them (then the solve decides the end poses:
+    /// setFluidBodyShapesAtEnd after it).
+    std::span<const kernels::FluidBodyShape> shapesAtEnd;
+    std::span<const kernels::FluidJointRow> jointRows;     // at the start poses
+    bool moves = false;  // a body the fluid moves (dynamic) is among them
     std::span<const glm::ivec4> shapeCells;                // each shape's grid cells: first x, y, last x, y
     std::span<const kernels::FluidBodyMotion> bodies;
     glm::vec2 gridOrigin{0.0f};  // m, the substep's grid (FluidGridParams)
@@ -84,7 +89,12 @@ struct GpuFluidContacts {
     Buffer bodyContacts;  // FluidBodyContact[bodySlots capacity]
     Buffer bodyCounts;    // uint[capacity]
     Buffer bodyReport;    // FluidBodyReport, FluidBodyImpact[impactRoom]
+    Buffer dynamicList;   // uint[bodySlots capacity]: the dynamic contacts in order
+    Buffer jointRows;     // FluidJointRow[]
     std::uint32_t shapeCount = 0;
+    std::uint32_t jointRowCount = 0;
+    std::uint32_t bodyCount = 0;
+    bool moves = false;
     std::uint32_t bodySlots = 4;    // contacts a particle holds
     std::uint32_t impactRoom = 256;
     std::uint32_t bodyCapacity = 0;  // particles bodyContacts and bodyCounts hold
@@ -103,6 +113,7 @@ struct GpuFluidContacts {
     const Buffer* boundWall = nullptr;
     const Buffer* boundOrder = nullptr;  // grid order -> particle index
     const Buffer* boundIds = nullptr;    // particle order: serials
+    const Buffer* boundStills = nullptr;  // particle order: times still
 
     GpuFluidContacts() = default;
     GpuFluidContacts(const GpuFluidContacts&) = delete;
@@ -122,6 +133,14 @@ void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces);
 /// empty FluidBodies).
 void setFluidBodies(GpuFluidContacts& c, const FluidBodies& bodies);
 
+/// The shapes at the substep's end poses, after a solve that moved bodies
+/// (the host advanced its copies from readFluidBodyMotions).
+void setFluidBodyShapesAtEnd(GpuFluidContacts& c, std::span<const kernels::FluidBodyShape> shapes);
+
+/// The bodies after the last solve (velocities changed by the contacts and
+/// joints, the step's impulses summed): waits for the device.
+std::vector<kernels::FluidBodyMotion> readFluidBodyMotions(GpuFluidContacts& c);
+
 /// Room for `slots` body contacts a particle and `impacts` impacts a
 /// substep (after a find that reported more; the substep runs again).
 void reserveFluidBodyRoom(GpuFluidContacts& c, std::uint32_t slots, std::uint32_t impacts);
@@ -131,12 +150,13 @@ void reserveFluidBodyRoom(GpuFluidContacts& c, std::uint32_t slots, std::uint32_
 /// particle: the colliders' density, xyz their g sum), the setup's input,
 /// and the body contacts and impacts (naming a particle by its serial in
 /// `ids`, particle order, through `order`, grid order to particle index;
-/// both needed only with bodies). Waits for earlier compute writes; its
+/// a touch of a body the fluid moves resets the particle's time still in
+/// `stills`, particle order; all three needed only with bodies). Waits for earlier compute writes; its
 /// results are visible to later compute passes. Throws Error for a `wall`
 /// buffer too small, or bodies without `order` and `ids`.
 void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
                              const FluidContactParams& params, const Buffer* order = nullptr,
-                             const Buffer* ids = nullptr);
+                             const Buffer* ids = nullptr, Buffer* stills = nullptr);
 
 /// The last find's body report and impacts (two transfers when there are
 /// impacts, one otherwise): waits for the device.

@@ -897,6 +897,11 @@ struct FluidJointRow {
     float pad0;
 };
 
+// Passes over the joints' rows after each sweep of the body contacts: the
+// rows are few (a handful per joint) and a chain of joints needs a few to
+// pass a push along.
+SD_CONST int SD_FLUID_JOINT_PASSES = 2;
+
 // One visit of a joint row (Box2D 2.4's joints, b2_*_joint.cpp): the
 // accumulated impulse after it and both bodies' velocities.
 struct FluidJointVisit {

@@ -319,6 +319,8 @@ struct FluidSolvePush {
 // CPU's findContacts and solveContacts (src/fluid/collide.cpp).
 SD_CONST uint SD_FLUID_CONTACTS_PASS_FIND = 0u;   // the PASS specialization constant (id 0)
 SD_CONST uint SD_FLUID_CONTACTS_PASS_SOLVE = 1u;
+SD_CONST uint SD_FLUID_CONTACTS_PASS_ORDER = 2u;    // the dynamic contacts listed in the CPU's order (one invocation)
+SD_CONST uint SD_FLUID_CONTACTS_PASS_DYNAMIC = 3u;  // they and the joints' rows solved in it (one invocation)
 SD_CONST uint SD_FLUID_CONTACTS_WORKGROUP = 64u;
 // Surfaces a fluid's contacts tell apart: one bit each in a particle's mask.
 SD_CONST uint SD_FLUID_MAX_SURFACES = 32u;
@@ -344,7 +346,13 @@ SD_CONST uint SD_FLUID_CONTACTS_BINDING_BODY_COUNTS = 12u;  // uint[n]: contacts
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_BODY_REPORT = 13u;  // FluidBodyReport, then FluidBodyImpact[impactRoom]
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_ORDER = 14u;        // uint[n]: grid order -> particle index
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_IDS = 15u;          // uint[n], particle order: creation serials
-SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 16u;
+// Bodies the fluid moves (dynamic): their contacts' places in
+// BODY_CONTACTS in the CPU's order, the joints' rows, and the particles'
+// times still (particle order), which a touch of such a body resets.
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_DYNAMIC = 16u;     // uint[bodySlots n]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_JOINT_ROWS = 17u;  // FluidJointRow[]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_STILLS = 18u;      // float[n] (s), particle order
+SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 19u;
 
 // What the body contacts' find reports (std430, 16 bytes), followed in its
 // buffer by the impacts it found.
@@ -352,7 +360,7 @@ struct FluidBodyReport {
     uint contacts;      // contacts found, all particles
     uint mostContacts;  // the most one particle found (> bodySlots: the find runs again with more room)
     uint impacts;       // impacts found (> impactRoom: the same)
-    uint pad0;
+    uint dynamic;       // contacts with bodies the fluid moves (the ORDER pass)
 };
 // A particle's strike on a body shape (the CPU's BodyImpact, and where it
 // came from: sorted by place, then shape, it is the CPU's order). 32 bytes.
@@ -385,7 +393,7 @@ struct FluidContactsPush {
     ivec4 cells;          // the grid's cells x, y; body shapes; contact slots a particle (bodySlots)
     float impactSpeed;    // m/s (kFluidImpactSpeed)
     uint impactRoom;      // impacts the report's buffer holds
-    uint pad0;
+    uint jointRows;       // entries of JOINT_ROWS
     uint pad1;
 };
 

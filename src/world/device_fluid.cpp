@@ -286,12 +286,18 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
     return s;
 }
 
-void recordSubstep(VkCommandBuffer cmd, DeviceFluid& g, const SubstepParams& s) {
+/// A substep's passes up to the solve's end.
+void recordSubstepSolve(VkCommandBuffer cmd, DeviceFluid& g, const SubstepParams& s) {
     gpu::recordFluidGrid(cmd, *g.grid, g.x, g.count, s.grid);
     gpu::recordFluidGather(cmd, *g.setup, *g.grid, {&g.x, &g.v, &g.p, &g.wall, g.count}, s.setup.velocityChange);
-    gpu::recordFluidContactsFind(cmd, *g.contacts, *g.setup, g.wall, s.contacts, &gpu::gridOrder(*g.grid), &g.ids);
+    gpu::recordFluidContactsFind(cmd, *g.contacts, *g.setup, g.wall, s.contacts, &gpu::gridOrder(*g.grid), &g.ids,
+                                 &g.stills);
     gpu::recordFluidConstraints(cmd, *g.setup, *g.grid, s.setup);
     gpu::recordFluidSolve(cmd, *g.solve, *g.grid, *g.setup, g.wall, s.solve, g.contacts.get());
+}
+
+/// A substep's integration.
+void recordSubstepIntegrate(VkCommandBuffer cmd, DeviceFluid& g, const SubstepParams& s) {
     gpu::recordFluidIntegrate(cmd, *g.integrate, *g.grid, *g.setup, *g.solve, *g.contacts,
                               {&g.anchors, &g.stills, &g.ids}, s.integrate);
 }
@@ -329,29 +335,58 @@ std::uint64_t removeNonFinite(DeviceFluid& g) {
     return removed;
 }
 
-/// The bodies near the fluid at this substep (the CPU's beginSubstep, on
-/// the fluid's own copies of them), and at its end (advanceBodies: bodies
-/// the fluid does not move end where their velocities take them), uploaded
-/// for the contacts and the integration.
-void setSubstepBodies(DeviceFluid& g, const fluid::FluidState& f, fluid::FluidBodyStep& s,
-                      const fluid::Grid<2>& grid, const gpu::FluidGridParams& params, float dt) {
-    fluid::beginSubstep(s, f, grid, dt);
-    const std::vector<kernels::FluidBodyShape> start = s.shapes;
-    std::vector<glm::ivec4> cells(s.shapes.size());
-    for (std::size_t k = 0; k < cells.size(); ++k) cells[k] = fluid::shapeCells(s, grid, k);
-    std::vector<kernels::FluidBodyMotion> bodies;
-    for (const fluid::StepBody& b : s.bodies) bodies.push_back(fluid::bodyMotion(b));
-    fluid::advanceBodies(s, dt);
-    std::vector<kernels::FluidBodyShape> end = s.shapes;
-    for (kernels::FluidBodyShape& shape : end) {
+/// The bodies of one substep as the device takes them: the shapes at its
+/// start and (for bodies the fluid does not move) end poses, each shape's
+/// cells, the bodies and the joints' rows.
+struct SubstepBodies {
+    std::vector<kernels::FluidBodyShape> start, end;
+    std::vector<glm::ivec4> cells;
+    std::vector<kernels::FluidBodyMotion> motions;
+    std::vector<kernels::FluidJointRow> rows;
+    bool moves = false;  // a body the fluid moves is among them: the end poses wait for the solve
+};
+
+/// The shapes at the bodies' poses now, pad0 1 where the body does not move
+/// (the integration stops paths at those shapes' edges).
+std::vector<kernels::FluidBodyShape> shapesNow(const fluid::FluidBodyStep& s) {
+    std::vector<kernels::FluidBodyShape> shapes = s.shapes;
+    for (kernels::FluidBodyShape& shape : shapes) {
         const fluid::StepBody& b = s.bodies[shape.body];
         shape.pad0 = b.velocity == glm::vec2(0.0f) && b.angularVelocity == 0.0f ? 1u : 0u;
     }
+    return shapes;
+}
+
+/// The bodies near the fluid at this substep (the CPU's beginSubstep, on
+/// the fluid's own copies of them) and, when the fluid moves none of them,
+/// at its end (advanceBodies: they end where their velocities take them).
+SubstepBodies prepareSubstepBodies(const fluid::FluidState& f, fluid::FluidBodyStep& s, const fluid::Grid<2>& grid,
+                                   float dt) {
+    fluid::beginSubstep(s, f, grid, dt);
+    SubstepBodies b;
+    b.start = s.shapes;
+    for (std::size_t k = 0; k < s.shapes.size(); ++k) b.cells.push_back(fluid::shapeCells(s, grid, k));
+    for (const fluid::StepBody& body : s.bodies) {
+        b.motions.push_back(fluid::bodyMotion(body));
+        b.moves = b.moves || body.invMass > 0.0f;
+    }
+    b.rows = s.jointRows;
+    if (!b.moves) {
+        fluid::advanceBodies(s, dt);
+        b.end = shapesNow(s);
+    }
+    return b;
+}
+
+void uploadSubstepBodies(DeviceFluid& g, const fluid::FluidState& f, const fluid::FluidBodyStep& s,
+                         const SubstepBodies& b, const gpu::FluidGridParams& params) {
     gpu::FluidBodies up;
-    up.shapes = start;
-    up.shapesAtEnd = end;
-    up.shapeCells = cells;
-    up.bodies = bodies;
+    up.shapes = b.start;
+    up.shapesAtEnd = b.end;
+    up.jointRows = b.rows;
+    up.moves = b.moves;
+    up.shapeCells = b.cells;
+    up.bodies = b.motions;
     up.gridOrigin = glm::vec2(params.origin);
     up.gridInvH = params.invH;
     up.cells = glm::ivec2(params.cells);
@@ -359,6 +394,21 @@ void setSubstepBodies(DeviceFluid& g, const fluid::FluidState& f, fluid::FluidBo
     up.binnedReach = f.radius + f.def.spacing;  // as integratePositions's (collide.cpp)
     up.impactSpeed = kFluidImpactSpeed;
     gpu::setFluidBodies(*g.contacts, up);
+}
+
+/// After a solve that moved bodies: the fluid's copies take the device's
+/// velocities and the step's impulses, move on by dt (advanceBodies), and
+/// the shapes at their end poses go up for the integration.
+void advanceMovedBodies(DeviceFluid& g, fluid::FluidBodyStep& s, float dt) {
+    const std::vector<kernels::FluidBodyMotion> motions = gpu::readFluidBodyMotions(*g.contacts);
+    for (std::size_t k = 0; k < s.bodies.size() && k < motions.size(); ++k) {
+        s.bodies[k].velocity = motions[k].velocity;
+        s.bodies[k].angularVelocity = motions[k].angularVelocity;
+        s.bodies[k].linearImpulse = motions[k].linearImpulse;
+        s.bodies[k].angularImpulse = motions[k].angularImpulse;
+    }
+    fluid::advanceBodies(s, dt);
+    gpu::setFluidBodyShapesAtEnd(*g.contacts, shapesNow(s));
 }
 
 /// The substep's strikes on bodies, in the CPU's order: by chunk of
@@ -382,19 +432,27 @@ template <int D>
 void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& stats) {
     const SubstepParams params = substepParams<D>(g, f, dt);
     fluid::FluidBodyStep* bodies = D == 2 ? f.bodies : nullptr;
+    SubstepBodies prepared;
     if (bodies != nullptr) {
-        setSubstepBodies(g, f, *bodies, params.cells2, params.grid, dt);
+        prepared = prepareSubstepBodies(f, *bodies, params.cells2, dt);
     } else if (g.contacts->shapeCount > 0) {
         gpu::setFluidBodies(*g.contacts, {});
     }
-    // The lists and the body contacts hold what the setup and the find
-    // found, or the substep runs again with room for them (its inputs are
-    // untouched until the carry).
+    // One submission; two when the solve moves bodies (their end poses,
+    // which the integration meets, come from its velocities). The lists and
+    // the body contacts hold what the setup and the find found, or the
+    // substep runs again with room for them (its inputs, the bodies
+    // included, untouched until the carry).
+    const bool split = prepared.moves;
     gpu::FluidSubstepReport r;
     gpu::FluidBodyReadback b;
     for (;;) {
-        gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) { recordSubstep(cmd, g, params); });
-        r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
+        if (bodies != nullptr) uploadSubstepBodies(g, f, *bodies, prepared, params.grid);
+        gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) {
+            recordSubstepSolve(cmd, g, params);
+            if (!split) recordSubstepIntegrate(cmd, g, params);
+        });
+        r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);  // the integration's part: below when split
         if (bodies != nullptr) b = gpu::readFluidBodyReport(*g.contacts);
         const bool listsFit = r.listEntries <= g.setup->listCapacity;
         const bool bodiesFit =
@@ -405,6 +463,11 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
             gpu::reserveFluidBodyRoom(*g.contacts, std::max(g.contacts->bodySlots, b.report.mostContacts),
                                       std::max(g.contacts->impactRoom, 2 * b.report.impacts));
         }
+    }
+    if (split) {
+        advanceMovedBodies(g, *bodies, dt);
+        gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) { recordSubstepIntegrate(cmd, g, params); });
+        r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
     }
     if (bodies != nullptr) keepImpacts(b, *bodies, g.count);
     carry(g);

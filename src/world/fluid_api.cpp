@@ -76,19 +76,6 @@ bool solvedOnDevice(const World& w, const FluidDef& def) {
     return false;
 }
 
-/// A fluid on the device moves to the CPU (its particles read back, so the
-/// CPU's solver continues from them) when it meets what the device does not
-/// run yet; with backend gpu that is an Error.
-void leaveDevice(World& w, std::size_t i, const char* why) {
-    const fluid::FluidState& f = hostFluid(w, i);
-    if (f.def.backend == FluidBackend::Gpu) {
-        throw Error(fmt::format("fluid '{}' (backend gpu): {}; the device does not run that yet (use backend cpu or "
-                                "auto)",
-                                f.def.name, why));
-    }
-    w.deviceFluids[i].reset();
-}
-
 /// The bodies near fluid i, whose particles are on the device (null: none):
 /// gathered from its box and largest speed as the device last reported
 /// them, or from the host's arrays while they hold the particles.
@@ -126,16 +113,8 @@ void stepFluids(World& w, float dt, StepStats& stats) {
         }
         // Bodies near a 2D fluid are gathered from the box and largest speed
         // its last substep reported (the same query as the CPU's gather, no
-        // particle read back). The device meets bodies the fluid does not
-        // move; one it would move takes the fluid to the CPU (issue 16).
-        fluid::FluidBodyStep* near =
-            f.def.dimension == 2 && w.bodies ? gatherForDevice(w, i, bodies, dt) : nullptr;
-        if (near != nullptr && movesBodies(*near)) {
-            leaveDevice(w, i, "dynamic rigid bodies are near it");
-            stats.fluids.push_back(fluid::stepFluidBorn(context, f, id, dt, born));
-            continue;
-        }
-        f.bodies = near;
+        // particle read back), and met on the device.
+        f.bodies = f.def.dimension == 2 && w.bodies ? gatherForDevice(w, i, bodies, dt) : nullptr;
         FluidStepStats s = stepDeviceFluid(*w.deviceFluids[i], f, w.colliders, id, dt);
         s.born = born;
         fluid::endBodyStep(context, f, id, s);
@@ -153,12 +132,19 @@ void settleFluids(World& w) {
     if (!w.bodies) return;
     coupling::FluidLink bodies(w.bodies.get());
     for (std::size_t i = 0; i < w.fluids.size(); ++i) {
-        // A fluid on the device met no body it moves, and only those carry
-        // particles (carryOutOfMovedBodies).
-        if (w.deviceFluids[i]) continue;
         fluid::FluidState& f = *w.fluids[i];
-        if (fluid::FluidBodyStep* moved = bodies.gatherMoved(f)) {
+        fluid::FluidBodyStep* moved = bodies.gatherMoved(f);
+        if (moved == nullptr) continue;
+        if (!w.deviceFluids[i]) {
             fluid::carryOutOfMovedBodies(w.pool, f, *moved, w.colliders);
+            continue;
+        }
+        // On the device: only a body the fluid moves carries particles, and
+        // the carry runs on the host (the particles read back, and uploaded
+        // again when one moved: the round trip a device pass will remove).
+        if (movesBodies(*moved) &&
+            fluid::carryOutOfMovedBodies(w.pool, hostFluid(w, i), *moved, w.colliders) > 0) {
+            fluidEdited(w, i);
         }
     }
 }

@@ -32,7 +32,7 @@ layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_MASK) buffer Mask { 
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_MOTION) buffer Motion { float motion[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_SHAPES) readonly buffer Shapes { FluidBodyShape shapes[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_SHAPE_CELLS) readonly buffer ShapeCells { ivec4 shapeCells[]; };
-layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODIES) readonly buffer Bodies { FluidBodyMotion bodies[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODIES) buffer Bodies { FluidBodyMotion bodies[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_CONTACTS) buffer BodyContacts { FluidBodyContact bodyContacts[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_COUNTS) buffer BodyCounts { uint bodyCounts[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_REPORT) buffer BodyReport {
@@ -41,6 +41,9 @@ layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_BODY_REPORT) buffer 
 };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_ORDER) readonly buffer Order { uint order[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_IDS) readonly buffer Ids { uint ids[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_DYNAMIC) buffer Dynamic { uint dynamicList[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_JOINT_ROWS) buffer JointRows { FluidJointRow rows[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_STILLS) buffer Stills { float stills[]; };
 
 layout(push_constant) uniform Contacts { FluidContactsPush args; };  // FluidContactsPush in layout.glsl
 
@@ -75,6 +78,9 @@ void findBodies(uint i, vec3 x, vec3 v) {
         FluidBodyFound f = fluidFindBodyContact(surface, vec2(x.x, x.y), vec2(v.x, v.y), bodies[shape.body], args.grid.w,
                                                 args.radius, args.spacing, args.dt, args.impactSpeed);
         if (f.found == 0u) continue;
+        // Water touching a body it moves does not fall asleep (the CPU's
+        // findBodyContacts; docs/fluid.md, "Floating bodies").
+        if (bodies[shape.body].invMass > 0.0f) stills[order[i]] = 0.0f;
         if (found < slots) {
             FluidBodyContact c = f.contact;
             c.particle = i;
@@ -165,6 +171,7 @@ void solveBodies(uint i) {
     uint m = 4u * i;
     for (uint j = 0u; j < n; ++j) {
         FluidBodyContact c = bodyContacts[i * slots + j];
+        if (bodies[c.body].invMass > 0.0f) continue;  // the DYNAMIC pass's
         vec2 vp = vec2(motion[m], motion[m + 1u]);
         vec2 pseudo = vec2(motion[m + 2u], motion[m + 3u]);
         FluidBodyVisit visit = fluidSolveBodyContact(c, bodies[c.body], vp, pseudo, args.grid.w, invDt, args.radius,
@@ -224,6 +231,67 @@ void solveColliders(uint i) {
     }
 }
 
+// The contacts with bodies the fluid moves, listed in the CPU's order:
+// particles in grid order, each one's in shape order (one invocation; the
+// next slice makes it a prefix sum).
+void orderDynamic() {
+    uint slots = uint(args.cells.w);
+    uint m = 0u;
+    for (uint i = 0u; i < args.count; ++i) {
+        uint n = min(bodyCounts[i], slots);
+        for (uint j = 0u; j < n; ++j) {
+            if (bodies[bodyContacts[i * slots + j].body].invMass > 0.0f) {
+                dynamicList[m] = i * slots + j;
+                m += 1u;
+            }
+        }
+    }
+    report.dynamic = m;
+}
+
+// The contacts with bodies the fluid moves in that order (Gauss-Seidel, a
+// body's velocity changed by each, as on the CPU), then the joints' rows,
+// which answer the contacts' push on the bodies (one invocation).
+void solveDynamic() {
+    precise float invDt = 1.0f / args.dt;
+    for (uint k = 0u; k < report.dynamic; ++k) {
+        uint at = dynamicList[k];
+        FluidBodyContact c = bodyContacts[at];
+        uint m = 4u * c.particle;
+        vec2 vp = vec2(motion[m], motion[m + 1u]);
+        vec2 pseudo = vec2(motion[m + 2u], motion[m + 3u]);
+        FluidBodyVisit visit = fluidSolveBodyContact(c, bodies[c.body], vp, pseudo, args.grid.w, invDt, args.radius,
+                                                     args.friction, args.split != 0u, true);
+        bodyContacts[at].normalImpulse = visit.normalImpulse;
+        bodyContacts[at].tangentImpulse = visit.tangentImpulse;
+        motion[m] = visit.velocity.x;
+        motion[m + 1u] = visit.velocity.y;
+        motion[m + 2u] = visit.pseudo.x;
+        motion[m + 3u] = visit.pseudo.y;
+        if (visit.impulse.x != 0.0f || visit.impulse.y != 0.0f) {
+            // Newton's third law: the body takes the opposite impulse, now
+            // and in the step's sum.
+            bodies[c.body].velocity = visit.bodyVelocity;
+            bodies[c.body].angularVelocity = visit.bodyAngularVelocity;
+            precise vec2 linear = bodies[c.body].linearImpulse - visit.impulse;
+            precise float angular = bodies[c.body].angularImpulse - visit.angular;
+            bodies[c.body].linearImpulse = linear;
+            bodies[c.body].angularImpulse = angular;
+        }
+    }
+    for (int pass = 0; pass < SD_FLUID_JOINT_PASSES; ++pass) {
+        for (uint r = 0u; r < args.jointRows; ++r) {
+            FluidJointRow row = rows[r];
+            FluidJointVisit v = fluidSolveJointRow(row, bodies[row.a], bodies[row.b]);
+            rows[r].impulse = v.impulse;
+            bodies[row.a].velocity = v.velocityA;
+            bodies[row.a].angularVelocity = v.angularA;
+            bodies[row.b].velocity = v.velocityB;
+            bodies[row.b].angularVelocity = v.angularB;
+        }
+    }
+}
+
 void solve(uint i) {
     if (i >= args.count) {
         return;
@@ -236,6 +304,16 @@ void solve(uint i) {
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
+    if (PASS == SD_FLUID_CONTACTS_PASS_ORDER || PASS == SD_FLUID_CONTACTS_PASS_DYNAMIC) {
+        if (i == 0u) {
+            if (PASS == SD_FLUID_CONTACTS_PASS_ORDER) {
+                orderDynamic();
+            } else {
+                solveDynamic();
+            }
+        }
+        return;
+    }
     if (PASS == SD_FLUID_CONTACTS_PASS_FIND) {
         find(i);
     } else {

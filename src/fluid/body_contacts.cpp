@@ -326,15 +326,8 @@ bool blocked(const FluidBodyStep& s, std::span<const kernels::ColliderParams> co
 
 }  // namespace
 
-std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
-                                    std::span<const kernels::ColliderParams> colliders) {
+std::vector<BodyEndPose> placeMovedBodies(const FluidState& f, FluidBodyStep& s) {
     placeShapes(s);
-    // Only a dynamic body's shapes hold particles to carry.
-    std::vector<std::uint32_t> moving;
-    for (std::uint32_t k = 0; k < s.shapes.size(); ++k) {
-        if (s.bodies[s.shapes[k].body].invMass > 0.0f) moving.push_back(k);
-    }
-    if (moving.empty()) return 0;
     // Each body's pose at the end of the fluid's step (bodiesAtEnd is by slot).
     std::vector<BodyEndPose> was(s.bodies.size());
     for (std::size_t b = 0; b < s.bodies.size(); ++b) {
@@ -344,6 +337,18 @@ std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodySt
                      ? *it
                      : BodyEndPose{s.bodies[b].slot, s.bodies[b].centre, s.bodies[b].angle};
     }
+    return was;
+}
+
+std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
+                                    std::span<const kernels::ColliderParams> colliders) {
+    const std::vector<BodyEndPose> was = placeMovedBodies(f, s);
+    // Only a dynamic body's shapes hold particles to carry.
+    std::vector<std::uint32_t> moving;
+    for (std::uint32_t k = 0; k < s.shapes.size(); ++k) {
+        if (s.bodies[s.shapes[k].body].invMass > 0.0f) moving.push_back(k);
+    }
+    if (moving.empty()) return 0;
     Particles<2>& p = f.p2;
     std::vector<std::uint64_t> carried(WorkerPool::chunkCount(p.size(), kParticleChunk), 0);
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {

@@ -17,6 +17,7 @@
 namespace spindrift::fluid {
 
 struct FluidState;
+struct BodyEndPose;
 template <int D> struct Grid;
 template <int D> struct Particles;
 
@@ -106,6 +107,11 @@ void advanceBodies(FluidBodyStep& s, float dt);
 /// still inside, out through the nearest surface. Never through a still
 /// body's edge or a collider (`colliders`, the world's): such a particle
 /// stays. Returns how many particles moved.
+///
+/// carryOutOfMovedBodies in parts, for the device's carry: the shapes placed
+/// at Box2D's poses (s.shapes, s.shapeBox: their bounds) and each body's
+/// pose at the end of the fluid's step (by index in s.bodies).
+std::vector<BodyEndPose> placeMovedBodies(const FluidState& f, FluidBodyStep& s);
 std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodyStep& s,
                                     std::span<const kernels::ColliderParams> colliders);
 /// Ends a path x0 -> x1 that crosses an edge of a still shape (edges and

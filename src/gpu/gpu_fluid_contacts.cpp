@@ -26,18 +26,6 @@ static_assert(sizeof(kernels::FluidJointRow) == 48);
 static_assert(sizeof(kernels::FluidBodyContact) == 48);
 static_assert(sizeof(glm::ivec4) == 16);
 
-// Uploads `bytes` of `data` into `b`, grown to hold them (16 bytes at least:
-// an empty list still binds a buffer).
-void uploadInto(Device& d, Buffer& b, const void* data, VkDeviceSize bytes) {
-    if (b.buffer == VK_NULL_HANDLE || b.size < std::max<VkDeviceSize>(bytes, 16u)) {
-        recreateStorageBuffer(d, b, bytes);
-    }
-    if (bytes > 0) {
-        const Transfer t{&b, const_cast<void*>(data), bytes};
-        upload(d, std::span(&t, 1));
-    }
-}
-
 void writeSet(GpuFluidContacts& c, VkDescriptorSet set, const Buffer& x, const Buffer& v, const Buffer& wall,
               const Buffer& motion) {
     std::array<const Buffer*, kBindings> buffers{};
@@ -121,9 +109,9 @@ void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces) {
         throw Error(fmt::format("gpu fluid contacts: a wall table of {} entries (2 at least)", surfaces.wallTable.size()));
     }
     Device& d = *c.device;
-    uploadInto(d, c.colliders, surfaces.colliders.data(), surfaces.colliders.size_bytes());
-    uploadInto(d, c.polygons, surfaces.polygons.data(), surfaces.polygons.size_bytes());
-    uploadInto(d, c.wallTable, surfaces.wallTable.data(), surfaces.wallTable.size_bytes());
+    uploadGrowing(d, c.colliders, surfaces.colliders.data(), surfaces.colliders.size_bytes());
+    uploadGrowing(d, c.polygons, surfaces.polygons.data(), surfaces.polygons.size_bytes());
+    uploadGrowing(d, c.wallTable, surfaces.wallTable.data(), surfaces.wallTable.size_bytes());
     c.colliderCount = static_cast<std::uint32_t>(surfaces.colliders.size());
     c.polygonCount = static_cast<std::uint32_t>(surfaces.polygons.size());
     c.tableSize = static_cast<std::uint32_t>(surfaces.wallTable.size());
@@ -133,11 +121,11 @@ void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces) {
 
 void setFluidBodies(GpuFluidContacts& c, const FluidBodies& bodies) {
     Device& d = *c.device;
-    uploadInto(d, c.shapes, bodies.shapes.data(), bodies.shapes.size_bytes());
-    uploadInto(d, c.shapesAtEnd, bodies.shapesAtEnd.data(), bodies.shapesAtEnd.size_bytes());
-    uploadInto(d, c.shapeCells, bodies.shapeCells.data(), bodies.shapeCells.size_bytes());
-    uploadInto(d, c.bodies, bodies.bodies.data(), bodies.bodies.size_bytes());
-    uploadInto(d, c.jointRows, bodies.jointRows.data(), bodies.jointRows.size_bytes());
+    uploadGrowing(d, c.shapes, bodies.shapes.data(), bodies.shapes.size_bytes());
+    uploadGrowing(d, c.shapesAtEnd, bodies.shapesAtEnd.data(), bodies.shapesAtEnd.size_bytes());
+    uploadGrowing(d, c.shapeCells, bodies.shapeCells.data(), bodies.shapeCells.size_bytes());
+    uploadGrowing(d, c.bodies, bodies.bodies.data(), bodies.bodies.size_bytes());
+    uploadGrowing(d, c.jointRows, bodies.jointRows.data(), bodies.jointRows.size_bytes());
     c.shapeCount = static_cast<std::uint32_t>(bodies.shapes.size());
     c.jointRowCount = static_cast<std::uint32_t>(bodies.jointRows.size());
     c.bodyCount = static_cast<std::uint32_t>(bodies.bodies.size());
@@ -170,7 +158,7 @@ void reserveBodyContacts(GpuFluidContacts& c, std::uint32_t n) {
 }
 
 void setFluidBodyShapesAtEnd(GpuFluidContacts& c, std::span<const kernels::FluidBodyShape> shapes) {
-    uploadInto(*c.device, c.shapesAtEnd, shapes.data(), shapes.size_bytes());
+    uploadGrowing(*c.device, c.shapesAtEnd, shapes.data(), shapes.size_bytes());
 }
 
 std::vector<kernels::FluidBodyMotion> readFluidBodyMotions(GpuFluidContacts& c) {

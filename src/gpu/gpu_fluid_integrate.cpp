@@ -24,13 +24,12 @@ constexpr std::uint32_t kWorkgroup = kernels::SD_FLUID_INTEGRATE_WORKGROUP;
 using kernels::FluidIntegratePush;
 using kernels::FluidIntegrateStats;
 
-/// The float an order key (fluid.glsl, fluidOrderKey) stands for.
+}  // namespace
+
 float fromOrderKey(std::uint32_t key) {
     const std::uint32_t bits = (key & 0x80000000u) != 0u ? key & 0x7FFFFFFFu : ~key;
     return std::bit_cast<float>(bits);
 }
-
-}  // namespace
 
 GpuFluidIntegrate::~GpuFluidIntegrate() {
     if (device == nullptr || device->device == VK_NULL_HANDLE) {

@@ -91,6 +91,9 @@ struct FluidSubstepReport {
 };
 FluidSubstepReport readFluidSubstepReport(GpuFluidSetup& setup, GpuFluidIntegrate& g);
 
+/// The float an order key (fluid.glsl, fluidOrderKey) stands for.
+float fromOrderKey(std::uint32_t key);
+
 /// The last integration's statistics and sleep, read back (tests): waits.
 struct FluidIntegrateReadback {
     float maxSpeed = 0.0f;      // m/s

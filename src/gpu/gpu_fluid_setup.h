@@ -17,6 +17,7 @@
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/vulkan_buffer.h"
 #include "gpu/vulkan_pipeline.h"
+#include "kernels/layout.glsl"
 
 #include <glm/glm.hpp>
 
@@ -106,6 +107,10 @@ void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid
                        glm::vec3 velocityChange);
 void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid,
                             const FluidSetupParams& params);
+
+/// The last setup's list entries and overflows (16 bytes): waits for the
+/// device.
+kernels::FluidSetupHeader readFluidSetupHeader(GpuFluidSetup& s);
 
 /// The last setup's results, read back (tests): waits for the device.
 struct FluidSetupReadback {

@@ -29,6 +29,8 @@ extern const std::uint32_t kFluidContacts[];
 extern const std::size_t kFluidContactsWords;
 extern const std::uint32_t kFluidIntegrate[];
 extern const std::size_t kFluidIntegrateWords;
+extern const std::uint32_t kFluidCarry[];
+extern const std::size_t kFluidCarryWords;
 // The renderer (src/render/shaders/).
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;

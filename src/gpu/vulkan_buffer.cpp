@@ -236,6 +236,16 @@ void destroyBuffer(Device& d, Buffer& b) {
     b = Buffer{};
 }
 
+void uploadGrowing(Device& d, Buffer& b, const void* data, VkDeviceSize bytes) {
+    if (b.buffer == VK_NULL_HANDLE || b.size < std::max<VkDeviceSize>(bytes, 16u)) {
+        recreateStorageBuffer(d, b, bytes);
+    }
+    if (bytes > 0) {
+        const Transfer t{&b, const_cast<void*>(data), bytes};
+        upload(d, std::span(&t, 1));
+    }
+}
+
 void upload(Device& d, std::span<const Transfer> transfers) {
     VkDeviceSize total = totalBytes(transfers);
     if (total == 0) {

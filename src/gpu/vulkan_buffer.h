@@ -44,6 +44,9 @@ struct Transfer {
 /// Copies every host range into its buffer through one staging buffer and one
 /// submission; makes them visible to compute shaders. Counts the bytes.
 void upload(Device& d, std::span<const Transfer> transfers);
+/// Uploads `bytes` of `data` into storage buffer `b`, made anew when too
+/// small (16 bytes at least: an empty list still binds a buffer).
+void uploadGrowing(Device& d, Buffer& b, const void* data, VkDeviceSize bytes);
 /// A sampled image with its own memory and one view of the whole image.
 struct Image {
     VkImage image = VK_NULL_HANDLE;

@@ -5,6 +5,7 @@
 
 #include "fluid/body_contacts.h"
 #include "fluid/fluid_state.h"
+#include "gpu/gpu_fluid_carry.h"
 #include "gpu/gpu_fluid_contacts.h"
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/gpu_fluid_integrate.h"
@@ -22,6 +23,7 @@
 
 #include <algorithm>
 #include <array>
+#include <cmath>
 #include <cstring>
 #include <utility>
 #include <vector>
@@ -35,6 +37,7 @@ struct DeviceFluid {
     std::unique_ptr<gpu::GpuFluidSolve> solve;
     std::unique_ptr<gpu::GpuFluidContacts> contacts;
     std::unique_ptr<gpu::GpuFluidIntegrate> integrate;
+    std::unique_ptr<gpu::GpuFluidCarry> carry;
     // The particles in particle order (the last grid order), tightly packed
     // as the CPU's arrays: positions and anchors dimension floats each,
     // velocities too, pressures, times still and serials one each.
@@ -452,7 +455,12 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
             recordSubstepSolve(cmd, g, params);
             if (!split) recordSubstepIntegrate(cmd, g, params);
         });
-        r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);  // the integration's part: below when split
+        // Split, the integration has not run yet: only the lists' entries.
+        if (split) {
+            r.listEntries = gpu::readFluidSetupHeader(*g.setup).entries;
+        } else {
+            r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
+        }
         if (bodies != nullptr) b = gpu::readFluidBodyReport(*g.contacts);
         const bool listsFit = r.listEntries <= g.setup->listCapacity;
         const bool bodiesFit =
@@ -504,6 +512,7 @@ DeviceFluidPtr createDeviceFluid(gpu::Device& d, const fluid::FluidState& f) {
     g->solve = gpu::createGpuFluidSolve(d);
     g->contacts = gpu::createGpuFluidContacts(d);
     g->integrate = gpu::createGpuFluidIntegrate(d);
+    g->carry = gpu::createGpuFluidCarry(d);
     uploadDeviceFluid(*g, f);
     return g;
 }
@@ -530,6 +539,32 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
     stats.device = true;
     f.steps += 1;
     return stats;
+}
+
+void carryDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, fluid::FluidBodyStep& moved) {
+    if (g.dimension != 2 || g.count == 0) return;
+    const std::vector<fluid::BodyEndPose> was = fluid::placeMovedBodies(f, moved);
+    std::vector<kernels::FluidBodyCarry> bodies(moved.bodies.size());
+    bool any = false;
+    for (std::size_t k = 0; k < bodies.size(); ++k) {
+        const fluid::StepBody& now = moved.bodies[k];
+        // The CPU's turn of x - then.centre by now.angle - then.angle.
+        const float turn = now.angle - was[k].angle;
+        bodies[k].then = was[k].centre;
+        bodies[k].now = now.centre;
+        bodies[k].cosTurn = std::cos(turn);
+        bodies[k].sinTurn = std::sin(turn);
+        bodies[k].moving = now.invMass > 0.0f ? 1u : 0u;
+        any = any || bodies[k].moving != 0u;
+    }
+    if (!any) return;
+    const std::vector<kernels::FluidBodyShape> shapes = shapesNow(moved);
+    const glm::vec4 box = gpu::carryOnDevice(*g.carry, *g.contacts, g.x, g.count, {shapes, moved.shapeBox, bodies});
+    if (box.x <= box.z) {
+        g.boxLow = glm::vec3(box.x, box.y, 0.0f);
+        g.boxHigh = glm::vec3(box.z, box.w, 0.0f);
+    }
+    g.onHost = false;
 }
 
 void appendDeviceBirths(DeviceFluid& g, const fluid::Births& births) {

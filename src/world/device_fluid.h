@@ -10,15 +10,17 @@
 // statistics the substep rule of the next step reads (fluid_step.cpp,
 // automaticSubsteps, the same function the CPU's step calls).
 //
-// Rigid bodies the fluid does not move (static, kinematic) are placed by the
-// host each substep (a few hundred bytes a shape) and met on the device.
+// Rigid bodies are placed by the host each substep (a few hundred bytes a
+// shape) and met on the device; the contacts with bodies the fluid moves
+// are solved in the CPU's order by one invocation, and the bodies'
+// velocities and impulses come back (48 bytes a body) for their end poses
+// and Box2D; the carry after Box2D's step runs on the device too.
 //
-// Not yet here: rigid bodies the fluid moves (the world keeps a fluid near
-// dynamic bodies on the CPU, src/world/fluid_api.cpp), the Sequential
-// solver order (an Error at creation), the jets' births computed on the
-// device (the host emits them from the jets' state alone and uploads them),
-// the renderer reading the device's buffers (the world reads the particles
-// back when the host reads them, src/world/fluid_api.cpp).
+// Not yet here: the Sequential solver order (an Error at creation), the
+// jets' births computed on the device (the host emits them from the jets'
+// state alone and uploads them), the renderer reading the device's buffers
+// (the world reads the particles back when the host reads them,
+// src/world/fluid_api.cpp).
 #pragma once
 
 #include <spindrift/fluid.h>
@@ -34,6 +36,7 @@ struct Device;
 namespace fluid {
 struct FluidState;
 struct Births;
+struct FluidBodyStep;
 }
 namespace kernels {
 struct ColliderParams;
@@ -67,6 +70,13 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
 /// particle) appended to the device's particles: 36 bytes a birth in 2D, 48
 /// in 3D, up; nothing down.
 void appendDeviceBirths(DeviceFluid& g, const fluid::Births& births);
+
+/// After Box2D's step: the particles inside the shapes of bodies the fluid
+/// moves carried with them, on the device (fluid::carryOutOfMovedBodies's
+/// rule; `moved`: the bodies at Box2D's poses, gathered from
+/// f.bodiesAtEnd). The shapes and moves go up, the particles' box comes
+/// back (24 bytes).
+void carryDeviceFluid(DeviceFluid& g, const fluid::FluidState& f, fluid::FluidBodyStep& moved);
 
 /// How many particles the device holds now.
 std::size_t deviceFluidCount(const DeviceFluid& g);

@@ -86,11 +86,6 @@ fluid::FluidBodyStep* gatherForDevice(World& w, std::size_t i, coupling::FluidLi
     return e.count > 0 ? bodies.gatherNear(f, glm::vec2(e.low), glm::vec2(e.high), e.fastest, dt) : nullptr;
 }
 
-/// Whether the fluid would move one of the gathered bodies (a dynamic one).
-bool movesBodies(const fluid::FluidBodyStep& s) {
-    return std::any_of(s.bodies.begin(), s.bodies.end(), [](const fluid::StepBody& b) { return b.invMass > 0.0f; });
-}
-
 void stepFluids(World& w, float dt, StepStats& stats) {
     if (w.fluids.empty()) return;
     checkColliders(w);
@@ -139,13 +134,8 @@ void settleFluids(World& w) {
             fluid::carryOutOfMovedBodies(w.pool, f, *moved, w.colliders);
             continue;
         }
-        // On the device: only a body the fluid moves carries particles, and
-        // the carry runs on the host (the particles read back, and uploaded
-        // again when one moved: the round trip a device pass will remove).
-        if (movesBodies(*moved) &&
-            fluid::carryOutOfMovedBodies(w.pool, hostFluid(w, i), *moved, w.colliders) > 0) {
-            fluidEdited(w, i);
-        }
+        // On the device, the same rule (no particle read back).
+        carryDeviceFluid(*w.deviceFluids[i], f, *moved);
     }
 }
 

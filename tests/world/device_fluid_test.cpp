@@ -705,7 +705,12 @@ TEST_F(DeviceFluidTest, AFloatingBoxSettlesAsOnTheCpu) {
     //   speed's mean magnitude over that second below 0.05 m/s on both (it
     //   floats, settling);
     // - the fluid stays on the device with the same particle count, and no
-    //   particle ends inside the box (beyond 2 mm) on the device.
+    //   particle ends inside the box (beyond 2 mm) on the device;
+    // - over the last second the device's steps read back no particle: at
+    //   most 500 bytes a substep (the lists' entries after the solve, 16;
+    //   the report after the integration, 336; the bodies' report, 16; the
+    //   box's velocities and impulses, 48; the carry's box, 24 a step),
+    //   where the particles alone are 20 KB.
     constexpr float kSpacing = 0.025f;
     OwnedWorld cpu(Backend::Cpu), vulkan(Backend::Vulkan);
     FluidDef def = waterDef(2, kSpacing, glm::vec3(1.0f, 0.25f, 0.0f));
@@ -721,8 +726,14 @@ TEST_F(DeviceFluidTest, AFloatingBoxSettlesAsOnTheCpu) {
     }
     float earlyGap = 0.0f;
     double cpuLate = 0.0, deviceLate = 0.0, cpuBob = 0.0, deviceBob = 0.0;
+    std::uint64_t lateSubsteps = 0, lateDown = 0;
     for (int i = 0; i < 180; ++i) {
+        const TransferStats before = transferStats(vulkan.id);
         const StepStats c = stepWorld(cpu.id, kDt), g = stepWorld(vulkan.id, kDt);
+        if (i >= 120) {
+            lateSubsteps += g.fluids.at(0).substeps;
+            lateDown += transferStats(vulkan.id).bytesDownloaded - before.bytesDownloaded;
+        }
         ASSERT_TRUE(g.fluids.at(0).device) << "step " << i;
         ASSERT_EQ(g.fluids.at(0).particles, c.fluids.at(0).particles);
         const BodySnapshot cb = readBodies(cpu.id).at(0), gb = readBodies(vulkan.id).at(0);
@@ -743,9 +754,11 @@ TEST_F(DeviceFluidTest, AFloatingBoxSettlesAsOnTheCpu) {
         deepest = std::max(deepest, std::min(0.1f - std::abs(r.x), 0.05f - std::abs(r.y)));
     }
     std::printf("a floating box, CPU / device: height apart by at most %.4f m over 0.5 s; over the last second mean "
-                "height %.4f / %.4f m, mean |vertical speed| %.4f / %.4f m/s; deepest particle inside the box on the "
-                "device %.4f m\n",
-                earlyGap, cpuLate, deviceLate, cpuBob, deviceBob, deepest);
+                "height %.4f / %.4f m, mean |vertical speed| %.4f / %.4f m/s, %llu bytes down over %llu substeps; "
+                "deepest particle inside the box on the device %.4f m\n",
+                earlyGap, cpuLate, deviceLate, cpuBob, deviceBob, static_cast<unsigned long long>(lateDown),
+                static_cast<unsigned long long>(lateSubsteps), deepest);
+    EXPECT_LE(lateDown, 500u * lateSubsteps);
     EXPECT_LT(earlyGap, 0.005f);
     EXPECT_NEAR(deviceLate, cpuLate, 0.005);
     EXPECT_LT(cpuBob, 0.05);

@@ -7,6 +7,7 @@
 // after a few steps the way any two runs a rounding apart do; the tolerances
 // below are stated against that spread.
 #include "coupling/fluid_link.h"
+#include "fluid/body_contacts.h"
 #include "fluid/fluid_state.h"
 #include "fluid/fluid_test_util.h"
 #include "fluid/number_density.h"
@@ -840,6 +841,70 @@ TEST_F(DeviceFluidTest, AJetPushesACrateAsOnTheCpu) {
     EXPECT_GT(devicePush, 0.2f);
     EXPECT_GT(cpuStrikes, 0u);
     EXPECT_NEAR(static_cast<double>(deviceStrikes), static_cast<double>(cpuStrikes), 0.05 * cpuStrikes);
+}
+
+TEST_F(DeviceFluidTest, TheCarryAfterBox2DsStepIsTheCpus) {
+    // After Box2D's step a particle inside a shape of a body the fluid moves
+    // goes with the body, from where the fluid's copy ended (here (0.5,
+    // 0.2), unturned) to where Box2D put it ((0.53, 0.21), turned by 0.2
+    // rad), then out through the nearest surface; neither move may cross a
+    // still edge (a static body's segment at x = 0.62). The device's carry
+    // (fluid_carry.comp) and the CPU's carryOutOfMovedBodies on copies of
+    // the same 600 particles: equal bit for bit (the same operations on the
+    // same numbers, the turn's cosine and sine computed on the host for
+    // both), and the rule acts: some particles move, and some are held by
+    // the still edge (inside the crate's new pose past x = 0.62 on the CPU's
+    // side of it: the crate straddles the edge).
+    test::FluidWorld world{1};
+    test::closedBox(world.id, glm::vec3(0.0f), glm::vec3(1.0f, 1.0f, 0.0f), 2);
+    createFluid(world.id, waterDef(2, 0.02f, glm::vec3(0.6f, 0.4f, 0.0f)));
+    World& w = worldFromId(world.id);
+    fluid::FluidState& cpu = *w.fluids.at(0);
+    fluid::FluidState device = cpu;
+    DeviceFluidPtr g = createDeviceFluid(*shared().device, device);
+    const fluid::LocalShape crate{kernels::SD_BODY_SHAPE_POLYGON,
+                                  {glm::vec2(-0.1f, -0.1f), glm::vec2(0.1f, -0.1f), glm::vec2(0.1f, 0.1f),
+                                   glm::vec2(-0.1f, 0.1f)},
+                                  0.0f};
+    const fluid::LocalShape edge{kernels::SD_BODY_SHAPE_SEGMENT, {glm::vec2(0.62f, 0.0f), glm::vec2(0.62f, 0.5f)},
+                                 0.0f};
+    fluid::FluidBodyStep moved;
+    fluid::StepBody box;
+    box.slot = 0;
+    box.centre = glm::vec2(0.53f, 0.21f);
+    box.angle = 0.2f;
+    box.invMass = 1.0f / 40.0f;
+    box.invInertia = 1.0f / 0.27f;
+    fluid::StepBody ground;
+    ground.slot = 1;
+    moved.bodies = {box, ground};
+    moved.shapeBody = {0, 1};
+    moved.shapeSource = {&crate, &edge};
+    cpu.bodiesAtEnd = {{0, glm::vec2(0.5f, 0.2f), 0.0f}, {1, glm::vec2(0.0f), 0.0f}};
+    device.bodiesAtEnd = cpu.bodiesAtEnd;
+    const std::vector<glm::vec2> before = cpu.p2.position;
+    fluid::FluidBodyStep onDevice = moved;
+    const std::uint64_t carried = fluid::carryOutOfMovedBodies(w.pool, cpu, moved, w.colliders);
+    carryDeviceFluid(*g, device, onDevice);
+    readDeviceFluid(*g, device);
+    ASSERT_EQ(device.p2.position.size(), cpu.p2.position.size());
+    std::size_t held = 0;
+    for (std::size_t i = 0; i < before.size(); ++i) {
+        const glm::vec2 x = before[i];
+        const glm::vec2 d = x - glm::vec2(0.5f, 0.2f);
+        const glm::vec2 to = glm::vec2(0.53f, 0.21f) + glm::vec2(std::cos(0.2f) * d.x - std::sin(0.2f) * d.y,
+                                                                  std::sin(0.2f) * d.x + std::cos(0.2f) * d.y);
+        const bool inside = std::abs(d.x) < 0.1f && std::abs(d.y) < 0.1f;
+        held += inside && to.x > 0.62f && cpu.p2.position[i] == x ? 1u : 0u;
+    }
+    const bool same = std::memcmp(device.p2.position.data(), cpu.p2.position.data(),
+                                  cpu.p2.position.size() * sizeof(glm::vec2)) == 0;
+    std::printf("the carry after Box2D's step: %llu of %zu particles carried on the CPU, %zu held by the still "
+                "edge; the device's %s\n",
+                static_cast<unsigned long long>(carried), before.size(), held, same ? "bit for bit the same" : "DIFFERENT");
+    EXPECT_TRUE(same);
+    EXPECT_GT(carried, 0u);
+    EXPECT_GT(held, 0u);
 }
 
 /// The static body of a tank's floor and walls (thick boxes) around [0, w]

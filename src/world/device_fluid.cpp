@@ -438,7 +438,7 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
     SubstepBodies prepared;
     if (bodies != nullptr) {
         prepared = prepareSubstepBodies(f, *bodies, params.cells2, dt);
-    } else if (g.contacts->shapeCount > 0) {
+    } else if (g.contacts->shapeCount > 0 || g.contacts->moves) {
         gpu::setFluidBodies(*g.contacts, {});
     }
     // One submission; two when the solve moves bodies (their end poses,

@@ -237,6 +237,10 @@ void solveColliders(uint i) {
 void orderDynamic() {
     uint slots = uint(args.cells.w);
     uint m = 0u;
+    if (args.cells.z <= 0) {
+        report.dynamic = 0u;  // no shapes: the find wrote no counts (bodies without shapes hold only joints)
+        return;
+    }
     for (uint i = 0u; i < args.count; ++i) {
         uint n = min(bodyCounts[i], slots);
         for (uint j = 0u; j < n; ++j) {

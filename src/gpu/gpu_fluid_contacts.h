@@ -7,11 +7,13 @@
 // (recordFluidSolve). On a device that rounds to nearest both are the CPU's
 // bit for bit.
 //
-// Rigid bodies the fluid does not move (static and kinematic, 2D) are found
-// and solved in the same passes, from shapes the host places each substep
-// (setFluidBodies): each such contact changes only its particle. Not yet
-// here: dynamic bodies (their contacts change the body too, solved on the
-// CPU in one fixed order).
+// Rigid bodies (2D) are found in the same passes, from shapes the host
+// places each substep (setFluidBodies). A contact with a body the fluid does
+// not move (static, kinematic) changes only its particle and is solved with
+// the particle's colliders; one with a body it moves (dynamic) changes the
+// body too, so two one-invocation passes list them in the CPU's order after
+// the find and solve them, then the joints' rows, after every per-particle
+// solve (the CPU's solveBodyContacts).
 #pragma once
 
 #include "gpu/gpu_fluid_setup.h"

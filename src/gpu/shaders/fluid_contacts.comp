@@ -1,16 +1,22 @@
 #version 450
 // The constraint fluid's contacts with static colliders on the device (the
 // CPU's findContacts and solveContacts in src/fluid/collide.cpp; slide 51).
-// Rigid bodies the fluid does not move (static and kinematic, 2D; the CPU's
-// findBodyContacts and solveBodyContacts in src/fluid/body_contacts.cpp) are
-// found and solved here too, after the colliders.
+// Rigid bodies (2D; the CPU's findBodyContacts and solveBodyContacts in
+// src/fluid/body_contacts.cpp) are found and solved here too, after the
+// colliders.
 // Passes (a specialization constant):
-//   0 find:  each particle's surfaces within reach this substep (speculative:
-//            what it could reach, plus a spacing for what the solve adds), as
-//            one bit per surface, and the colliders' share of its density
-//            and Jacobian (the motionless ghosts, src/fluid/wall_density.cpp);
-//   1 solve: each particle's contacts, in surface order, on the solve's
-//            working velocities (fluid_solve.comp records it between sweeps).
+//   0 find:    each particle's surfaces within reach this substep
+//              (speculative: what it could reach, plus a spacing for what
+//              the solve adds), as one bit per surface, and the colliders'
+//              share of its density and Jacobian (the motionless ghosts,
+//              src/fluid/wall_density.cpp); its body contacts and strikes;
+//   1 solve:   each particle's contacts, in surface order, then those with
+//              bodies the fluid does not move, on the solve's working
+//              velocities (fluid_solve.comp records it between sweeps);
+//   2 order:   the contacts with bodies the fluid moves, listed in the CPU's
+//              order (one invocation);
+//   3 dynamic: those solved in that order, then the joints' rows (one
+//              invocation, after every solve pass).
 // Surfaces are the world's planes, spheres and boxes in creation order, then
 // the fluid's polygons, as on the CPU. The solve pass recomputes each
 // surface at the particle's position instead of storing it: the same

@@ -26,9 +26,6 @@
 namespace spindrift::fluid {
 namespace {
 
-/// Distance (m) a put-back particle keeps from the surface (fluid.glsl).
-constexpr float kSkin = kernels::SD_FLUID_SKIN;
-
 glm::vec2 rotate(float angle, glm::vec2 v) {
     const float c = std::cos(angle), s = std::sin(angle);
     return {c * v.x - s * v.y, s * v.x + c * v.y};
@@ -370,11 +367,8 @@ std::uint64_t carryOutOfMovedBodies(WorkerPool& pool, FluidState& f, FluidBodySt
                 const BodyEndPose& then = was[shape.body];
                 glm::vec2 to = now.centre + rotate(now.angle - then.angle, x - then.centre);
                 if (blocked(s, colliders, f, x, to)) break;
-                const kernels::FluidSurface out = kernels::fluidBodyShapeSurface(shape, glm::vec3(to, 0.0f));
-                if (out.distance < 0.0f) {
-                    const glm::vec2 pushed = to + glm::vec2(out.normal) * (kSkin - out.distance);
-                    if (!blocked(s, colliders, f, to, pushed)) to = pushed;
-                }
+                const glm::vec2 pushed = kernels::fluidPushOutOfShape(shape, to);  // `to` when outside
+                if (pushed != to && !blocked(s, colliders, f, to, pushed)) to = pushed;
                 carried[chunk] += p.position[i] != to ? 1u : 0u;
                 p.position[i] = to;
                 break;

@@ -161,9 +161,6 @@ void setFluidBodyShapesAtEnd(GpuFluidContacts& c, std::span<const kernels::Fluid
     uploadGrowing(*c.device, c.shapesAtEnd, shapes.data(), shapes.size_bytes());
 }
 
-std::vector<kernels::FluidBodyMotion> readFluidBodyMotions(GpuFluidContacts& c) {
-    return downloadArray<kernels::FluidBodyMotion>(*c.device, c.bodies, c.bodyCount);
-}
 
 void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const GpuFluidSetup& setup, Buffer& wall,
                              const FluidContactParams& params, const Buffer* order, const Buffer* ids,
@@ -234,10 +231,11 @@ void recordFluidContactsSolve(VkCommandBuffer cmd, GpuFluidContacts& c, const Bu
     }
 }
 
-FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c) {
+FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c, std::span<const Transfer> alongside) {
     FluidBodyReadback r;
-    const Transfer header{&c.bodyReport, &r.report, sizeof r.report};
-    download(*c.device, std::span(&header, 1));
+    std::vector<Transfer> down{{&c.bodyReport, &r.report, sizeof r.report}};
+    down.insert(down.end(), alongside.begin(), alongside.end());
+    download(*c.device, down);
     const std::uint32_t impacts = std::min(r.report.impacts, c.impactRoom);
     if (impacts > 0) {
         r.impacts.resize(impacts);

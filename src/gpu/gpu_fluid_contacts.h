@@ -136,12 +136,8 @@ void setFluidSurfaces(GpuFluidContacts& c, const FluidSurfaces& surfaces);
 void setFluidBodies(GpuFluidContacts& c, const FluidBodies& bodies);
 
 /// The shapes at the substep's end poses, after a solve that moved bodies
-/// (the host advanced its copies from readFluidBodyMotions).
+/// (the host advanced its copies from the bodies read back with the report).
 void setFluidBodyShapesAtEnd(GpuFluidContacts& c, std::span<const kernels::FluidBodyShape> shapes);
-
-/// The bodies after the last solve (velocities changed by the contacts and
-/// joints, the step's impulses summed): waits for the device.
-std::vector<kernels::FluidBodyMotion> readFluidBodyMotions(GpuFluidContacts& c);
 
 /// Room for `slots` body contacts a particle and `impacts` impacts a
 /// substep (after a find that reported more; the substep runs again).
@@ -161,8 +157,10 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
                              const Buffer* ids = nullptr, Buffer* stills = nullptr);
 
 /// The last find's body report and impacts (two transfers when there are
-/// impacts, one otherwise): waits for the device.
-FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c);
+/// impacts, one otherwise), and `alongside` in the report's transfer (the
+/// bodies after a solve that moved them, `c.bodies`, say): waits for the
+/// device.
+FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c, std::span<const Transfer> alongside = {});
 
 /// Records the solve pass on `motion` (the solve's working velocities, 2 x
 /// dimension floats a particle) of the last recorded find. The first call

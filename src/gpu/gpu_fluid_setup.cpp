@@ -179,13 +179,6 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
     recordFluidConstraints(cmd, s, grid, params);
 }
 
-kernels::FluidSetupHeader readFluidSetupHeader(GpuFluidSetup& s) {
-    kernels::FluidSetupHeader header{};
-    const Transfer down{&s.header, &header, sizeof header};
-    download(*s.device, std::span(&down, 1));
-    return header;
-}
-
 FluidSetupReadback readFluidSetup(GpuFluidSetup& s) {
     Device& d = *s.device;
     FluidSetupReadback r;

@@ -91,7 +91,7 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries);
 /// cells are the grid's), into `cmd`. The
 /// lists hold at least count x 64 entries (2D) or count x 256 (3D) unless
 /// reserved larger; entries past the capacity are counted, not written
-/// (readFluidSetupHeader). Waits for earlier compute and transfer writes; its
+/// (readFluidSubstepReport). Waits for earlier compute and transfer writes; its
 /// results are visible to later compute and transfer commands. Rewrites the
 /// descriptor set, so no other setup of `s` may be pending or recorded in the
 /// same command buffer. Throws Error for a count that does not match the
@@ -107,10 +107,6 @@ void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid
                        glm::vec3 velocityChange);
 void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid,
                             const FluidSetupParams& params);
-
-/// The last setup's list entries and overflows (16 bytes): waits for the
-/// device.
-kernels::FluidSetupHeader readFluidSetupHeader(GpuFluidSetup& s);
 
 /// The last setup's results, read back (tests): waits for the device.
 struct FluidSetupReadback {

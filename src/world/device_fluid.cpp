@@ -400,10 +400,11 @@ void uploadSubstepBodies(DeviceFluid& g, const fluid::FluidState& f, const fluid
 }
 
 /// After a solve that moved bodies: the fluid's copies take the device's
-/// velocities and the step's impulses, move on by dt (advanceBodies), and
-/// the shapes at their end poses go up for the integration.
-void advanceMovedBodies(DeviceFluid& g, fluid::FluidBodyStep& s, float dt) {
-    const std::vector<kernels::FluidBodyMotion> motions = gpu::readFluidBodyMotions(*g.contacts);
+/// velocities and the step's impulses (`motions`, read back), move on by dt
+/// (advanceBodies), and the shapes at their end poses go up for the
+/// integration.
+void advanceMovedBodies(DeviceFluid& g, fluid::FluidBodyStep& s, const std::vector<kernels::FluidBodyMotion>& motions,
+                        float dt) {
     for (std::size_t k = 0; k < s.bodies.size() && k < motions.size(); ++k) {
         s.bodies[k].velocity = motions[k].velocity;
         s.bodies[k].angularVelocity = motions[k].angularVelocity;
@@ -449,19 +450,26 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
     const bool split = prepared.moves;
     gpu::FluidSubstepReport r;
     gpu::FluidBodyReadback b;
+    std::vector<kernels::FluidBodyMotion> motions(split ? bodies->bodies.size() : 0);
     for (;;) {
         if (bodies != nullptr) uploadSubstepBodies(g, f, *bodies, prepared, params.grid);
         gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) {
             recordSubstepSolve(cmd, g, params);
             if (!split) recordSubstepIntegrate(cmd, g, params);
         });
-        // Split, the integration has not run yet: only the lists' entries.
+        // Split, the integration has not run yet: the lists' entries and the
+        // bodies after the solve, in the bodies' report's transfer.
         if (split) {
-            r.listEntries = gpu::readFluidSetupHeader(*g.setup).entries;
+            kernels::FluidSetupHeader header{};
+            const std::array<gpu::Transfer, 2> alongside{
+                gpu::Transfer{&g.setup->header, &header, sizeof header},
+                gpu::Transfer{&g.contacts->bodies, motions.data(), motions.size() * sizeof(motions[0])}};
+            b = gpu::readFluidBodyReport(*g.contacts, alongside);
+            r.listEntries = header.entries;
         } else {
             r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
+            if (bodies != nullptr) b = gpu::readFluidBodyReport(*g.contacts);
         }
-        if (bodies != nullptr) b = gpu::readFluidBodyReport(*g.contacts);
         const bool listsFit = r.listEntries <= g.setup->listCapacity;
         const bool bodiesFit =
             b.report.mostContacts <= g.contacts->bodySlots && b.report.impacts <= g.contacts->impactRoom;
@@ -473,7 +481,7 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
         }
     }
     if (split) {
-        advanceMovedBodies(g, *bodies, dt);
+        advanceMovedBodies(g, *bodies, motions, dt);
         gpu::submitOnce(*g.device, [&](VkCommandBuffer cmd) { recordSubstepIntegrate(cmd, g, params); });
         r = gpu::readFluidSubstepReport(*g.setup, *g.integrate);
     }

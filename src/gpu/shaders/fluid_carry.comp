@@ -91,10 +91,8 @@ vec2 carried(vec2 x) {
         precise float turnedY = body.sinTurn * d.x + body.cosTurn * d.y;
         precise vec2 to = body.now + vec2(turnedX, turnedY);
         if (blocked(x, to)) return x;
-        if (fluidBodyShapeSurface(shape, vec3(to.x, to.y, 0.0f)).distance < 0.0f) {
-            vec2 pushed = fluidPushOutOfShape(shape, to);
-            if (!blocked(to, pushed)) to = pushed;
-        }
+        vec2 pushed = fluidPushOutOfShape(shape, to);  // `to` when outside
+        if (pushed != to && !blocked(to, pushed)) to = pushed;
         return to;
     }
     return x;

@@ -24,18 +24,22 @@ namespace {
 // vkDestroyInstance (Mesa 22.3.6, loader 1.3.239). Keeping the libraries
 // mapped (RTLD_NODELETE) keeps that memory reachable, so LeakSanitizer stays
 // on for everything else instead of being switched off or given a blanket
-// suppression. The loader still opens and closes them as usual.
+// suppression. The loader still opens and closes them as usual. Done before
+// the process's first instance, not at start-up: lavapipe brings LLVM, and
+// mapping it in each of the test suite's 600 processes, most of which never
+// touch Vulkan, cost about 0.1 s apiece.
+void keepVulkanLibrariesLoaded() {
 #if defined(__SANITIZE_ADDRESS__)
-struct KeepVulkanLibrariesLoaded {
-    KeepVulkanLibrariesLoaded() {
+    static const bool kept = [] {
         for (const char* library : {"libvulkan_lvp.so", "libVkLayer_MESA_device_select.so",
                                     "libVkLayer_khronos_validation.so"}) {
             dlopen(library, RTLD_LAZY | RTLD_NODELETE);  // absent: nothing to keep
         }
-    }
-};
-const KeepVulkanLibrariesLoaded keepVulkanLibrariesLoaded;
+        return true;
+    }();
+    (void)kept;
 #endif
+}
 
 constexpr const char* kValidationLayer = "VK_LAYER_KHRONOS_validation";
 
@@ -75,6 +79,7 @@ bool hasLayer(const char* name) {
 }
 
 VkInstance createInstance(bool validation, DebugLog* log, const std::vector<std::string>& extra) {
+    keepVulkanLibrariesLoaded();
     std::uint32_t version = VK_API_VERSION_1_0;
     check(vkEnumerateInstanceVersion(&version), "vkEnumerateInstanceVersion");
     if (version < VK_API_VERSION_1_2) {

@@ -12,6 +12,7 @@
 
 #include <algorithm>
 #include <array>
+#include <utility>
 
 namespace spindrift::gpu {
 namespace {
@@ -48,6 +49,8 @@ void writeSet(GpuFluidContacts& c, VkDescriptorSet set, const Buffer& x, const B
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_DYNAMIC] = &c.dynamicList;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_JOINT_ROWS] = &c.jointRows;
     buffers[kernels::SD_FLUID_CONTACTS_BINDING_STILLS] = c.boundStills;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_DYNAMIC_STARTS] = &c.dynamicStarts;
+    buffers[kernels::SD_FLUID_CONTACTS_BINDING_GROUP_STARTS] = &c.groupStarts;
     writeStorageSet(*c.device, set, buffers);
 }
 
@@ -80,7 +83,8 @@ GpuFluidContacts::~GpuFluidContacts() {
         return;
     }
     for (Buffer* b : {&colliders, &polygons, &wallTable, &masks, &shapes, &shapesAtEnd, &shapeCells, &bodies,
-                      &bodyContacts, &bodyCounts, &bodyReport, &dynamicList, &jointRows}) {
+                      &bodyContacts, &bodyCounts, &bodyReport, &dynamicList, &dynamicStarts, &groupStarts,
+                      &jointRows}) {
         destroyBuffer(*device, *b);
     }
     destroyComputePasses(*device, passes);
@@ -90,7 +94,8 @@ std::unique_ptr<GpuFluidContacts> createGpuFluidContacts(Device& d) {
     auto c = std::make_unique<GpuFluidContacts>();  // destroys what was made if a step throws
     c->device = &d;
     createComputePasses(d, kBindings, sizeof(FluidContactsPush), 2,
-                        std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), 4, "fluid_contacts",
+                        std::span(shaders::kFluidContacts, shaders::kFluidContactsWords), kernels::SD_FLUID_CONTACTS_PASSES,
+                        "fluid_contacts",
                         c->passes);
     const glm::vec2 empty[2] = {glm::vec2(0.0f), glm::vec2(0.0f)};
     setFluidSurfaces(*c, {{}, {}, empty, 0.0f, 1.0f});
@@ -154,6 +159,9 @@ void reserveBodyContacts(GpuFluidContacts& c, std::uint32_t n) {
                           std::max<VkDeviceSize>(VkDeviceSize{room} * c.bodySlots * sizeof(kernels::FluidBodyContact), 16));
     recreateStorageBuffer(*c.device, c.bodyCounts, std::max<VkDeviceSize>(VkDeviceSize{room} * 4, 16));
     recreateStorageBuffer(*c.device, c.dynamicList, std::max<VkDeviceSize>(VkDeviceSize{room} * c.bodySlots * 4, 16));
+    recreateStorageBuffer(*c.device, c.dynamicStarts, std::max<VkDeviceSize>(VkDeviceSize{room} * 4, 16));
+    const VkDeviceSize groups = (VkDeviceSize{room} + kWorkgroup - 1) / kWorkgroup;
+    recreateStorageBuffer(*c.device, c.groupStarts, std::max<VkDeviceSize>(groups * 4, 16));
     c.bodyCapacity = room;
 }
 
@@ -203,9 +211,15 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
         dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND], c.passes.pipelineLayout,
                         c.passes.sets[0], &push, sizeof(push), groups);
         if (c.moves) {
-            computeToCompute(cmd);
-            dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_ORDER], c.passes.pipelineLayout,
-                            c.passes.sets[0], &push, sizeof(push), 1);
+            // The list of contacts with bodies the fluid moves, by a prefix
+            // sum of their counts: within workgroups, over them, then written.
+            for (const auto& [pass, dispatched] : {std::pair{kernels::SD_FLUID_CONTACTS_PASS_COUNT, groups},
+                                                   std::pair{kernels::SD_FLUID_CONTACTS_PASS_GROUPS, 1u},
+                                                   std::pair{kernels::SD_FLUID_CONTACTS_PASS_ORDER, groups}}) {
+                computeToCompute(cmd);
+                dispatchCompute(cmd, c.passes.pipelines[pass], c.passes.pipelineLayout, c.passes.sets[0], &push,
+                                sizeof(push), dispatched);
+            }
         }
     }
     computeToCompute(cmd);
@@ -244,6 +258,23 @@ FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c, std::span<const Trans
         download(*c.device, std::span(&records, 1));
     }
     return r;
+}
+
+FluidDynamicListing readFluidDynamicListing(GpuFluidContacts& c) {
+    FluidDynamicListing l;
+    if (c.shapeCount == 0 || c.count == 0) return l;
+    const kernels::FluidBodyReport report = readFluidBodyReport(c).report;
+    l.slots = c.bodySlots;
+    l.counts.resize(c.count);
+    l.contacts.resize(std::size_t{c.count} * c.bodySlots);
+    l.bodies.resize(c.bodyCount);
+    l.list.resize(report.dynamic);
+    std::vector<Transfer> down{{&c.bodyCounts, l.counts.data(), l.counts.size() * 4},
+                               {&c.bodyContacts, l.contacts.data(), l.contacts.size() * sizeof(kernels::FluidBodyContact)}};
+    if (!l.bodies.empty()) down.push_back({&c.bodies, l.bodies.data(), l.bodies.size() * sizeof(kernels::FluidBodyMotion)});
+    if (!l.list.empty()) down.push_back({&c.dynamicList, l.list.data(), l.list.size() * 4});
+    download(*c.device, down);
+    return l;
 }
 
 }  // namespace spindrift::gpu

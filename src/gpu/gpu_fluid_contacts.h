@@ -92,6 +92,8 @@ struct GpuFluidContacts {
     Buffer bodyCounts;    // uint[capacity]
     Buffer bodyReport;    // FluidBodyReport, FluidBodyImpact[impactRoom]
     Buffer dynamicList;   // uint[bodySlots capacity]: the dynamic contacts in order
+    Buffer dynamicStarts; // uint[capacity], groupStarts uint[workgroups]: the
+    Buffer groupStarts;   //   listing's prefix sum (fluid_contacts.comp)
     Buffer jointRows;     // FluidJointRow[]
     std::uint32_t shapeCount = 0;
     std::uint32_t jointRowCount = 0;
@@ -161,6 +163,20 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
 /// bodies after a solve that moved them, `c.bodies`, say): waits for the
 /// device.
 FluidBodyReadback readFluidBodyReport(GpuFluidContacts& c, std::span<const Transfer> alongside = {});
+
+/// The last find's contacts with bodies as the listing read them, and the
+/// list it wrote (tests: the list is a prefix sum on the device, the CPU's
+/// order by definition): every particle's contact count (may exceed
+/// `slots`), its `slots` contacts, the bodies, and the list's entries
+/// (indices into `contacts`). Waits for the device.
+struct FluidDynamicListing {
+    std::uint32_t slots = 0;
+    std::vector<std::uint32_t> counts;
+    std::vector<kernels::FluidBodyContact> contacts;
+    std::vector<kernels::FluidBodyMotion> bodies;
+    std::vector<std::uint32_t> list;
+};
+FluidDynamicListing readFluidDynamicListing(GpuFluidContacts& c);
 
 /// Records the solve pass on `motion` (the solve's working velocities, 2 x
 /// dimension floats a particle) of the last recorded find. The first call

@@ -2,8 +2,8 @@
 // (src/gpu/shaders/effects_update.comp), written once for both languages:
 // limits, workgroup size, passes, specialization constant ids, binding
 // numbers, buffer headers and the push constant block; the same for the
-// back-to-front sort; and the renderer's frame uniforms, sprite and splat
-// contracts. The shader declares its
+// back-to-front sort and the fluid's passes (the renderer's contracts are
+// in render_layout.glsl). The shader declares its
 // buffer blocks with these headers as members; src/gpu sizes, fills and reads
 // the buffers with the same structs. Headers are 4-byte fields in groups of
 // four (std430 offsets equal C++ offsets); the static_asserts at the end fail
@@ -319,8 +319,12 @@ struct FluidSolvePush {
 // CPU's findContacts and solveContacts (src/fluid/collide.cpp).
 SD_CONST uint SD_FLUID_CONTACTS_PASS_FIND = 0u;   // the PASS specialization constant (id 0)
 SD_CONST uint SD_FLUID_CONTACTS_PASS_SOLVE = 1u;
-SD_CONST uint SD_FLUID_CONTACTS_PASS_ORDER = 2u;    // the dynamic contacts listed in the CPU's order (one invocation)
+SD_CONST uint SD_FLUID_CONTACTS_PASS_ORDER = 2u;    // the dynamic contacts listed in the CPU's order (per particle)
 SD_CONST uint SD_FLUID_CONTACTS_PASS_DYNAMIC = 3u;  // they and the joints' rows solved in it (one invocation)
+// Before ORDER, an exclusive prefix sum of each particle's dynamic contacts:
+SD_CONST uint SD_FLUID_CONTACTS_PASS_COUNT = 4u;   // within each workgroup, and each workgroup's total
+SD_CONST uint SD_FLUID_CONTACTS_PASS_GROUPS = 5u;  // over the workgroups' totals (one invocation)
+SD_CONST uint SD_FLUID_CONTACTS_PASSES = 6u;
 SD_CONST uint SD_FLUID_CONTACTS_WORKGROUP = 64u;
 // Surfaces a fluid's contacts tell apart: one bit each in a particle's mask.
 SD_CONST uint SD_FLUID_MAX_SURFACES = 32u;
@@ -352,7 +356,11 @@ SD_CONST uint SD_FLUID_CONTACTS_BINDING_IDS = 15u;          // uint[n], particle
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_DYNAMIC = 16u;     // uint[bodySlots n]
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_JOINT_ROWS = 17u;  // FluidJointRow[]
 SD_CONST uint SD_FLUID_CONTACTS_BINDING_STILLS = 18u;      // float[n] (s), particle order
-SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 19u;
+// The listing's prefix sum: each particle's first place in DYNAMIC within
+// its workgroup, and each workgroup's first place (its total until GROUPS).
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_DYNAMIC_STARTS = 19u;  // uint[n]
+SD_CONST uint SD_FLUID_CONTACTS_BINDING_GROUP_STARTS = 20u;    // uint[workgroups]
+SD_CONST uint SD_FLUID_CONTACTS_BINDINGS = 21u;
 
 // What the body contacts' find reports (std430, 16 bytes), followed in its
 // buffer by the impacts it found.
@@ -360,7 +368,7 @@ struct FluidBodyReport {
     uint contacts;      // contacts found, all particles
     uint mostContacts;  // the most one particle found (> bodySlots: the find runs again with more room)
     uint impacts;       // impacts found (> impactRoom: the same)
-    uint dynamic;       // contacts with bodies the fluid moves (the ORDER pass)
+    uint dynamic;       // contacts with bodies the fluid moves (the GROUPS pass)
 };
 // A particle's strike on a body shape (the CPU's BodyImpact, and where it
 // came from: sorted by place, then shape, it is the CPU's order). 32 bytes.
@@ -476,147 +484,6 @@ struct FluidIntegratePush {
     ivec4 cells;        // the grid's cells x, y; body shapes; unused
 };
 
-// The renderer (src/render): what every render pipeline reads, the camera and
-// the frame's settings, a std140 uniform block (src/render/shaders/frame.glsl).
-// 592 bytes.
-SD_CONST uint SD_RENDER_SET_FRAME = 0u;
-SD_CONST uint SD_RENDER_BINDING_FRAME = 0u;         // uniform FrameUniforms
-SD_CONST uint SD_RENDER_BINDING_BACKGROUND = 1u;    // sampler2D, the background image
-SD_CONST uint SD_RENDER_BINDING_SCENE_BEHIND = 2u;  // sampler2D, the colour target before the water
-SD_CONST uint SD_RENDER_BINDING_DEPTH = 3u;         // sampler2D, the opaque depth (pass B's read-only depth)
-SD_CONST uint SD_RENDER_BINDING_MATERIALS = 4u;     // sampler2DArray, the colliders' and bodies' textures
-SD_CONST uint SD_RENDER_FRAME_BINDINGS = 5u;
-// Point lights a frame carries (RenderDef::lights; kRenderMaxLights).
-SD_CONST uint SD_MAX_LIGHTS = 8u;
-struct FrameUniforms {
-    mat4 viewProj;
-    vec4 eye;             // xyz camera position (m); w: 1 orthographic, 0 perspective
-    vec4 right;           // xyz camera right (world); w: viewport width (px)
-    vec4 up;              // xyz camera up (world); w: viewport height (px)
-    vec4 forward;         // xyz view direction (world); w: world time (s)
-    vec4 sun;             // xyz unit direction toward the sun
-    vec4 backgroundTop;   // rgb linear; w: background kind (0 colour, 1 gradient, 2 image)
-    vec4 backgroundBottom;
-    vec4 waterColour;     // rgb linear; a: opacity
-    vec4 waterFlags;      // x refraction, y edges (0 or 1); z refraction strength (uv units)
-    vec4 surface;         // liquid surface: xy one field texel (uv); z depth-tint reach (uv of the frame's height); w field threshold
-    vec4 depthRange;      // the projection's near x and far y planes (m along the view; may be < 0 orthographic); z 1 orthographic
-    mat4 invViewProj;     // clip to world: a pixel's world point (the 2D liquid's light)
-    vec4 ambient;         // rgb linear, the sky's light relative to the default; w: point lights in use
-    vec4 sunColour;       // rgb linear, the sun's light relative to the default
-    vec4 lightPosition[SD_MAX_LIGHTS];  // xyz world (m); w reach (m)
-    vec4 lightColour[SD_MAX_LIGHTS];    // rgb linear, at the light (flicker and the emitter's rate included)
-};
-
-// Effect sprites (src/render/shaders/sprites.*, src/render/sprite_pass.cpp):
-// set 1 of the sprite pipelines, in order, then the sprite image.
-SD_CONST uint SD_SPRITE_SET = 1u;
-SD_CONST uint SD_SPRITE_BINDING_EMITTER = 0u;     // EmitterParams
-SD_CONST uint SD_SPRITE_BINDING_POSITIONS = 1u;   // float[3 capacity], the GPU world's layout
-SD_CONST uint SD_SPRITE_BINDING_VELOCITIES = 2u;
-SD_CONST uint SD_SPRITE_BINDING_AGES = 3u;
-SD_CONST uint SD_SPRITE_BINDING_BIRTHS = 4u;
-SD_CONST uint SD_SPRITE_BINDING_ROTATIONS = 5u;
-SD_CONST uint SD_SPRITE_BINDING_ORDER = 6u;       // uint[capacity]: slot of instance i
-SD_CONST uint SD_SPRITE_BINDING_RUNS = 7u;        // uvec4[]: stateless runs
-SD_CONST uint SD_SPRITE_BINDING_TRAILS = 8u;      // float[3 points capacity]: trail.glsl
-SD_CONST uint SD_SPRITE_BINDING_TRAIL_LOOK = 9u;  // TrailLook
-SD_CONST uint SD_SPRITE_BINDING_IMAGE = 10u;      // sampler2D
-SD_CONST uint SD_SPRITE_BUFFERS = 10u;            // storage buffers before the image
-// SpriteDraw::mode.
-SD_CONST uint SD_SPRITE_MODE_SLOTS = 0u;      // stored slots in instance order
-SD_CONST uint SD_SPRITE_MODE_ORDERED = 1u;    // stored slots via order[] (back to front)
-SD_CONST uint SD_SPRITE_MODE_STATELESS = 2u;  // stateless runs
-// The sprite pipelines' push constants (vertex and fragment). 48 bytes.
-struct SpriteDraw {
-    uint mode;      // SD_SPRITE_MODE_*
-    uint runCount;  // stateless runs
-    float stretch;  // s: quad lengthened by speed x stretch (m) along the screen velocity
-    uint textured;  // 1: sample the sprite image
-    uint columns;   // flipbook: frames across the image (1: the whole image)
-    uint rows;      // flipbook: frames down the image
-    uint frames;    // flipbook: frames played (rows x columns or fewer)
-    float fps;      // flipbook: frames/s, looping; 0: once over the life
-    uint blendFrames;    // flipbook: 1 cross-fades to the next frame
-    float softDistance;  // m: soft particles' depth fade; 0 off
-    uint trailPoints;    // > 0: draw the trails (6 (trailPoints - 1) vertices an instance), not the quads
-    uint trailHead;      // ring index of the trails' newest points (trail.glsl)
-};
-
-// How an emitter's trails look (EmitterDef::trail), set 1 of the sprite
-// pipelines. 368 bytes.
-struct TrailLook {
-    CurveParams widthOverLength;  // .x multiplies width, head (t = 0) to tail (1)
-    CurveParams colorOverLength;  // multiplies the particle's colour
-    float width;                  // m, at the head
-    uint pad0, pad1, pad2;
-};
-
-// Weighted blended OIT (src/render/oit_pass.cpp): the accumulation targets,
-// read by the composite at set 1.
-SD_CONST uint SD_OIT_SET = 1u;
-SD_CONST uint SD_OIT_BINDING_ACCUM = 0u;   // sampler2D: rgb sum of w a c, a product of (1 - a) (the revealage)
-SD_CONST uint SD_OIT_BINDING_WEIGHTS = 1u;  // sampler2D: r sum of w a
-SD_CONST uint SD_OIT_BINDINGS = 2u;
-
-// Fluid splats (src/render/shaders/splats.*, src/render/fluid_splats.cpp):
-// one instance per particle, splash or bubble, set 1 binding 0. 48 bytes.
-SD_CONST uint SD_SPLAT_SET = 1u;
-SD_CONST uint SD_SPLAT_BINDING_INSTANCES = 0u;
-SD_CONST uint SD_SPLAT_WATER = 0u;   // SplatInstance::shade.z
-SD_CONST uint SD_SPLAT_SPLASH = 1u;
-SD_CONST uint SD_SPLAT_BUBBLE = 2u;
-struct SplatInstance {
-    vec4 centre;  // xyz position (m); w: radius (m) across the major axis
-    vec4 axis;    // xyz unit major axis (2D: z = 0; (1,0,0) unoriented); w: stretch >= 1 (major semi-axis / radius)
-    vec4 shade;   // x: brightness (1 base, > 1 sun highlight, splashes); y: edge factor in [0,1]; z: SD_SPLAT_*; w: rho / rho0 (0 for splashes)
-                  // (liquid surface: x the kernel's amplitude, y foam in [0,1]; centre.w the kernel radius)
-};
-
-// The 2D liquid surface (src/render/surface_pass.cpp, shaders surface_*): the
-// particles' kernels (SplatInstance, set 1 of surface_field.vert as for the
-// splats) are summed into a reduced-resolution field, blurred twice (one
-// direction each), then the composite reads the field at set 1 binding 0.
-// The blur reads the field the same way.
-SD_CONST uint SD_SURFACE_SET = 1u;
-SD_CONST uint SD_SURFACE_BINDING_FIELD = 0u;  // sampler2D: r sum of kernels, g sum of kernels x foam
-// The blur's and the composite's push constants (vertex and fragment). 16 bytes.
-struct SurfacePush {
-    vec4 values;  // blur: xy one field texel along the blur's direction (uv); composite: x half side of its quad (m)
-};
-
-// 3D fluids drawn as a screen-space liquid (src/render/screen_fluid_pass.cpp,
-// shaders screen_fluid_*; van der Laan, Green and Sainz 2009): spheres' view
-// depths and their summed thickness at reduced resolution, the depth smoothed,
-// then a composite. Set 1 of the smoothing and composite pipelines; the
-// spheres read the splats' instance set as surface_field.vert does.
-SD_CONST uint SD_SCREEN_FLUID_SET = 1u;
-SD_CONST uint SD_SCREEN_FLUID_BINDING_DEPTH = 0u;      // sampler2D: view depth, (z - near) / (far - near); 1: none
-SD_CONST uint SD_SCREEN_FLUID_BINDING_THICKNESS = 1u;  // sampler2D: r water thickness (m), g thickness x foam
-// Push constants of the screen-space liquid's passes (vertex and fragment). 32 bytes.
-struct ScreenFluidPush {
-    vec4 pass;  // smoothing: xy one texel step (texels), z depth falloff (m); sphere and composite: w sphere radius (m)
-    vec4 view;  // perspective: x tan of half the horizontal field of view, y of the vertical one, z 0;
-                // orthographic: x, y half the view's width and height (m), z 1
-};
-
-// Light (src/render/light_pass.cpp, shaders bloom_*.frag and tone_map.frag):
-// the frame drawn into a float target, its bloom at reduced resolution, and
-// the tone map into the 8-bit sRGB image. Set 1 of their pipelines.
-SD_CONST uint SD_LIGHT_SET = 1u;
-SD_CONST uint SD_LIGHT_BINDING_SOURCE = 0u;  // sampler2D: the float frame (threshold, tone map) or the bloom level read
-SD_CONST uint SD_LIGHT_BINDING_BLOOM = 1u;   // sampler2D: the bloom's finest level (tone map)
-SD_CONST uint SD_LIGHT_BINDINGS = 2u;
-// The finest bloom level is this fraction of the frame's side (each texel
-// the mean of SD_BLOOM_DIVISOR^2 frame texels); each further level halves it.
-SD_CONST uint SD_BLOOM_DIVISOR = 4u;
-// LightPush::values.z of the tone map.
-SD_CONST uint SD_TONE_MAP_NONE = 0u;  // a clamp to [0, 1]
-SD_CONST uint SD_TONE_MAP_ACES = 1u;  // acesFilm (src/kernels/light.glsl)
-// The light passes' push constants (vertex and fragment). 16 bytes.
-struct LightPush {
-    vec4 values;  // bloom threshold: xy level 0's size (texels); blur: xy the fetches' offset (uv); tone map: x exposure, y bloom weight, z SD_TONE_MAP_*
-};
 
 SD_END
 
@@ -664,29 +531,7 @@ static_assert(offsetof(FluidContactsPush, tableStart) == 32);
 static_assert(offsetof(FluidSolvePush, count) == 16);
 static_assert(offsetof(FluidSolvePush, warmFraction) == 32);
 static_assert(offsetof(SortPush, count) == 32);
-static_assert(sizeof(SpriteDraw) == 48);
-static_assert(offsetof(SpriteDraw, softDistance) == 36);
-static_assert(offsetof(SpriteDraw, trailHead) == 44);
-static_assert(sizeof(TrailLook) == 368);
-static_assert(offsetof(TrailLook, width) == 352);
-static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
-static_assert(sizeof(SplatInstance) == 48);
-static_assert(offsetof(SplatInstance, shade) == 32);
 // std140: a mat4 is four vec4 columns, every vec4 16-byte aligned.
-static_assert(sizeof(FrameUniforms) == 592);
-static_assert(offsetof(FrameUniforms, invViewProj) == 240);
-static_assert(offsetof(FrameUniforms, ambient) == 304);
-static_assert(offsetof(FrameUniforms, lightPosition) == 336);
-static_assert(offsetof(FrameUniforms, lightColour) == 464);
-static_assert(offsetof(FrameUniforms, depthRange) == 224);
-static_assert(offsetof(FrameUniforms, eye) == 64);
-static_assert(offsetof(FrameUniforms, waterFlags) == 192);
-static_assert(offsetof(FrameUniforms, surface) == 208);
-static_assert(sizeof(SurfacePush) == 16);
-static_assert(sizeof(LightPush) == 16);
-static_assert(sizeof(ScreenFluidPush) == 32);
-static_assert(SD_SCREEN_FLUID_SET == SD_SPLAT_SET);  // screen_fluid_sphere.vert reads the splats' instance set
-static_assert(SD_SURFACE_SET == SD_SPLAT_SET);  // surface_field.vert reads the splats' instance set
 // The masks are 32 bits wide.
 static_assert(SD_MAX_FORCES <= 32u && SD_MAX_COLLIDERS <= 32u);
 static_assert(sizeof(FluidIntegrateStats) == 64 + 4 * SD_FLUID_APPROACH_BINS);

@@ -13,7 +13,7 @@
 // docs/rendering.md ("Fluid splats") lists every constant.
 #pragma once
 
-#include "kernels/layout.glsl"
+#include "kernels/render_layout.glsl"
 
 #include <spindrift/fluid.h>
 #include <spindrift/render.h>

@@ -4,7 +4,7 @@
 // fire's glow fades as the fire is doused (fires scale their flames' rate).
 #pragma once
 
-#include "kernels/layout.glsl"
+#include "kernels/render_layout.glsl"
 
 #include <spindrift/render.h>
 

@@ -17,7 +17,7 @@
 
 #include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
-#include "kernels/layout.glsl"
+#include "kernels/render_layout.glsl"
 #include "render/fluid_splats.h"
 #include "render/material_textures.h"
 #include "render/point_lights.h"

@@ -60,6 +60,8 @@ struct DeviceFluid {
 
 void DeviceFluidDeleter::operator()(DeviceFluid* g) const { delete g; }
 
+gpu::GpuFluidContacts& deviceFluidContacts(DeviceFluid& g) { return *g.contacts; }
+
 namespace {
 
 template <int D>

@@ -32,6 +32,7 @@ namespace spindrift {
 
 namespace gpu {
 struct Device;
+struct GpuFluidContacts;
 }
 namespace fluid {
 struct FluidState;
@@ -70,6 +71,9 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
 /// particle) appended to the device's particles: 36 bytes a birth in 2D, 48
 /// in 3D, up; nothing down.
 void appendDeviceBirths(DeviceFluid& g, const fluid::Births& births);
+
+/// The contacts' passes of `g` (tests read what their last substep left).
+gpu::GpuFluidContacts& deviceFluidContacts(DeviceFluid& g);
 
 /// After Box2D's step: the particles inside the shapes of bodies the fluid
 /// moves carried with them, on the device (fluid::carryOutOfMovedBodies's

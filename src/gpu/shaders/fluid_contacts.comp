@@ -13,8 +13,13 @@
 //   1 solve:   each particle's contacts, in surface order, then those with
 //              bodies the fluid does not move, on the solve's working
 //              velocities (fluid_solve.comp records it between sweeps);
-//   2 order:   the contacts with bodies the fluid moves, listed in the CPU's
-//              order (one invocation);
+//   4 count:   each particle's contacts with bodies the fluid moves, summed
+//              in particle order within its workgroup (shared memory), and
+//              the workgroup's total;
+//   5 groups:  the workgroups' totals summed in order (one invocation over
+//              the workgroups, a 64th of the particles);
+//   2 order:   each particle writes its contacts with bodies the fluid
+//              moves at its place so found: the list in the CPU's order;
 //   3 dynamic: those solved in that order, then the joints' rows (one
 //              invocation, after every solve pass).
 // Surfaces are the world's planes, spheres and boxes in creation order, then
@@ -50,6 +55,10 @@ layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_IDS) readonly buffer
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_DYNAMIC) buffer Dynamic { uint dynamicList[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_JOINT_ROWS) buffer JointRows { FluidJointRow rows[]; };
 layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_STILLS) buffer Stills { float stills[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_DYNAMIC_STARTS) buffer DynamicStarts { uint dynamicStarts[]; };
+layout(std430, set = 0, binding = SD_FLUID_CONTACTS_BINDING_GROUP_STARTS) buffer GroupStarts { uint groupStarts[]; };
+
+shared uint groupCounts[SD_FLUID_CONTACTS_WORKGROUP];
 
 layout(push_constant) uniform Contacts { FluidContactsPush args; };  // FluidContactsPush in layout.glsl
 
@@ -238,25 +247,73 @@ void solveColliders(uint i) {
 }
 
 // The contacts with bodies the fluid moves, listed in the CPU's order:
-// particles in grid order, each one's in shape order (one invocation; the
-// next slice makes it a prefix sum).
-void orderDynamic() {
-    uint slots = uint(args.cells.w);
-    uint m = 0u;
-    if (args.cells.z <= 0) {
-        report.dynamic = 0u;  // no shapes: the find wrote no counts (bodies without shapes hold only joints)
-        return;
+// particles in grid order, each one's in shape order. A particle's place in
+// the list is the count of such contacts before it: within its workgroup
+// (COUNT), plus the workgroups' before it (GROUPS); ORDER writes them there.
+// Without shapes the find wrote no counts (bodies without shapes hold only
+// joints): none.
+bool movedBy(uint at) {
+    return bodies[bodyContacts[at].body].invMass > 0.0f;
+}
+
+uint dynamicContacts(uint i) {
+    if (i >= args.count || args.cells.z <= 0) {
+        return 0u;
     }
-    for (uint i = 0u; i < args.count; ++i) {
-        uint n = min(bodyCounts[i], slots);
-        for (uint j = 0u; j < n; ++j) {
-            if (bodies[bodyContacts[i * slots + j].body].invMass > 0.0f) {
-                dynamicList[m] = i * slots + j;
-                m += 1u;
-            }
+    uint slots = uint(args.cells.w);
+    uint n = min(bodyCounts[i], slots);
+    uint m = 0u;
+    for (uint j = 0u; j < n; ++j) {
+        if (movedBy(i * slots + j)) {
+            m += 1u;
         }
     }
-    report.dynamic = m;
+    return m;
+}
+
+void countDynamic(uint i) {
+    uint local = gl_LocalInvocationID.x;
+    groupCounts[local] = dynamicContacts(i);
+    barrier();
+    if (local == 0u) {
+        uint sum = 0u;
+        for (uint k = 0u; k < SD_FLUID_CONTACTS_WORKGROUP; ++k) {
+            uint c = groupCounts[k];
+            groupCounts[k] = sum;
+            sum += c;
+        }
+        groupStarts[gl_WorkGroupID.x] = sum;
+    }
+    barrier();
+    if (i < args.count) {
+        dynamicStarts[i] = groupCounts[local];
+    }
+}
+
+void sumGroups() {
+    uint groups = (args.count + SD_FLUID_CONTACTS_WORKGROUP - 1u) / SD_FLUID_CONTACTS_WORKGROUP;
+    uint sum = 0u;
+    for (uint g = 0u; g < groups; ++g) {
+        uint c = groupStarts[g];
+        groupStarts[g] = sum;
+        sum += c;
+    }
+    report.dynamic = sum;
+}
+
+void orderDynamic(uint i) {
+    if (i >= args.count || args.cells.z <= 0) {
+        return;
+    }
+    uint slots = uint(args.cells.w);
+    uint n = min(bodyCounts[i], slots);
+    uint m = groupStarts[gl_WorkGroupID.x] + dynamicStarts[i];
+    for (uint j = 0u; j < n; ++j) {
+        if (movedBy(i * slots + j)) {
+            dynamicList[m] = i * slots + j;
+            m += 1u;
+        }
+    }
 }
 
 // The contacts with bodies the fluid moves in that order (Gauss-Seidel, a
@@ -314,17 +371,19 @@ void solve(uint i) {
 
 void main() {
     uint i = gl_GlobalInvocationID.x;
-    if (PASS == SD_FLUID_CONTACTS_PASS_ORDER || PASS == SD_FLUID_CONTACTS_PASS_DYNAMIC) {
+    if (PASS == SD_FLUID_CONTACTS_PASS_COUNT) {
+        countDynamic(i);  // every invocation reaches its barriers
+    } else if (PASS == SD_FLUID_CONTACTS_PASS_GROUPS || PASS == SD_FLUID_CONTACTS_PASS_DYNAMIC) {
         if (i == 0u) {
-            if (PASS == SD_FLUID_CONTACTS_PASS_ORDER) {
-                orderDynamic();
+            if (PASS == SD_FLUID_CONTACTS_PASS_GROUPS) {
+                sumGroups();
             } else {
                 solveDynamic();
             }
         }
-        return;
-    }
-    if (PASS == SD_FLUID_CONTACTS_PASS_FIND) {
+    } else if (PASS == SD_FLUID_CONTACTS_PASS_ORDER) {
+        orderDynamic(i);
+    } else if (PASS == SD_FLUID_CONTACTS_PASS_FIND) {
         find(i);
     } else {
         solve(i);

@@ -2,7 +2,7 @@
 // (FrameUniforms in src/kernels/layout.glsl, shared with the renderer's C++).
 #ifndef SPINDRIFT_RENDER_FRAME
 #define SPINDRIFT_RENDER_FRAME
-#include "layout.glsl"
+#include "render_layout.glsl"
 
 layout(std140, set = SD_RENDER_SET_FRAME, binding = SD_RENDER_BINDING_FRAME) uniform Frame { FrameUniforms frame; };
 

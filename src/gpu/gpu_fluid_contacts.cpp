@@ -210,9 +210,11 @@ void recordFluidContactsFind(VkCommandBuffer cmd, GpuFluidContacts& c, const Gpu
     if (n > 0) {
         dispatchCompute(cmd, c.passes.pipelines[kernels::SD_FLUID_CONTACTS_PASS_FIND], c.passes.pipelineLayout,
                         c.passes.sets[0], &push, sizeof(push), groups);
-        if (c.moves) {
+        if (c.moves && c.shapeCount > 0) {
             // The list of contacts with bodies the fluid moves, by a prefix
             // sum of their counts: within workgroups, over them, then written.
+            // Without shapes there are none (the report starts at 0), and the
+            // lists' buffers have no room for the particles.
             for (const auto& [pass, dispatched] : {std::pair{kernels::SD_FLUID_CONTACTS_PASS_COUNT, groups},
                                                    std::pair{kernels::SD_FLUID_CONTACTS_PASS_GROUPS, 1u},
                                                    std::pair{kernels::SD_FLUID_CONTACTS_PASS_ORDER, groups}}) {

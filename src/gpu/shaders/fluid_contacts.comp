@@ -272,6 +272,9 @@ uint dynamicContacts(uint i) {
 }
 
 void countDynamic(uint i) {
+    if (args.cells.z <= 0) {
+        return;  // the whole dispatch: a push constant (the host records none then)
+    }
     uint local = gl_LocalInvocationID.x;
     groupCounts[local] = dynamicContacts(i);
     barrier();
@@ -291,6 +294,10 @@ void countDynamic(uint i) {
 }
 
 void sumGroups() {
+    if (args.cells.z <= 0) {
+        report.dynamic = 0u;
+        return;
+    }
     uint groups = (args.count + SD_FLUID_CONTACTS_WORKGROUP - 1u) / SD_FLUID_CONTACTS_WORKGROUP;
     uint sum = 0u;
     for (uint g = 0u; g < groups; ++g) {

@@ -11,9 +11,9 @@
 // places each substep (setFluidBodies). A contact with a body the fluid does
 // not move (static, kinematic) changes only its particle and is solved with
 // the particle's colliders; one with a body it moves (dynamic) changes the
-// body too, so two one-invocation passes list them in the CPU's order after
-// the find and solve them, then the joints' rows, after every per-particle
-// solve (the CPU's solveBodyContacts).
+// body too, so they are listed in the CPU's order after the find (a prefix
+// sum of each particle's count) and solved in it by one invocation, then the
+// joints' rows, after every per-particle solve (the CPU's solveBodyContacts).
 #pragma once
 
 #include "gpu/gpu_fluid_setup.h"

@@ -250,14 +250,14 @@ void solveColliders(uint i) {
 // particles in grid order, each one's in shape order. A particle's place in
 // the list is the count of such contacts before it: within its workgroup
 // (COUNT), plus the workgroups' before it (GROUPS); ORDER writes them there.
-// Without shapes the find wrote no counts (bodies without shapes hold only
-// joints): none.
+// The host records the three only when there are shapes (bodies without
+// shapes hold only joints, and the find then writes no counts).
 bool movedBy(uint at) {
     return bodies[bodyContacts[at].body].invMass > 0.0f;
 }
 
 uint dynamicContacts(uint i) {
-    if (i >= args.count || args.cells.z <= 0) {
+    if (i >= args.count) {
         return 0u;
     }
     uint slots = uint(args.cells.w);
@@ -272,9 +272,6 @@ uint dynamicContacts(uint i) {
 }
 
 void countDynamic(uint i) {
-    if (args.cells.z <= 0) {
-        return;  // the whole dispatch: a push constant (the host records none then)
-    }
     uint local = gl_LocalInvocationID.x;
     groupCounts[local] = dynamicContacts(i);
     barrier();
@@ -294,10 +291,6 @@ void countDynamic(uint i) {
 }
 
 void sumGroups() {
-    if (args.cells.z <= 0) {
-        report.dynamic = 0u;
-        return;
-    }
     uint groups = (args.count + SD_FLUID_CONTACTS_WORKGROUP - 1u) / SD_FLUID_CONTACTS_WORKGROUP;
     uint sum = 0u;
     for (uint g = 0u; g < groups; ++g) {
@@ -309,7 +302,7 @@ void sumGroups() {
 }
 
 void orderDynamic(uint i) {
-    if (i >= args.count || args.cells.z <= 0) {
+    if (i >= args.count) {
         return;
     }
     uint slots = uint(args.cells.w);

@@ -199,6 +199,9 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             // plane, sphere or box ends at the contact, moving no further in.
             for (const kernels::ColliderParams& c : world.colliders) {
                 if (!isFluidCollider(c)) continue;
+                // Most paths end well inside a closed box's walls: the plane's
+                // test of the end point alone clears them.
+                if (c.kind == kernels::SD_COLLIDER_PLANE && kernels::planeKeepsClear(c, x1)) continue;
                 const kernels::Hit hit = pathHit(c, x0, x1);
                 if (hit.hit != 0u) {
                     const glm::vec3 n = flatten<D>(kernels::makeSurface(0.0f, hit.normal)).normal;

@@ -54,7 +54,14 @@ SD_FN float planeDistance(SD_IN(ColliderParams) c, vec3 p) {
     return dot(p - vec3(c.position), vec3(c.normal));
 }
 
-// No hit when the end point is on or above the plane (d1 >= 0). Selects, not
+// Whether a path that ends at p1 stays clear of plane c: its end point is on
+// or above the plane. Not `d < 0`: a NaN distance hits, as it always has.
+// Scalar callers test it first and skip intersectPlane's work.
+SD_FN bool planeKeepsClear(SD_IN(ColliderParams) c, vec3 p1) {
+    return planeDistance(c, p1) >= 0.0f;
+}
+
+// No hit when planeKeepsClear (the end point on or above the plane). Selects, not
 // branches, so the CPU's lane loops vectorise: every case is computed and the
 // discarded ones may divide by 0, which is harmless.
 SD_FN Hit intersectPlane(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
@@ -67,7 +74,7 @@ SD_FN Hit intersectPlane(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     bool crossing = d0 >= 0.0f;
     Hit h = makeHit(select3(p1 - n * d1, mix(p0, p1, t), crossing), n, crossing ? t : 1.0f);
     Hit none = noHit();
-    bool hit = !(d1 >= 0.0f);  // not d1 < 0: a NaN distance hits, as it always has
+    bool hit = !planeKeepsClear(c, p1);
     h.point = select3(none.point, h.point, hit);
     h.normal = select3(none.normal, h.normal, hit);
     h.t = hit ? h.t : none.t;

@@ -29,7 +29,9 @@
 // the block lattice at 1.8 cm (10k: 88 x 111 = 9,768), 1.0 cm (30k: 160 x 200
 // = 32,000) or 0.57 cm (100k: 280 x 350 = 98,000) spacing, every other
 // setting at FluidDef's defaults (automatic substeps). Args {particles,
-// threads}. One iteration is the whole run, 360 steps (t = 0 to 6 s), of
+// threads, plain}: plain 1 runs the solver's defaults before over-relaxation
+// (4 plain Gauss-Seidel iterations instead of 2 relaxed by 1.2), side by side
+// with the defaults. One iteration is the whole run, 360 steps (t = 0 to 6 s), of
 // which steps 60 to 359 (t = 1 s to 6 s, after the first impact) are timed:
 // the benchmark's time is their sum (manual time). Counters: ms_per_step and
 // median_ms_per_step (wall time of stepWorld over the timed steps),
@@ -151,6 +153,7 @@ double mean(const std::vector<double>& v) {
 void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
     const auto particles = static_cast<std::uint32_t>(state.range(0));
     const auto threads = static_cast<std::uint32_t>(state.range(1));
+    const bool plain = state.range(2) != 0;  // the defaults before over-relaxation
     const float spacing = particles <= 10000 ? 0.018f : particles <= 30000 ? 0.010f : 0.0057f;
     constexpr int kTotalSteps = 360, kFirstTimed = 60;  // t = 0..6 s, timed from t = 1 s
     constexpr float kDt = 1.0f / 60.0f;
@@ -169,6 +172,10 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
         def.spacing = spacing;
         def.gravity = glm::vec3(0.0f, -10.0f, 0.0f);
         def.blocks.push_back({glm::vec3(0.0f), glm::vec3(1.6f, 2.0f, 0.0f), glm::vec3(0.0f)});
+        if (plain) {
+            def.iterations = 4;
+            def.relaxation = 1.0f;
+        }
         const FluidId fluid = createFluid(world, def);
         std::vector<double> wallMs, cpu;
         double substeps = 0.0, maxMeanError = 0.0, maxSpeed = 0.0;
@@ -237,13 +244,15 @@ BENCHMARK(BM_FluidDamBreak3D)
     ->Iterations(kSteps)
     ->Unit(benchmark::kMillisecond);
 BENCHMARK(BM_FluidLiquidFunDamBreak)
-    ->ArgNames({"particles", "threads"})
-    ->Args({10000, 1})
-    ->Args({10000, 2})
-    ->Args({30000, 1})
-    ->Args({30000, 2})
-    ->Args({100000, 1})
-    ->Args({100000, 2})
+    ->ArgNames({"particles", "threads", "plain"})
+    ->Args({10000, 1, 0})
+    ->Args({10000, 1, 1})
+    ->Args({10000, 2, 0})
+    ->Args({30000, 1, 0})
+    ->Args({30000, 1, 1})
+    ->Args({30000, 2, 0})
+    ->Args({100000, 1, 0})
+    ->Args({100000, 2, 0})
     ->Iterations(1)
     ->UseManualTime()
     ->Unit(benchmark::kMillisecond);

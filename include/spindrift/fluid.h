@@ -90,6 +90,10 @@ struct FluidPolygonDef {
 /// them (src/fluid/fluid_rules.h).
 inline constexpr std::uint32_t kFluidMinIterations = 1;
 inline constexpr std::uint32_t kFluidMaxIterations = 16;
+/// Bounds of FluidDef::relaxation: 1 is plain Gauss-Seidel; above about 1.25
+/// the sweeps overshoot and the fluid settles expanded (docs/fluid.md).
+inline constexpr float kFluidMinRelaxation = 1.0f;
+inline constexpr float kFluidMaxRelaxation = 1.5f;
 /// Least velocity steering (FluidDef::baumgarte). Below about this the
 /// density drifts uncorrected and a crushed splash blows up: launches into a
 /// tank gained up to 1e33 times their energy at 0, and once at 0.002 (none
@@ -113,8 +117,14 @@ struct FluidDef {
     /// 2 x spacing, 12 neighbours, a resting tank's density error is several
     /// times larger, see docs/performance.md), 2.5 x spacing in 3D.
     float smoothing = 0.0f;
-    /// Solver iterations per step, kFluidMinIterations (1) to kFluidMaxIterations (16).
-    std::uint32_t iterations = 4;
+    /// Solver iterations per substep, kFluidMinIterations (1) to kFluidMaxIterations (16).
+    std::uint32_t iterations = 2;
+    /// Over-relaxation of the iterations (successive over-relaxation: each
+    /// visit applies this many times the impulse that would solve its own
+    /// constraint alone), in [kFluidMinRelaxation (1), kFluidMaxRelaxation
+    /// (1.5)]. 2 iterations at 1.2 hold a deep tank as 4 at 1 did, for about
+    /// 30 % less time a step (docs/fluid.md, "Over-relaxed sweeps").
+    float relaxation = 1.2f;
     /// Velocity steering toward the rest density (slide 34): the bias is
     /// (rho0 - rho) x baumgarte x h / dt, in [kFluidMinBaumgarte (0.01), 1].
     float baumgarte = 0.05f;

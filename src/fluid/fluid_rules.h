@@ -15,6 +15,7 @@ inline constexpr FieldRule kSpacing = FieldRule::number(Bounds::positive());  //
 /// h (m); 0 is the default, otherwise more than the spacing (checked apart).
 inline constexpr FieldRule kSmoothing = FieldRule::number(Bounds::nonNegative());
 inline constexpr FieldRule kIterations = FieldRule::whole(Bounds::between(kFluidMinIterations, kFluidMaxIterations));
+inline constexpr FieldRule kRelaxation = FieldRule::number(Bounds::between(kFluidMinRelaxation, kFluidMaxRelaxation));
 inline constexpr FieldRule kBaumgarte = FieldRule::number(Bounds::between(kFluidMinBaumgarte, 1.0));
 inline constexpr FieldRule kWarmStart = FieldRule::number(Bounds::unit());
 inline constexpr FieldRule kMaxNeighbours = FieldRule::whole(Bounds::between(0, kFluidMaxNeighbours));

@@ -295,6 +295,7 @@ void validateFluidDef(const FluidDef& def) {
                                     def.spacing, def.smoothing));
     }
     check.number("iterations", def.iterations, rules::kIterations);
+    check.number("relaxation", def.relaxation, rules::kRelaxation);
     check.number("baumgarte", def.baumgarte, rules::kBaumgarte);
     check.number("warm_start", def.warmStart, rules::kWarmStart);
     check.number("max_neighbours", def.maxNeighbours, rules::kMaxNeighbours);

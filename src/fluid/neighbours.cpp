@@ -526,7 +526,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             // Effective mass of the Jacobian (fluid.glsl).
             glm::vec3 gSum3(0.0f);
             for (int a = 0; a < D; ++a) gSum3[a] = sums.gSum[a];
-            c.invMass[i] = kernels::fluidInverseMass(sums.mass, gSum3);
+            c.invMass[i] = kernels::fluidInverseMass(sums.mass, gSum3, f.def.relaxation);
             c.bias[i] = kernels::fluidBias(density, f.restDensity, f.def.baumgarte, f.h, invDt);
             const float relative = density * invRest;
             p.density[i] = relative;

@@ -159,6 +159,7 @@ void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFlui
     push.warmFraction = params.warmFraction;
     push.invRest = 1.0f / params.restDensity;
     push.tiles = s.groups;
+    push.relaxation = params.relaxation;
     computeToCompute(cmd);  // the gather's and the contacts' writes
     if (s.count > 0) {
         for (std::uint32_t pass = kernels::SD_FLUID_SETUP_PASS_COUNT; pass < 4; ++pass) {

@@ -35,6 +35,7 @@ struct FluidSetupParams {
     float h = 1.0f;                   // m
     float restDensity = 1.0f;         // kernel-sum units
     float baumgarte = 0.0f;
+    float relaxation = 1.0f;          // FluidDef::relaxation
     float dt = 1.0f / 60.0f;          // s, of the substep
     float warmFraction = 0.0f;        // Constraints::warmFraction
     /// m/s added to every velocity in the gather: gravity x dt, computed as

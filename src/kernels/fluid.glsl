@@ -164,10 +164,14 @@ SD_FN vec3 fluidPairG(vec3 offset, float r2, uint i, uint j, float invH2) {
 // slides' A = sum 2 w^2 is exact for one neighbour only; at a wall or a free
 // surface, where the g do not cancel, it under-estimates the particle's own
 // response several times and the solver over-corrects and diverges
-// (measured: a 20-layer tank collapsed). 0 for a particle alone.
-SD_FN float fluidInverseMass(float sumW2, vec3 gSum) {
+// (measured: a 20-layer tank collapsed). 0 for a particle alone. Scaled by
+// the relaxation (FluidDef::relaxation, successive over-relaxation: each
+// visit applies that many times the impulse that solves its own constraint
+// with the neighbours held, which carries a correction through a column's
+// layers in fewer sweeps; docs/fluid.md, "Over-relaxed sweeps").
+SD_FN float fluidInverseMass(float sumW2, vec3 gSum, float relaxation) {
     float mass = sumW2 + (gSum.x * gSum.x + gSum.y * gSum.y + gSum.z * gSum.z);
-    return mass > 0.0f ? 1.0f / mass : 0.0f;
+    return mass > 0.0f ? relaxation / mass : 0.0f;
 }
 
 // One visit of the solver to particle p's constraint.

@@ -253,7 +253,7 @@ struct FluidSetupHeader {
 };
 
 // The setup passes' push constants (std430: an ivec4, a vec4, four uints,
-// eight floats, four uints). 96 bytes. The floats are the CPU setup's,
+// eight floats, a uint, a float, two uints). 96 bytes. The floats are the CPU setup's,
 // computed the same way on the host (h2 = h h, invH2 = 1 / h2, ...).
 struct FluidSetupPush {
     ivec4 cells;          // xyz cells 2h wide per axis (z 1 in 2D), w = dimension
@@ -272,7 +272,7 @@ struct FluidSetupPush {
     float warmFraction;   // of the last pressure the warm start applies
     float invRest;        // 1 / restDensity
     uint tiles;           // workgroups of the count pass
-    uint pad0;
+    float relaxation;     // FluidDef::relaxation (fluidInverseMass)
     uint pad1;
 };
 

@@ -73,7 +73,7 @@ FluidPolygonDef parsePolygon(const Table& t) {
 }  // namespace
 
 FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
-    t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
+    t.allowOnly({"name", "dimension", "spacing", "h", "iterations", "relaxation", "baumgarte", "warm_start", "split_impulse", "max_neighbours",
                  "solver", "backend", "substeps", "sleep_speed", "sleep_time", "gravity", "friction", "density", "capacity", "rest_density", "block", "jet", "polygon"},
                 "a [[fluid]]");
     FluidDef def;
@@ -85,6 +85,7 @@ FluidDef parseFluid(const Table& t, NameTable& names, const NameTable& bodies) {
     def.spacing = t.real("spacing", def.spacing, rules::kSpacing);
     def.smoothing = t.real("h", def.smoothing, rules::kSmoothing);
     def.iterations = t.whole("iterations", def.iterations, rules::kIterations);
+    def.relaxation = t.real("relaxation", def.relaxation, rules::kRelaxation);
     def.baumgarte = t.real("baumgarte", def.baumgarte, rules::kBaumgarte);
     def.warmStart = t.real("warm_start", def.warmStart, rules::kWarmStart);
     def.splitImpulse = t.boolean("split_impulse", def.splitImpulse);

@@ -29,6 +29,7 @@ dimension = 3
 spacing = 0.04
 h = 0.1
 iterations = 8
+relaxation = 1.1
 baumgarte = 0.2
 warm_start = 0.3
 split_impulse = false
@@ -58,6 +59,7 @@ vertices = [[2.0, 0.0], [3.0, 0.0], [2.5, 0.5]]  # beside the block, not under i
     EXPECT_EQ(f.dimension, 3u);
     EXPECT_FLOAT_EQ(f.smoothing, 0.1f);
     EXPECT_EQ(f.iterations, 8u);
+    EXPECT_FLOAT_EQ(f.relaxation, 1.1f);
     EXPECT_EQ(f.solver, FluidSolver::Sequential);
     EXPECT_EQ(f.substeps, 2u);
     EXPECT_FALSE(f.splitImpulse);
@@ -92,6 +94,10 @@ TEST(FluidScene, ErrorsPointAtTheLine) {
     const auto baumgarte = errorAtKey("baumgarte = 0");
     EXPECT_EQ(baumgarte.first, 3) << baumgarte.second;
     EXPECT_NE(baumgarte.second.find("[0.01, 1]"), std::string::npos) << baumgarte.second;
+    // Over-relaxation past 1.5 overshoots (docs/fluid.md): refused with the range.
+    const auto relaxation = errorAtKey("relaxation = 1.9");
+    EXPECT_EQ(relaxation.first, 3) << relaxation.second;
+    EXPECT_NE(relaxation.second.find("[1, 1.5]"), std::string::npos) << relaxation.second;
     // A polygon that is not convex: reported at the fluid's table.
     EXPECT_THROW(parseScene("[[fluid]]\nname = \"w\"\n[[fluid.block]]\nmin = [0, 0, 0]\nmax = [1, 1, 0]\n"
                             "[[fluid.polygon]]\nvertices = [[0, 0], [1, 0], [0.2, 0.2], [0, 1]]\n",

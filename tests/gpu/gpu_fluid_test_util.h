@@ -155,6 +155,7 @@ struct DeviceFluid {
         setupParams.h = c.f.h;
         setupParams.restDensity = c.f.restDensity;
         setupParams.baumgarte = c.f.def.baumgarte;
+        setupParams.relaxation = c.f.def.relaxation;
         setupParams.dt = kFluidDt;
         setupParams.warmFraction = c.f.constraints.warmFraction;
         setupParams.velocityChange = glm::vec3(glm::vec3(c.f.def.gravity) * kFluidDt);

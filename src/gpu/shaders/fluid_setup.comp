@@ -239,7 +239,7 @@ void setUp(uint i) {
     precise vec3 gSum = s.gSum + ghosts.yzw;
     precise vec3 warmStart = s.warm;
     if (s.paired != 0u) warmStart -= ghosts.yzw * (ps[i] * args.warmFraction);
-    float invMass = fluidInverseMass(s.mass, gSum);
+    float invMass = fluidInverseMass(s.mass, gSum, args.relaxation);
     float bias = fluidBias(density, args.restDensity, args.baumgarte, args.h, args.invDt);
     constraints[i] = vec4(bias, invMass, density * args.invRest, s.fastest);
     warm[i] = vec4(warmStart, 0.0f);

@@ -201,7 +201,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 if (!isFluidCollider(c)) continue;
                 // Most paths end well inside a closed box's walls: the plane's
                 // test of the end point alone clears them.
-                if (c.kind == kernels::SD_COLLIDER_PLANE && kernels::planeKeepsClear(c, x1)) continue;
+                if (c.kind == kernels::SD_COLLIDER_PLANE && kernels::planeKeepsClear(kernels::planeDistance(c, x1))) continue;
                 const kernels::Hit hit = pathHit(c, x0, x1);
                 if (hit.hit != 0u) {
                     const glm::vec3 n = flatten<D>(kernels::makeSurface(0.0f, hit.normal)).normal;

@@ -54,11 +54,12 @@ SD_FN float planeDistance(SD_IN(ColliderParams) c, vec3 p) {
     return dot(p - vec3(c.position), vec3(c.normal));
 }
 
-// Whether a path that ends at p1 stays clear of plane c: its end point is on
-// or above the plane. Not `d < 0`: a NaN distance hits, as it always has.
-// Scalar callers test it first and skip intersectPlane's work.
-SD_FN bool planeKeepsClear(SD_IN(ColliderParams) c, vec3 p1) {
-    return planeDistance(c, p1) >= 0.0f;
+// Whether a path whose end point lies at signed distance d1 from a plane
+// stays clear of it: the end on or above the plane. Not `d1 < 0`: a NaN
+// distance hits, as it always has. Scalar callers test it first and skip
+// intersectPlane's work.
+SD_FN bool planeKeepsClear(float d1) {
+    return d1 >= 0.0f;
 }
 
 // No hit when planeKeepsClear (the end point on or above the plane). Selects, not
@@ -74,7 +75,7 @@ SD_FN Hit intersectPlane(SD_IN(ColliderParams) c, vec3 p0, vec3 p1) {
     bool crossing = d0 >= 0.0f;
     Hit h = makeHit(select3(p1 - n * d1, mix(p0, p1, t), crossing), n, crossing ? t : 1.0f);
     Hit none = noHit();
-    bool hit = !planeKeepsClear(c, p1);
+    bool hit = !planeKeepsClear(d1);
     h.point = select3(none.point, h.point, hit);
     h.normal = select3(none.normal, h.normal, hit);
     h.t = hit ? h.t : none.t;

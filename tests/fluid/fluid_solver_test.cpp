@@ -296,7 +296,9 @@ TEST(FluidFront, TheDefaultsRunTheDamBreakAsTheConvergedSolver) {
     for (std::size_t k = 0; k < reference.size(); ++k) {
         std::printf("dam-break front at %.1f s: %.3f m at the defaults, %.3f m converged\n", 0.1 * double(k + 1),
                     defaults[k], reference[k]);
-        EXPECT_GT(reference[k], reference[0] - 1e-3f) << "the column must spread";
+        // The converged front runs on from the column's edge (1.6 m) at every
+        // sample: a reference that stood still would make the bound empty.
+        EXPECT_GT(reference[k], k == 0 ? 1.6f : reference[k - 1]) << "at " << 0.1 * double(k + 1) << " s";
         EXPECT_NEAR(defaults[k], reference[k], 0.03f * reference[k]) << "at " << 0.1 * double(k + 1) << " s";
     }
     EXPECT_GT(reference.back(), 3.0f) << "the converged front must be near the far wall by 0.5 s";

@@ -357,7 +357,10 @@ template <int D> float medianAlong(const std::vector<Vec<D>>& x, int a, std::vec
 
 // The passes of one step, in order (fluid_step.cpp).
 template <int D> void buildGrid(WorkerPool& pool, FluidState& f);
-template <int D> void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats& stats);
+/// `countClosing`: add the particles' closing speeds to f.approach (the
+/// substep rule's input); the step's first substep does, the others do not.
+template <int D>
+void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosing, FluidStepStats& stats);
 template <int D> void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, float dt);
 /// Warm start and iterations; each sweep over the fluid constraints is
 /// followed by one over the contacts (slide 51: contacts after the fluid), so

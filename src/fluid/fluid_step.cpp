@@ -18,7 +18,7 @@ double msSince(Clock::time_point start) {
 }
 
 template <int D>
-void stepPasses(const StepContext& w, FluidState& f, float dt, FluidStepStats& stats) {
+void stepPasses(const StepContext& w, FluidState& f, float dt, bool first, FluidStepStats& stats) {
     WorkerPool& pool = w.pool;
     Particles<D>& p = f.particles<D>();
     auto t = Clock::now();
@@ -54,9 +54,10 @@ void stepPasses(const StepContext& w, FluidState& f, float dt, FluidStepStats& s
     }
 
     // Neighbours and constraint setup: density (the colliders' share
-    // included), bias, effective mass.
+    // included), bias, effective mass; in the step's first substep, the
+    // closing speeds the next step's substep rule reads.
     {
-        setupConstraints<D>(pool, f, dt, stats);
+        setupConstraints<D>(pool, f, dt, first, stats);
         stats.setupMs += msSince(t);
         t = Clock::now();
     }
@@ -238,9 +239,9 @@ FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float 
     f.bodies = w.bodies.gather(f, dt);
     for (int k = 0; k < substeps; ++k) {
         if (f.def.dimension == 2) {
-            stepPasses<2>(w, f, h, stats);
+            stepPasses<2>(w, f, h, k == 0, stats);
         } else {
-            stepPasses<3>(w, f, h, stats);
+            stepPasses<3>(w, f, h, k == 0, stats);
         }
     }
     endBodyStep(w, f, id, stats);

@@ -265,7 +265,9 @@ struct PairTerm {
     float warmPressure;  // m/s, lambda_i + lambda_j of the warm start
 };
 
-template <int D>
+/// `kClosing`: the closing speed too (it gathers the neighbour's velocity, a
+/// sixth of the setup's time, measured; only one substep a step counts it).
+template <int D, bool kClosing>
 [[gnu::always_inline]] inline PairTerm<D> pairTerm(const PairArrays<D>& a, std::size_t k) {
     PairTerm<D> t;
     const float r2 = a.r2[k];
@@ -283,8 +285,10 @@ template <int D>
     for (int axis = 0; axis < D; ++axis) {
         const float offset = a.offset[axis][k];
         t.g[axis] = kernels::fluidPairGradient(offset, t.w, wOverR, apart, axis == 0, side);
-        const float approach = (a.vi[axis] - a.velocity[D * j + axis]) * offset;
-        closing = axis == 0 ? approach : closing + approach;
+        if constexpr (kClosing) {
+            const float approach = (a.vi[axis] - a.velocity[D * j + axis]) * offset;
+            closing = axis == 0 ? approach : closing + approach;
+        }
     }
     t.closing = closing * invR;
     t.warmPressure = a.lambdaI + a.pressure[j] * a.warmFraction;
@@ -324,7 +328,7 @@ struct PairLanes {
 /// written to `dst`, with their sums. A lane loop the vectoriser turns into
 /// gathers where the target has them (AVX2, AVX-512); always inlined into
 /// each of those targets' copies below.
-template <int D>
+template <int D, bool kClosing>
 [[gnu::always_inline]] inline PairSums<D> setUpPairLanes(const PairArrays<D>& in, std::size_t listed,
                                                          std::size_t paired, Neighbour<D>* dst) {
     constexpr std::size_t L = kPairLanes;
@@ -339,7 +343,7 @@ template <int D>
 #pragma GCC unroll 1
         for (std::size_t l = 0; l < L; ++l) {
             const std::size_t k = base + l;
-            const PairTerm<D> t = pairTerm<D>(arrays, k);
+            const PairTerm<D> t = pairTerm<D, kClosing>(arrays, k);
             lanes.density[l] += k < listed ? t.density : 0.0f;
             // The pairs' sums are masked by a factor (x 1 or x 0: the terms
             // are finite), not a select each: g++ 12 if-converts a few
@@ -350,8 +354,10 @@ template <int D>
                 lanes.gSum[a][l] += t.g[a] * pairedFactor;
                 lanes.warm[a][l] -= t.g[a] * t.warmPressure * pairedFactor;
             }
-            const float closing = k < paired ? t.closing : 0.0f;  // the fastest starts at 0
-            lanes.fastest[l] = closing > lanes.fastest[l] ? closing : lanes.fastest[l];
+            if constexpr (kClosing) {
+                const float closing = k < paired ? t.closing : 0.0f;  // the fastest starts at 0
+                lanes.fastest[l] = closing > lanes.fastest[l] ? closing : lanes.fastest[l];
+            }
             lanes.mass[l] += t.w * t.w * pairedFactor;
         }
         const std::size_t stored = paired > base ? std::min(L, paired - base) : 0;
@@ -369,7 +375,7 @@ template <int D>
 /// registers (a masked lane adds exactly nothing), so the same bits without
 /// computing lanes past the list. Summed into an array indexed by k % 16
 /// instead, the setup was 20 % slower than the scalar loop before the lanes.
-template <int D>
+template <int D, bool kClosing>
 PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, std::size_t paired,
                                Neighbour<D>* dst) {
     PairLanes<D> lanes;
@@ -381,7 +387,7 @@ PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, 
         float warm[D] = {};
         std::size_t k = l;
         for (; k < paired; k += kPairLanes) {
-            const PairTerm<D> t = pairTerm<D>(arrays, k);
+            const PairTerm<D> t = pairTerm<D, kClosing>(arrays, k);
             density += t.density;
             for (int a = 0; a < D; ++a) {
                 dst[k].g[a] = t.g[a];
@@ -392,7 +398,7 @@ PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, 
             fastest = t.closing > fastest ? t.closing : fastest;
             mass += t.w * t.w;
         }
-        for (; k < listed; k += kPairLanes) density += pairTerm<D>(arrays, k).density;
+        for (; k < listed; k += kPairLanes) density += pairTerm<D, false>(arrays, k).density;
         lanes.density[l] = density;
         lanes.mass[l] = mass;
         lanes.fastest[l] = fastest;
@@ -405,18 +411,18 @@ PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, 
 }
 
 #if SPINDRIFT_X86
-template <int D>
+template <int D, bool kClosing>
 __attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& arrays, std::size_t listed,
                                                            std::size_t paired, Neighbour<D>* dst) {
-    return setUpPairLanes<D>(arrays, listed, paired, dst);
+    return setUpPairLanes<D, kClosing>(arrays, listed, paired, dst);
 }
 
 // 512-bit vectors: g++ would otherwise keep 256-bit ones (as in
 // src/effects/batch_update.cpp).
-template <int D>
+template <int D, bool kClosing>
 __attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=512"))) PairSums<D>
 setUpPairsAvx512(const PairArrays<D>& arrays, std::size_t listed, std::size_t paired, Neighbour<D>* dst) {
-    return setUpPairLanes<D>(arrays, listed, paired, dst);
+    return setUpPairLanes<D, kClosing>(arrays, listed, paired, dst);
 }
 
 /// The copy of a setup phase (the filter, the pairs) for the process's
@@ -432,10 +438,23 @@ Fn forUpdateTarget(Fn baseline, Fn avx2, Fn avx512) {
 }
 #endif
 
+/// The pairs' copy for the process's update target, with or without the
+/// closing speeds.
+template <int D>
+auto pairsFor(bool closing) {
+#if SPINDRIFT_X86
+    return closing ? forUpdateTarget(&setUpPairsBaseline<D, true>, &setUpPairsAvx2<D, true>, &setUpPairsAvx512<D, true>)
+                   : forUpdateTarget(&setUpPairsBaseline<D, false>, &setUpPairsAvx2<D, false>,
+                                     &setUpPairsAvx512<D, false>);
+#else
+    return closing ? &setUpPairsBaseline<D, true> : &setUpPairsBaseline<D, false>;
+#endif
+}
+
 }  // namespace
 
 template <int D>
-void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats& stats) {
+void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosing, FluidStepStats& stats) {
     Particles<D>& p = f.particles<D>();
     const Grid<D>& g = f.grid<D>();
     NeighbourChunks<D>& lists = f.neighbours<D>();
@@ -461,11 +480,10 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     std::vector<ChunkStats> chunks(WorkerPool::chunkCount(n, kParticleChunk));
 #if SPINDRIFT_X86
     const auto filter = forUpdateTarget(&filterNearScalar<D>, &filterNearAvx2<D>, &filterNearAvx512<D>);
-    const auto pairs = forUpdateTarget(&setUpPairsBaseline<D>, &setUpPairsAvx2<D>, &setUpPairsAvx512<D>);
 #else
     const auto filter = &filterNearScalar<D>;
-    const auto pairs = &setUpPairsBaseline<D>;
 #endif
+    const auto pairs = pairsFor<D>(countClosing);
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         ChunkStats s;
@@ -510,7 +528,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
             }
             PairSums<D> sums = pairs(arrays, nearCount, paired, out.data() + used);
             const auto count = static_cast<std::uint32_t>(paired);
-            s.approach[approachBin(sums.fastest)] += 1;
+            if (countClosing) s.approach[approachBin(sums.fastest)] += 1;
             c.count[i] = count;
             used += count;
             // The colliders' ghosts (wall_density.cpp): motionless
@@ -556,7 +574,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, FluidStepStats&
     c.warmGathered = all.overflows == 0;
 }
 
-template void setupConstraints<2>(WorkerPool&, FluidState&, float, FluidStepStats&);
-template void setupConstraints<3>(WorkerPool&, FluidState&, float, FluidStepStats&);
+template void setupConstraints<2>(WorkerPool&, FluidState&, float, bool, FluidStepStats&);
+template void setupConstraints<3>(WorkerPool&, FluidState&, float, bool, FluidStepStats&);
 
 }  // namespace spindrift::fluid

@@ -436,7 +436,7 @@ void keepImpacts(const gpu::FluidBodyReadback& r, fluid::FluidBodyStep& s, std::
 }
 
 template <int D>
-void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& stats) {
+void substep(DeviceFluid& g, fluid::FluidState& f, float dt, bool first, FluidStepStats& stats) {
     const SubstepParams params = substepParams<D>(g, f, dt);
     fluid::FluidBodyStep* bodies = D == 2 ? f.bodies : nullptr;
     SubstepBodies prepared;
@@ -501,7 +501,11 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, FluidStepStats& sta
     stats.maxDensityError = g.count > 0 ? r.maxDensityError : 0.0;
     stats.meanNeighbours = r.neighbours / n;
     stats.maxSpeed = r.maxSpeed;
-    for (std::size_t b = 0; b < f.approach.size(); ++b) f.approach[b] += r.approach[b];
+    // The substep rule's closing speeds: the step's first substep's, as the
+    // CPU's setup counts them (setupConstraints).
+    if (first) {
+        for (std::size_t b = 0; b < f.approach.size(); ++b) f.approach[b] += r.approach[b];
+    }
     f.pressedDepth = r.pressedDepth;
     g.boxLow = r.boxLow;
     g.boxHigh = r.boxHigh;
@@ -537,9 +541,9 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
     const float h = dt / static_cast<float>(substeps);
     for (int k = 0; k < substeps && g.count > 0; ++k) {
         if (f.def.dimension == 2) {
-            substep<2>(g, f, h, stats);
+            substep<2>(g, f, h, k == 0, stats);
         } else {
-            substep<3>(g, f, h, stats);
+            substep<3>(g, f, h, k == 0, stats);
         }
     }
     g.onHost = g.onHost && g.count == 0;  // a step with particles leaves the host copy behind

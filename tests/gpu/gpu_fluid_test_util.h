@@ -126,7 +126,7 @@ void runCpuSetup(CpuSetup<D>& c, const FluidDef& def, const FluidParticles<D>& i
         }
     }
     c.f.lastSubstep = 2.0f * kFluidDt;  // a warm start scaled by a half, as after a change of substeps
-    fluid::setupConstraints<D>(pool, c.f, kFluidDt, c.stats);
+    fluid::setupConstraints<D>(pool, c.f, kFluidDt, /*countClosing=*/true, c.stats);
 }
 
 /// The particles of a CPU setup on the device: the inputs (particle order,

@@ -90,9 +90,12 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
     const int subCells[3] = {2 * g.cells[0], 2 * g.cells[1], D == 3 ? 2 * g.cells[2] : 1};
     const int zReach = D == 3 ? 1 : 0;
     block.key = key;
-    for (std::vector<float>& axis : block.position) axis.clear();
-    block.index.clear();
     block.overflows = 0;
+    // The sub-cells' runs of grid order first, then one resize and plain
+    // stores: a push_back per candidate checked the capacity each time
+    // (measured, a third of the setup's time outside the filter and pairs).
+    std::array<std::uint32_t, 27> runFirst{}, runLast{};
+    std::size_t runs = 0, total = 0;
     const std::array<int, 3> sc = subCellOf<D>(g, key);
     for (int dz = -zReach; dz <= zReach; ++dz) {
         const int sz = sc[2] + dz;
@@ -107,17 +110,28 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
                 const std::uint32_t first = g.keyStart[k];
                 const std::uint32_t last = std::min(g.keyStart[k + 1], first + readLimit);
                 block.overflows += g.keyStart[k + 1] - last;
-                for (std::uint32_t j = first; j < last; ++j) {
-                    for (int a = 0; a < D; ++a) block.position[a].push_back(p.position[j][a]);
-                    block.index.push_back(j);
-                }
+                runFirst[runs] = first;
+                runLast[runs] = last;
+                total += last - first;
+                ++runs;
             }
         }
     }
-    block.count = block.index.size();
-    const std::size_t padded = (block.count + kNearLanes - 1) / kNearLanes * kNearLanes;
-    for (std::vector<float>& axis : block.position) axis.resize(padded, kFarAway);
-    block.index.resize(padded, 0u);
+    block.count = total;
+    const std::size_t padded = (total + kNearLanes - 1) / kNearLanes * kNearLanes;
+    for (std::vector<float>& axis : block.position) axis.resize(padded);
+    block.index.resize(padded);
+    std::size_t at = 0;
+    for (std::size_t r = 0; r < runs; ++r) {
+        for (std::uint32_t j = runFirst[r]; j < runLast[r]; ++j, ++at) {
+            for (int a = 0; a < D; ++a) block.position[a][at] = p.position[j][a];
+            block.index[at] = j;
+        }
+    }
+    for (; at < padded; ++at) {
+        for (int a = 0; a < D; ++a) block.position[a][at] = kFarAway;
+        block.index[at] = 0u;
+    }
 }
 
 /// Writes to `near` [0, the returned count) the particles of `block` within h

@@ -93,7 +93,7 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
     block.overflows = 0;
     // The sub-cells' runs of grid order first, then one resize and plain
     // stores: a push_back per candidate checked the capacity each time
-    // (measured, a third of the setup's time outside the filter and pairs).
+    // (measured, a sixth of the setup's time outside the filter and pairs).
     std::array<std::uint32_t, 27> runFirst{}, runLast{};
     std::size_t runs = 0, total = 0;
     const std::array<int, 3> sc = subCellOf<D>(g, key);
@@ -279,8 +279,9 @@ struct PairTerm {
     float warmPressure;  // m/s, lambda_i + lambda_j of the warm start
 };
 
-/// `kClosing`: the closing speed too (it gathers the neighbour's velocity, a
-/// sixth of the setup's time, measured; only one substep a step counts it).
+/// `kClosing`: the closing speed too (it gathers the neighbour's velocity,
+/// about a tenth of the setup's time, measured; only a step's first substep
+/// counts it).
 template <int D, bool kClosing>
 [[gnu::always_inline]] inline PairTerm<D> pairTerm(const PairArrays<D>& a, std::size_t k) {
     PairTerm<D> t;

@@ -131,8 +131,9 @@ float pressedDepth(const FluidState& f, const Particles<D>& p) {
 }
 
 /// The closing speed (m/s) that all but kFastParticles of the last step's
-/// particles stay under, each counted at the fastest approach of a neighbour:
-/// the top of its histogram bin. Not the fastest particle: a drop landing
+/// particles stay under, each counted at the fastest approach of a neighbour
+/// in the step's first substep (setupConstraints): the top of its histogram
+/// bin. Not the fastest particle: a drop landing
 /// from a splash at 10 m/s is one particle in thousands, meets the surface at
 /// most once, and the density constraint pushes it back out; the bulk's
 /// closing speeds are what the solver must resolve.

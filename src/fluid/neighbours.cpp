@@ -410,7 +410,7 @@ PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, 
                 warm[a] -= t.g[a] * t.warmPressure;
             }
             dst[k].index = arrays.index[k];
-            fastest = t.closing > fastest ? t.closing : fastest;
+            if constexpr (kClosing) fastest = t.closing > fastest ? t.closing : fastest;
             mass += t.w * t.w;
         }
         for (; k < listed; k += kPairLanes) density += pairTerm<D, false>(arrays, k).density;

@@ -157,6 +157,7 @@ void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFlui
     push.baumgarte = params.baumgarte;
     push.invDt = 1.0f / params.dt;
     push.warmFraction = params.warmFraction;
+    push.countClosing = params.countClosing ? 1u : 0u;
     push.invRest = 1.0f / params.restDensity;
     push.tiles = s.groups;
     push.relaxation = params.relaxation;

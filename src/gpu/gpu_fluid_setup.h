@@ -38,6 +38,9 @@ struct FluidSetupParams {
     float relaxation = 1.0f;          // FluidDef::relaxation
     float dt = 1.0f / 60.0f;          // s, of the substep
     float warmFraction = 0.0f;        // Constraints::warmFraction
+    /// The closing speeds too (constraint w), as the CPU's setup counts them
+    /// in a step's first substep only; 0 in w otherwise.
+    bool countClosing = true;
     /// m/s added to every velocity in the gather: gravity x dt, computed as
     /// the CPU's step does (z 0 in 2D).
     glm::vec3 velocityChange{0.0f};

@@ -273,7 +273,7 @@ struct FluidSetupPush {
     float invRest;        // 1 / restDensity
     uint tiles;           // workgroups of the count pass
     float relaxation;     // FluidDef::relaxation (fluidInverseMass)
-    uint pad1;
+    uint countClosing;    // 1: the closing speeds too (the step's first substep; setupConstraints)
 };
 
 // The constraint fluid's solve on the device (src/gpu/shaders/fluid_solve.comp,

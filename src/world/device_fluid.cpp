@@ -272,7 +272,7 @@ struct SubstepParams {
 };
 
 template <int D>
-SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt) {
+SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt, bool first) {
     SubstepParams s;
     if constexpr (D == 2) {
         s.grid = placeDeviceGrid<2>(g, f, s.cells2);
@@ -286,6 +286,7 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
                warmFraction};
     // The step's external force, as stepPasses applies it (fluid_step.cpp).
     s.setup.velocityChange = to3<D>(fluid::Vec<D>(glm::vec3(f.def.gravity) * dt));
+    s.setup.countClosing = first;  // the substep rule's closing speeds (setupConstraints)
     s.contacts = {f.radius, f.def.spacing, dt, f.def.friction, f.def.splitImpulse};
     s.solve = {f.def.iterations, f.def.splitImpulse, warmFraction, f.restDensity, f.def.baumgarte, f.h, dt};
     s.integrate = {f.def.gravity, dt, f.def.sleepSpeed, f.def.sleepTime, f.def.spacing, f.def.splitImpulse};
@@ -437,7 +438,7 @@ void keepImpacts(const gpu::FluidBodyReadback& r, fluid::FluidBodyStep& s, std::
 
 template <int D>
 void substep(DeviceFluid& g, fluid::FluidState& f, float dt, bool first, FluidStepStats& stats) {
-    const SubstepParams params = substepParams<D>(g, f, dt);
+    const SubstepParams params = substepParams<D>(g, f, dt, first);
     fluid::FluidBodyStep* bodies = D == 2 ? f.bodies : nullptr;
     SubstepBodies prepared;
     if (bodies != nullptr) {
@@ -501,8 +502,8 @@ void substep(DeviceFluid& g, fluid::FluidState& f, float dt, bool first, FluidSt
     stats.maxDensityError = g.count > 0 ? r.maxDensityError : 0.0;
     stats.meanNeighbours = r.neighbours / n;
     stats.maxSpeed = r.maxSpeed;
-    // The substep rule's closing speeds: the step's first substep's, as the
-    // CPU's setup counts them (setupConstraints).
+    // The substep rule's closing speeds: only the step's first substep
+    // computes them, as the CPU's setup does (setupConstraints).
     if (first) {
         for (std::size_t b = 0; b < f.approach.size(); ++b) f.approach[b] += r.approach[b];
     }

@@ -145,7 +145,6 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     bool apart = r2 > 0.0f;
                     precise float invR = apart ? 1.0f / r : 0.0f;
                     float w = fluidWeight(r2, args.invH2);
-                    vec3 vj = vAt(j);
                     // The entry's g, as the solve computes it again at each
                     // visit; one variable per component, no vector indexed
                     // by the axis (see fluid_solve.comp, applyImpulse).
@@ -153,20 +152,25 @@ PairSums visitNeighbours(uint i, bool write, uint entry) {
                     precise float gx = gOf.x;
                     precise float gy = gOf.y;
                     precise float gz = d == 3u ? gOf.z : 0.0f;
-                    precise float approachX = (vi.x - vj.x) * offset.x;
-                    precise float approachY = (vi.y - vj.y) * offset.y;
-                    precise float closing = approachX + approachY;
-                    if (d == 3u) {
-                        precise float approachZ = (vi.z - vj.z) * offset.z;
-                        closing = closing + approachZ;
-                    }
-                    closing = closing * invR;
                     vec3 g = vec3(gx, gy, gz);
                     precise float warmPressure = lambdaI + ps[j] * args.warmFraction;
                     s.gSum += g;
                     s.warm -= g * warmPressure;
-                    s.fastest = closing > s.fastest ? closing : s.fastest;
                     s.mass += w * w;
+                    // The closing speed reads the neighbour's velocity: only
+                    // in the step's first substep, as on the CPU.
+                    if (args.countClosing != 0u) {
+                        vec3 vj = vAt(j);
+                        precise float approachX = (vi.x - vj.x) * offset.x;
+                        precise float approachY = (vi.y - vj.y) * offset.y;
+                        precise float closing = approachX + approachY;
+                        if (d == 3u) {
+                            precise float approachZ = (vi.z - vj.z) * offset.z;
+                            closing = closing + approachZ;
+                        }
+                        closing = closing * invR;
+                        s.fastest = closing > s.fastest ? closing : s.fastest;
+                    }
                     uint e = entry + s.paired;
                     if (e < args.listCapacity) listIndex[e] = j;
                     s.paired += 1u;

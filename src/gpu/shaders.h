@@ -32,6 +32,8 @@ extern const std::size_t kFluidIntegrateWords;
 extern const std::uint32_t kFluidCarry[];
 extern const std::size_t kFluidCarryWords;
 // The renderer (src/render/shaders/).
+extern const std::uint32_t kFluidWaterComp[];
+extern const std::size_t kFluidWaterCompWords;
 extern const std::uint32_t kBackgroundVert[];
 extern const std::size_t kBackgroundVertWords;
 extern const std::uint32_t kBackgroundFrag[];

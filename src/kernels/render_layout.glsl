@@ -116,6 +116,52 @@ struct SplatInstance {
                   // (liquid surface: x the kernel's amplitude, y foam in [0,1]; centre.w the kernel radius)
 };
 
+// A device fluid's liquid drawn from its own buffers (issue 16;
+// src/render/device_water.cpp, shaders/fluid_water.comp): one invocation a
+// particle writes its kernel or sphere (fluid_look.glsl) into the splat
+// instances at `first`, then for each wall plane p its mirror image at
+// first + (p + 1) count + i (radius 0, drawn as nothing, where it has none:
+// the host's order of instances, without a compaction), and lists the
+// particles that throw a splash this frame for the host, which keeps the
+// splashes' state.
+SD_CONST uint SD_FLUID_WATER_WORKGROUP = 64u;
+SD_CONST uint SD_FLUID_WATER_BINDING_X = 0u;          // float[]: positions, `dimension` floats a particle
+SD_CONST uint SD_FLUID_WATER_BINDING_V = 1u;          // float[]: velocities, the same
+SD_CONST uint SD_FLUID_WATER_BINDING_DENSITY = 2u;    // vec4[]: the last setup's constraints, z rho / rho0
+SD_CONST uint SD_FLUID_WATER_BINDING_IDS = 3u;        // uint[]: serials
+SD_CONST uint SD_FLUID_WATER_BINDING_INSTANCES = 4u;  // SplatInstance[]: the renderer's splat buffer
+SD_CONST uint SD_FLUID_WATER_BINDING_PLANES = 5u;     // vec4[2 planes]: a point, then the unit normal
+SD_CONST uint SD_FLUID_WATER_BINDING_SPLASHES = 6u;   // FluidSplashList: the particles that throw one
+SD_CONST uint SD_FLUID_WATER_BINDINGS = 7u;
+SD_CONST uint SD_FLUID_WATER_SURFACE = 0u;  // FluidWaterPush::style: the 2D surface's kernels
+SD_CONST uint SD_FLUID_WATER_SCREEN = 1u;   // the 3D screen-space liquid's spheres
+// Most splash throwers one frame lists: more, and the host reads the
+// particles back that frame instead (every thrower, in particle order).
+SD_CONST uint SD_FLUID_SPLASH_ROOM = 1024u;
+struct FluidWaterPush {
+    vec4 up;          // xyz: unit vector against gravity; w: a splash's chance this frame
+    uint count;       // particles
+    uint dimension;   // 2 or 3
+    uint first;       // the first instance written
+    uint style;       // SD_FLUID_WATER_*
+    uint stretch;     // 1: kernels stretched along the velocity
+    uint densities;   // 1: the density binding holds the particles' densities; 0: rho / rho0 = 1
+    uint planes;      // wall planes (mirror images; surface style only)
+    uint splashes;    // 1: list the splash throwers
+    uint frame;       // the splash RNG's counter (FluidSplatState::frame)
+    float radius;     // m, a kernel's or sphere's
+    uint pad0, pad1;
+};
+// A particle that throws a splash: its index (particle order), serial,
+// position and velocity (m, m/s; z 0 in 2D). 48 bytes.
+struct FluidSplashThrower {
+    vec4 position;
+    vec4 velocity;
+    uint index;
+    uint id;
+    uint pad0, pad1;
+};
+
 // The 2D liquid surface (src/render/surface_pass.cpp, shaders surface_*): the
 // particles' kernels (SplatInstance, set 1 of surface_field.vert as for the
 // splats) are summed into a reduced-resolution field, blurred twice (one
@@ -173,6 +219,9 @@ static_assert(sizeof(TrailLook) == 368);
 static_assert(offsetof(TrailLook, width) == 352);
 static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
 static_assert(sizeof(SplatInstance) == 48);
+static_assert(sizeof(FluidWaterPush) == 64);
+static_assert(sizeof(FluidSplashThrower) == 48);
+static_assert(SD_FLUID_WATER_BINDING_SPLASHES + 1u == SD_FLUID_WATER_BINDINGS);
 static_assert(offsetof(SplatInstance, shade) == 32);
 static_assert(sizeof(FrameUniforms) == 592);
 static_assert(offsetof(FrameUniforms, invViewProj) == 240);

@@ -5,6 +5,7 @@
 
 #include "world/world.h"
 #include "fluid/fluid_view.h"
+#include "kernels/fluid_look.glsl"
 #include "kernels/random.glsl"
 
 #include <algorithm>
@@ -40,27 +41,18 @@ constexpr float kStretchTau = 0.1f;
 /// Rule 5: brightness 1 + kSunHighlight on a surface facing straight up
 /// (slide 58: "render upward facing particles in brighter color").
 constexpr float kSunHighlight = 0.5f;
-/// Rule 6 (slide 61): emitted at particles below this density ratio ...
-constexpr float kSplashMaxDensity = 0.5f;
-/// ... rising faster than this (m/s, along -gravity) ...
-constexpr float kSplashMinRise = 1.0f;
-/// ... with this probability rate (1/s) per such particle (bounded further by
-/// kMaxSplashes).
-constexpr float kSplashRate = 10.0f;
-/// Rule 6: smaller and brighter (slide 61), gone after this age (s).
+/// Rule 6 (slide 61): which particles throw splashes, and how fast, is
+/// fluid_look.glsl's (throwsSplash, splashSpeedFactor), shared with the
+/// device's liquid (device_water.h). Smaller and brighter (slide 61), gone
+/// after this age (s).
 constexpr float kSplashRadius = 0.5f;
 constexpr float kSplashBrightness = 1.6f;
 constexpr float kSplashMaxAge = 2.0f;
-/// Rule 6: a splash leaves with its particle's velocity times a factor in
-/// this range, so neighbouring splashes fan out.
-constexpr float kSplashSpeedMin = 0.9f;
-constexpr float kSplashSpeedMax = 1.1f;
 /// Rule 7 (slide 68): one in kBubbleOneIn particles (by id) denser than
 /// kBubbleDensity x rho0 is drawn as a bubble.
 constexpr float kBubbleDensity = 1.02f;
 constexpr std::uint32_t kBubbleOneIn = 8;
-/// Salts of the counter-based RNG (src/kernels/random.glsl) per purpose.
-constexpr std::uint32_t kSplashSalt = 0x5B1A5Bu;
+/// The bubbles' salt of the counter-based RNG (src/kernels/random.glsl).
 constexpr std::uint32_t kBubbleSalt = 0xB0BB1Eu;
 
 // --- Helpers -----------------------------------------------------------------
@@ -201,20 +193,38 @@ void advanceSplashes(FluidSplatState& state, const FrameContext& c) {
     });
 }
 
-/// Rule 6, birth: at particles below kSplashMaxDensity rising faster than
-/// kSplashMinRise, each with probability 1 - exp(-kSplashRate dt) from a
-/// counter-based hash of (particle id, frame), until kMaxSplashes are alive.
+/// Rule 6, who throws: the particles below SD_SPLASH_MAX_DENSITY rising
+/// faster than SD_SPLASH_MIN_RISE, each with probability 1 - exp(-SD_SPLASH_RATE
+/// dt) from a counter-based hash of (particle id, frame) (fluid_look.glsl),
+/// in particle order.
 template <int D>
-void emitSplashes(FluidSplatState& state, const FrameContext& c, const fluid::FluidView<D>& v) {
-    if (c.dt <= 0.0f) return;
-    const float chance = 1.0f - std::exp(-kSplashRate * c.dt);
-    for (std::size_t i = 0; i < v.position.size() && state.splashes.size() < kMaxSplashes; ++i) {
+std::vector<kernels::FluidSplashThrower> throwersOf(const FluidSplatState& state, const FrameContext& c,
+                                                    const fluid::FluidView<D>& v) {
+    std::vector<kernels::FluidSplashThrower> out;
+    if (c.dt <= 0.0f) return out;
+    const float chance = splashChance(c.dt);
+    for (std::size_t i = 0; i < v.position.size(); ++i) {
         const glm::vec3 velocity = to3<D>(v.velocity[i]);
-        if (!(v.density[i] < kSplashMaxDensity) || !(glm::dot(velocity, c.up) > kSplashMinRise)) continue;
-        const std::uint32_t key = kernels::pcgHash(v.id[i] ^ kSplashSalt);
-        if (kernels::randomUnit(key, 2u * state.frame) >= chance) continue;
-        const float speedFactor = kernels::randomRange(key, 2u * state.frame + 1u, kSplashSpeedMin, kSplashSpeedMax);
-        state.splashes.push_back(Splash{to3<D>(v.position[i]), velocity * speedFactor, 0.0f});
+        if (kernels::throwsSplash(v.density[i], velocity, c.up, v.id[i], state.frame, chance) == 0u) continue;
+        kernels::FluidSplashThrower t{};
+        t.position = glm::vec4(to3<D>(v.position[i]), 0.0f);
+        t.velocity = glm::vec4(velocity, 0.0f);
+        t.index = static_cast<std::uint32_t>(i);
+        t.id = v.id[i];
+        out.push_back(t);
+    }
+    return out;
+}
+
+/// Rule 6, birth: a splash from each thrower in turn, until kMaxSplashes
+/// are alive.
+void emitSplashes(FluidSplatState& state, const FrameContext& c,
+                  std::span<const kernels::FluidSplashThrower> throwers) {
+    if (c.dt <= 0.0f) return;
+    for (const kernels::FluidSplashThrower& t : throwers) {
+        if (state.splashes.size() >= kMaxSplashes) break;
+        const float speedFactor = kernels::splashSpeedFactor(t.id, state.frame);
+        state.splashes.push_back(Splash{glm::vec3(t.position), glm::vec3(t.velocity) * speedFactor, 0.0f});
     }
 }
 
@@ -234,9 +244,19 @@ void update(FluidSplatState& state, const FrameContext& c, std::vector<SplatInst
         return;
     }
     advanceSplashes(state, c);
-    emitSplashes<D>(state, c, v);
+    emitSplashes(state, c, throwersOf<D>(state, c, v));
     for (const Splash& s : state.splashes) out.push_back(splashSplat(s, c));
     if (c.dt > 0.0f) state.frame += 1;
+}
+
+FrameContext frameContext(const World& world, WorldId worldId, const fluid::FluidState& f,
+                          const FluidRenderDef& settings, float dt) {
+    const std::uint32_t dimension = f.def.dimension;
+    const glm::vec3 gravity = flatIf2D(f.def.gravity, dimension);
+    FrameContext c{&world, &f, &settings, std::max(dt, 0.0f),
+                   settings.radiusScale * f.def.spacing * kRadiusPerSpacing, gravity, upOf(gravity), {}};
+    if (dimension == 2 && settings.splashes && dt > 0.0f) c.bodies = readBodies(worldId);
+    return c;
 }
 
 }  // namespace
@@ -273,17 +293,35 @@ bool isBubble(std::uint32_t id, float density) {
     return density > kBubbleDensity && kernels::pcgHash(id ^ kBubbleSalt) % kBubbleOneIn == 0u;
 }
 
+float splashChance(float dt) { return 1.0f - std::exp(-kernels::SD_SPLASH_RATE * std::max(dt, 0.0f)); }
+
+glm::vec3 splashUp(WorldId worldId, FluidId fluidId) {
+    const fluid::FluidState& f = fluidSettingsFromId(worldFromId(worldId), fluidId);
+    return upOf(flatIf2D(f.def.gravity, f.def.dimension));
+}
+
 void updateFluidSplats(FluidSplatState& state, WorldId worldId, FluidId fluidId, const FluidRenderDef& settings,
                        float dt, std::vector<SplatInstance>& out) {
     out.clear();
     const World& world = worldFromId(worldId);
     const fluid::FluidState& f = fluidStateFromId(world, fluidId);
-    const std::uint32_t dimension = f.def.dimension;
-    const glm::vec3 gravity = flatIf2D(f.def.gravity, dimension);
-    FrameContext c{&world, &f, &settings, std::max(dt, 0.0f),
-                   settings.radiusScale * f.def.spacing * kRadiusPerSpacing, gravity, upOf(gravity), {}};
-    if (dimension == 2 && settings.splashes && dt > 0.0f) c.bodies = readBodies(worldId);
-    if (dimension == 2) update<2>(state, c, out); else update<3>(state, c, out);
+    const FrameContext c = frameContext(world, worldId, f, settings, dt);
+    if (f.def.dimension == 2) update<2>(state, c, out); else update<3>(state, c, out);
+}
+
+void updateSplashes(FluidSplatState& state, WorldId worldId, FluidId fluidId, const FluidRenderDef& settings,
+                    float dt, std::span<const kernels::FluidSplashThrower> throwers, std::vector<SplatInstance>& out) {
+    out.clear();
+    if (!settings.splashes) {
+        state.splashes.clear();  // as updateFluidSplats
+        return;
+    }
+    const World& world = worldFromId(worldId);
+    const FrameContext c = frameContext(world, worldId, fluidSettingsFromId(world, fluidId), settings, dt);
+    advanceSplashes(state, c);
+    emitSplashes(state, c, throwers);
+    for (const Splash& s : state.splashes) out.push_back(splashSplat(s, c));
+    if (c.dt > 0.0f) state.frame += 1;
 }
 
 }  // namespace spindrift::render

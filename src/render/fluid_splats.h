@@ -13,12 +13,14 @@
 // docs/rendering.md ("Fluid splats") lists every constant.
 #pragma once
 
+#include "kernels/fluid_look.glsl"
 #include "kernels/render_layout.glsl"
 
 #include <spindrift/fluid.h>
 #include <spindrift/render.h>
 
 #include <cstdint>
+#include <span>
 #include <vector>
 
 namespace spindrift::render {
@@ -64,7 +66,7 @@ inline constexpr float kMaxTurnRate = 6.0f;
 /// Rule 3: along the velocity a splat's major semi-axis grows by the distance
 /// the particle moves in this time (s), like a short motion blur (slide 64);
 /// the liquid surface stretches its kernels the same way (surface_field.cpp).
-inline constexpr float kStretchTime = 0.02f;
+inline constexpr float kStretchTime = kernels::SD_STRETCH_TIME;
 
 /// Writes fluid `fluid`'s splats into `out` (cleared first): one per particle
 /// (in the solver's grid order), then the live splashes. `dt` (s) is world
@@ -72,6 +74,19 @@ inline constexpr float kStretchTime = 0.02f;
 /// it; 0 (a repeated frame) changes no state. Throws Error for unknown ids.
 void updateFluidSplats(FluidSplatState& state, WorldId world, FluidId fluid, const FluidRenderDef& settings,
                        float dt, std::vector<SplatInstance>& out);
+
+/// Rule 6 alone, for a fluid whose particles stay on the device (issue 16;
+/// device_water.h lists who throws there): advances the splashes by `dt`,
+/// adds one from each of `throwers` (in particle order) while room is left,
+/// and writes the live splashes' instances into `out` (cleared first), as
+/// updateFluidSplats does after the water. Reads no particle.
+void updateSplashes(FluidSplatState& state, WorldId world, FluidId fluid, const FluidRenderDef& settings, float dt,
+                    std::span<const kernels::FluidSplashThrower> throwers, std::vector<SplatInstance>& out);
+/// A particle's chance of throwing a splash over a frame of `dt` s.
+float splashChance(float dt);
+/// The unit vector against fluid `fluid`'s gravity (+y without; 2D: in the
+/// plane), along which throwers rise.
+glm::vec3 splashUp(WorldId world, FluidId fluid);
 
 // Leaf rules, exposed for tests and the docs.
 

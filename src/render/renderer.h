@@ -18,6 +18,7 @@
 #include "gpu/gpu_sort.h"
 #include "gpu/vulkan_buffer.h"
 #include "kernels/render_layout.glsl"
+#include "render/device_water.h"
 #include "render/fluid_splats.h"
 #include "render/material_textures.h"
 #include "render/point_lights.h"
@@ -77,6 +78,10 @@ struct SplatFluid {
     float spacing = 0.0f;  // m, the fluid's (screen: the spheres' radius and thickness scale)
     std::uint32_t particles = 0;
     std::uint32_t first = 0;  // of its instances in Renderer::splatBuffer
+    /// A fluid on the device drawn from its buffers (device_water.h): its
+    /// first `onDevice` instances (the water, `particles` of them) are
+    /// written there by the device; `instances` holds only what follows.
+    std::uint32_t onDevice = 0;
 };
 
 /// The liquid surface's field (surface_pass.cpp): two float images at a
@@ -183,6 +188,11 @@ struct Renderer {
     std::vector<SplatFluid> fluids;
     gpu::Buffer splatBuffer;  // host-visible SplatInstance array of every fluid
     std::uint32_t splatCount = 0;
+    DeviceWater deviceWater;  // a device fluid's liquid from its buffers
+    /// Draw a device fluid's liquid from its buffers (false: read the
+    /// particles back and build it on the host, as for a CPU fluid; tests
+    /// compare the two).
+    bool drawDeviceWater = true;
 
     VkCommandPool commandPool = VK_NULL_HANDLE;
     VkCommandBuffer cmd = VK_NULL_HANDLE;

@@ -2,6 +2,8 @@
 #include "render/splat_pass.h"
 
 #include "render/surface_field.h"
+#include "world/device_fluid.h"
+#include "world/world.h"
 
 #include <spindrift/fluid.h>
 
@@ -37,9 +39,51 @@ void reserve(Renderer& r, std::size_t count) {
 
 }  // namespace
 
+namespace {
+
+/// The water of fluid `id`, on the device, drawn from its buffers: its
+/// instances' count (the particles, and in the surface style a slot per
+/// particle and wall plane for the mirror images).
+std::uint32_t deviceWaterSlots(const Renderer& r, const SplatFluid& sf, const DeviceFluid& g) {
+    const std::size_t planes = sf.surface ? wallPlanes(worldFromId(r.world)).size() / 2 : 0;
+    return deviceWaterInstances(deviceFluidBuffers(g).count, planes);
+}
+
+/// Writes fluid `id`'s water on the device at sf.first and its splashes into
+/// sf.instances, from the particles that throw one (read back, 48 bytes
+/// each); more throwers than the list holds, and the particles are read back
+/// for them as for a CPU fluid.
+void drawWaterFromDevice(Renderer& r, SplatFluid& sf, FluidId id, DeviceFluid& g, float dt) {
+    const World& world = worldFromId(r.world);
+    const DeviceFluidBuffers buffers = deviceFluidBuffers(g);
+    DeviceWaterJob job;
+    job.first = sf.first;
+    job.style = sf.surface ? kernels::SD_FLUID_WATER_SURFACE : kernels::SD_FLUID_WATER_SCREEN;
+    job.stretch = r.def.fluid.stretch;
+    job.radius = (sf.surface ? kSurfaceKernelSpacings : kScreenSphereSpacings) * sf.spacing;
+    if (sf.surface) job.planes = wallPlanes(world);
+    job.splashes = r.def.fluid.splashes && dt > 0.0f;
+    job.frame = sf.state.frame;
+    job.up = splashUp(r.world, id);
+    job.chance = splashChance(dt);
+    const SplashThrowers thrown = buildDeviceWater(*r.device, r.deviceWater, buffers, r.splatBuffer, job);
+    FluidRenderDef splashesOnly = FluidRenderDef::upTo(1);
+    splashesOnly.splashes = r.def.fluid.splashes;
+    if (thrown.complete) {
+        updateSplashes(sf.state, r.world, id, splashesOnly, dt, thrown.throwers, sf.instances);
+        return;
+    }
+    updateFluidSplats(sf.state, r.world, id, splashesOnly, dt, sf.instances);
+    sf.instances.erase(sf.instances.begin(), sf.instances.begin() + static_cast<std::ptrdiff_t>(buffers.count));
+}
+
+}  // namespace
+
 void prepareSplats(Renderer& r, float dt) {
     const std::uint32_t fluids = fluidCount(r.world);
+    const World& world = worldFromId(r.world);
     r.fluids.resize(fluids);
+    std::vector<DeviceFluid*> fromDevice(fluids, nullptr);  // fluids drawn from the device's buffers
     std::size_t total = 0;
     for (std::uint32_t f = 0; f < fluids; ++f) {
         SplatFluid& sf = r.fluids[f];
@@ -49,6 +93,18 @@ void prepareSplats(Renderer& r, float dt) {
         sf.surface = liquid && dimension == 2;
         sf.screen = liquid && dimension == 3;
         sf.spacing = fluidSpacing(r.world, id);
+        sf.first = static_cast<std::uint32_t>(total);
+        sf.onDevice = 0;
+        DeviceFluid* g = deviceFluidFromId(world, id);
+        if ((sf.surface || sf.screen) && g != nullptr && r.drawDeviceWater) {
+            // Drawn below, once the buffer has room: the water, and at most
+            // every splash alive after it.
+            fromDevice[f] = g;
+            sf.onDevice = sf.particles = deviceWaterSlots(r, sf, *g);
+            sf.instances.clear();
+            total += sf.onDevice + kMaxSplashes;
+            continue;
+        }
         if (sf.surface || sf.screen) {
             // The splat rules give the splashes; the water's instances are
             // then replaced by the surface's kernels.
@@ -62,19 +118,19 @@ void prepareSplats(Renderer& r, float dt) {
             updateFluidSplats(sf.state, r.world, id, r.def.fluid, dt, sf.instances);
             sf.particles = 0;
         }
-        sf.first = static_cast<std::uint32_t>(total);
         total += sf.instances.size();
     }
     reserve(r, total);
-    auto* out = static_cast<SplatInstance*>(r.splatBuffer.mapped);
-    for (const SplatFluid& f : r.fluids) {
-        if (!f.instances.empty()) {
-            std::memcpy(out, f.instances.data(), f.instances.size() * sizeof(SplatInstance));
-            out += f.instances.size();
-        }
+    std::size_t drawn = 0;
+    for (std::uint32_t f = 0; f < fluids; ++f) {
+        SplatFluid& sf = r.fluids[f];
+        if (fromDevice[f] != nullptr) drawWaterFromDevice(r, sf, FluidId{f + 1}, *fromDevice[f], dt);
+        auto* out = static_cast<SplatInstance*>(r.splatBuffer.mapped) + sf.first + sf.onDevice;
+        if (!sf.instances.empty()) std::memcpy(out, sf.instances.data(), sf.instances.size() * sizeof(SplatInstance));
+        drawn += sf.onDevice + sf.instances.size();
     }
     r.splatCount = static_cast<std::uint32_t>(total);
-    r.stats.splats = total;
+    r.stats.splats = drawn;
 }
 
 void recordSplats(Renderer& r, VkCommandBuffer cmd) {
@@ -87,7 +143,7 @@ void recordSplats(Renderer& r, VkCommandBuffer cmd) {
     // A liquid's water is drawn by its own passes (surface_pass.cpp in 2D,
     // screen_fluid_pass.cpp in 3D); its splashes are splats.
     for (const SplatFluid& f : r.fluids) {
-        const auto count = static_cast<std::uint32_t>(f.instances.size()) - f.particles;
+        const auto count = static_cast<std::uint32_t>(f.onDevice + f.instances.size()) - f.particles;
         if (count > 0) {
             vkCmdDraw(cmd, 6, count, 0, f.first + f.particles);
         }
@@ -95,6 +151,7 @@ void recordSplats(Renderer& r, VkCommandBuffer cmd) {
 }
 
 void destroySplats(Renderer& r) {
+    destroyDeviceWater(*r.device, r.deviceWater);
     if (r.splatBuffer.buffer != VK_NULL_HANDLE) {
         gpu::destroyBuffer(*r.device, r.splatBuffer);
     }

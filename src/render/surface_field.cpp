@@ -9,45 +9,6 @@
 #include <numbers>
 
 namespace spindrift::render {
-namespace {
-
-/// Foam: speeds (m/s) from which particles start to turn white, and at which
-/// they reach kFoamSpeedMost (a fast coherent jet is still water) ...
-constexpr float kFoamSpeedStart = 3.0f;
-constexpr float kFoamSpeedFull = 8.0f;
-constexpr float kFoamSpeedMost = 0.4f;
-/// ... and density ratios below which they start to, and are fully (a flat
-/// top at rest is about 0.5, a thin jet 0.3: not foam; spray is).
-constexpr float kFoamDensityStart = 0.2f;
-constexpr float kFoamDensityFull = 0.05f;
-/// The most extra length (in radii) a kernel gets from the velocity stretch
-/// (kStretchTime, fluid_splats.h).
-constexpr float kMaxExtraStretch = 1.0f;
-
-float smoothstep(float edge0, float edge1, float x) {
-    const float t = std::clamp((x - edge0) / (edge1 - edge0), 0.0f, 1.0f);
-    return t * t * (3.0f - 2.0f * t);
-}
-
-}  // namespace
-
-float surfaceAmplitude(float density) {
-    // The kernel integrates to pi R^2 / 4 over the plane; the lattice has one
-    // particle per spacing^2, so at rest the sum is pi R^2 / (4 s^2).
-    const float atRest = std::numbers::pi_v<float> * kSurfaceKernelSpacings * kSurfaceKernelSpacings / 4.0f;
-    const float volume = std::clamp(density > 0.0f ? 1.0f / density : kSurfaceMaxVolume, 1.0f, kSurfaceMaxVolume);
-    return volume / atRest;
-}
-
-float surfaceFoam(float speed, float density) {
-    return std::max(kFoamSpeedMost * smoothstep(kFoamSpeedStart, kFoamSpeedFull, speed),
-                    smoothstep(kFoamDensityStart, kFoamDensityFull, density));
-}
-
-float surfaceStretch(float speed, float radius) {
-    if (!(radius > 0.0f)) return 1.0f;
-    return 1.0f + std::min(speed * kStretchTime / radius, kMaxExtraStretch);
-}
 
 std::size_t surfaceInstances(WorldId worldId, FluidId fluidId, bool stretch, std::vector<SplatInstance>& out) {
     const World& world = worldFromId(worldId);
@@ -59,35 +20,31 @@ std::size_t surfaceInstances(WorldId worldId, FluidId fluidId, bool stretch, std
         for (std::size_t i = 0; i < n; ++i) {
             glm::vec3 velocity(v.velocity[i].x, v.velocity[i].y, 0.0f);
             if constexpr (requires { v.velocity[i].z; }) velocity.z = v.velocity[i].z;
-            const float speed = glm::length(velocity);
-            const float density = v.density[i];
-            SplatInstance& s = out[i];
-            s.centre.w = radius;
-            s.axis = glm::vec4(1.0f, 0.0f, 0.0f, 1.0f);
-            if (stretch && speed > 0.0f) s.axis = glm::vec4(velocity / speed, surfaceStretch(speed, radius));
-            s.shade = glm::vec4(surfaceAmplitude(density), surfaceFoam(speed, density),
-                                static_cast<float>(SplatKind::Water), density);
+            out[i] = kernels::surfaceKernel(glm::vec3(out[i].centre), velocity, v.density[i], radius, stretch ? 1u : 0u);
         }
     };
     if (f.def.dimension == 2) fill(fluid::viewFluid<2>(f)); else fill(fluid::viewFluid<3>(f));
     std::vector<SplatInstance> mirrors;
-    for (const kernels::ColliderParams& c : world.colliders) {
-        if (c.kind != kernels::SD_COLLIDER_PLANE) continue;
-        const glm::vec3 normal(c.normal);
-        const glm::vec3 point(c.position);
+    const std::vector<glm::vec4> planes = wallPlanes(world);
+    for (std::size_t p = 0; p + 1 < planes.size(); p += 2) {
+        const glm::vec3 point(planes[p]), normal(planes[p + 1]);
         for (std::size_t i = 0; i < n; ++i) {
-            const glm::vec3 x(out[i].centre);
-            const float d = glm::dot(x - point, normal);
-            if (d < 0.0f || d >= radius) continue;
-            SplatInstance m = out[i];
-            m.centre = glm::vec4(x - 2.0f * d * normal, radius);
-            const glm::vec3 axis(m.axis);
-            m.axis = glm::vec4(axis - 2.0f * glm::dot(axis, normal) * normal, m.axis.w);
-            mirrors.push_back(m);
+            if (kernels::mirroredByPlane(glm::vec3(out[i].centre), point, normal, radius) == 0u) continue;
+            mirrors.push_back(kernels::mirrorKernel(out[i], point, normal));
         }
     }
     out.insert(out.begin() + static_cast<std::ptrdiff_t>(n), mirrors.begin(), mirrors.end());
     return n + mirrors.size();
+}
+
+std::vector<glm::vec4> wallPlanes(const World& world) {
+    std::vector<glm::vec4> planes;
+    for (const kernels::ColliderParams& c : world.colliders) {
+        if (c.kind != kernels::SD_COLLIDER_PLANE) continue;
+        planes.emplace_back(glm::vec3(c.position), 0.0f);
+        planes.emplace_back(glm::vec3(c.normal), 0.0f);
+    }
+    return planes;
 }
 
 std::size_t screenFluidInstances(WorldId worldId, FluidId fluidId, std::vector<SplatInstance>& out) {
@@ -97,10 +54,9 @@ std::size_t screenFluidInstances(WorldId worldId, FluidId fluidId, std::vector<S
     auto fill = [&](const auto& v) {
         n = std::min(v.position.size(), out.size());
         for (std::size_t i = 0; i < n; ++i) {
-            SplatInstance& s = out[i];
-            s.centre.w = radius;
-            s.shade = glm::vec4(1.0f, surfaceFoam(glm::length(v.velocity[i]), v.density[i]),
-                                static_cast<float>(SplatKind::Water), v.density[i]);
+            glm::vec3 velocity(v.velocity[i].x, v.velocity[i].y, 0.0f);
+            if constexpr (requires { v.velocity[i].z; }) velocity.z = v.velocity[i].z;
+            out[i] = kernels::screenSphere(glm::vec3(out[i].centre), velocity, v.density[i], radius);
         }
     };
     if (f.def.dimension == 2) fill(fluid::viewFluid<2>(f)); else fill(fluid::viewFluid<3>(f));
@@ -108,11 +64,11 @@ std::size_t screenFluidInstances(WorldId worldId, FluidId fluidId, std::vector<S
 }
 
 float fluidSpacing(WorldId worldId, FluidId fluidId) {
-    return fluidStateFromId(worldFromId(worldId), fluidId).def.spacing;
+    return fluidSettingsFromId(worldFromId(worldId), fluidId).def.spacing;
 }
 
 std::uint32_t fluidDimension(WorldId worldId, FluidId fluidId) {
-    return fluidStateFromId(worldFromId(worldId), fluidId).def.dimension;
+    return fluidSettingsFromId(worldFromId(worldId), fluidId).def.dimension;
 }
 
 }  // namespace spindrift::render

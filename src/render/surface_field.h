@@ -8,32 +8,31 @@
 // surface") lists every constant.
 #pragma once
 
+#include "kernels/fluid_look.glsl"
 #include "render/fluid_splats.h"
+
+namespace spindrift {
+struct World;
+}
 
 namespace spindrift::render {
 
-/// Kernel radius in spacings: wide enough that the sum is smooth across the
-/// lattice (the splats' fish scales come from discs about one spacing wide).
-inline constexpr float kSurfaceKernelSpacings = 2.0f;
+/// Kernel radius in spacings (fluid_look.glsl).
+inline constexpr float kSurfaceKernelSpacings = kernels::SD_SURFACE_KERNEL_SPACINGS;
 /// Where the composite draws the edge, as a fraction of the field at rest
 /// density: 0.5 would be half a spacing beyond the outer particles' centres on
 /// a flat top; lower reaches a little further, so the liquid meets walls and
 /// floor (where the field is ~0.5) under their slabs instead of leaving a
 /// line of background between them.
 inline constexpr float kSurfaceThreshold = 0.35f;
-/// Most volume a particle carries (1 / (rho / rho0) is clamped to [1, this]):
-/// lone drops stay visible without one stray becoming a large blob.
-inline constexpr float kSurfaceMaxVolume = 3.0f;
+/// Most volume a particle carries (fluid_look.glsl).
+inline constexpr float kSurfaceMaxVolume = kernels::SD_SURFACE_MAX_VOLUME;
 
-/// The kernel's amplitude for a particle at density ratio `density`, for a
-/// fluid whose kernel radius is kSurfaceKernelSpacings spacings.
-float surfaceAmplitude(float density);
-/// Foam in [0, 1]: where particles are fast or sparse (white water).
-float surfaceFoam(float speed, float density);
-/// Major semi-axis / radius of a kernel moving at `speed` (m/s), kernel
-/// radius `radius` (m): the slides' velocity stretch (the distance moved in
-/// 0.02 s) relative to the wider kernel, at most 2.
-float surfaceStretch(float speed, float radius);
+/// The kernel's amplitude, foam and velocity stretch (fluid_look.glsl: the
+/// host's instances and the device's, src/render/device_water.h, share them).
+using kernels::surfaceAmplitude;
+using kernels::surfaceFoam;
+using kernels::surfaceStretch;
 
 /// Overwrites the first instances of `out` (fluid `fluid`'s water, one per
 /// particle in the solver's order, as updateFluidSplats wrote them) with the
@@ -47,10 +46,8 @@ float surfaceStretch(float speed, float radius);
 std::size_t surfaceInstances(WorldId world, FluidId fluid, bool stretch, std::vector<SplatInstance>& out);
 
 /// The screen-space liquid of 3D fluids (screen_fluid_pass.cpp): sphere
-/// radius in spacings. Wider than half a spacing so that the front layer of a
-/// lattice leaves no gap between spheres however it is seen (the cube's
-/// half diagonal is 0.87 spacing, the face's 0.71).
-inline constexpr float kScreenSphereSpacings = 0.75f;
+/// radius in spacings (fluid_look.glsl).
+inline constexpr float kScreenSphereSpacings = kernels::SD_SCREEN_SPHERE_SPACINGS;
 
 /// Overwrites the first instances of `out` (fluid `fluid`'s water, one per
 /// particle in the solver's order, as updateFluidSplats wrote them) with the
@@ -58,6 +55,10 @@ inline constexpr float kScreenSphereSpacings = 0.75f;
 /// (surfaceFoam). Returns how many (the particles). Throws Error for unknown
 /// ids.
 std::size_t screenFluidInstances(WorldId world, FluidId fluid, std::vector<SplatInstance>& out);
+
+/// The world's wall planes, as the mirror images meet them: a point, then
+/// the unit normal, each a vec4 (w 0), in the colliders' order.
+std::vector<glm::vec4> wallPlanes(const World& world);
 
 /// Fluid `fluid`'s spacing (m).
 float fluidSpacing(WorldId world, FluidId fluid);

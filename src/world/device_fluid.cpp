@@ -607,6 +607,10 @@ void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f) {
 
 bool deviceFluidOnHost(const DeviceFluid& g) { return g.onHost; }
 
+DeviceFluidBuffers deviceFluidBuffers(const DeviceFluid& g) {
+    return {&g.x, &g.v, g.setUp ? &g.setup->constraints : nullptr, &g.ids, g.count, g.dimension};
+}
+
 void readDeviceFluid(DeviceFluid& g, fluid::FluidState& f) {
     if (f.def.dimension == 2) {
         downloadParticles<2>(g, f.p2);

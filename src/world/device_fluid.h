@@ -16,11 +16,12 @@
 // velocities and impulses come back (48 bytes a body) for their end poses
 // and Box2D; the carry after Box2D's step runs on the device too.
 //
-// Not yet here: the Sequential solver order (an Error at creation), the
-// jets' births computed on the device (the host emits them from the jets'
-// state alone and uploads them), the renderer reading the device's buffers
-// (the world reads the particles back when the host reads them,
-// src/world/fluid_api.cpp).
+// The renderer draws the liquid from the device's buffers
+// (deviceFluidBuffers; src/render/device_water.h); every other host reader
+// gets the particles read back (src/world/fluid_api.cpp). Not yet here: the
+// Sequential solver order (an Error at creation), the jets' births computed
+// on the device (the host emits them from the jets' state alone and uploads
+// them).
 #pragma once
 
 #include <spindrift/fluid.h>
@@ -31,6 +32,7 @@
 namespace spindrift {
 
 namespace gpu {
+struct Buffer;
 struct Device;
 struct GpuFluidContacts;
 }
@@ -103,6 +105,20 @@ void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f);
 /// until readDeviceFluid; true after uploads and appends of them).
 bool deviceFluidOnHost(const DeviceFluid& g);
 
+/// The device's particle buffers as a reader on the same device takes them
+/// (the renderer, issue 16), valid until the next step or edit: positions
+/// and velocities (`dimension` floats a particle), the last setup's
+/// constraints (rho / rho0 in z; null when no setup ran since the last
+/// upload or births) and serials, `count` particles in the device's order.
+struct DeviceFluidBuffers {
+    const gpu::Buffer* x = nullptr;
+    const gpu::Buffer* v = nullptr;
+    const gpu::Buffer* constraints = nullptr;
+    const gpu::Buffer* ids = nullptr;
+    std::uint32_t count = 0;
+    std::uint32_t dimension = 2;
+};
+DeviceFluidBuffers deviceFluidBuffers(const DeviceFluid& g);
 /// The device's particles into `f`'s arrays (positions, velocities,
 /// pressures, densities of the last setup, serials, sleep), in the device's
 /// order (the last grid order, as the CPU's). Waits for the device.

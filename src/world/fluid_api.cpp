@@ -55,6 +55,14 @@ const fluid::FluidState& fluidStateFromId(const World& world, FluidId fluid) {
     return hostFluid(world, fluidIndex(world, fluid));
 }
 
+const fluid::FluidState& fluidSettingsFromId(const World& world, FluidId fluid) {
+    return *world.fluids[fluidIndex(world, fluid)];
+}
+
+DeviceFluid* deviceFluidFromId(const World& world, FluidId fluid) {
+    return world.deviceFluids[fluidIndex(world, fluid)].get();
+}
+
 /// Whether fluid `def` is solved on the device of `w` (FluidBackend): Gpu
 /// needs a Vulkan world, Auto a Vulkan world on a hardware GPU and a fluid
 /// the device runs. Throws Error for Gpu in a CPU world.

@@ -75,8 +75,14 @@ struct World {
 World& worldFromId(WorldId id);
 EmitterState& emitterFromId(World& world, EmitterId id);
 
-/// The fluid `fluid` of `world`; throws Error for an unknown id.
+/// The fluid `fluid` of `world` with its particle arrays current (a fluid
+/// on the device is read back first); throws Error for an unknown id.
 const fluid::FluidState& fluidStateFromId(const World& world, FluidId fluid);
+/// The same fluid's settings and state without its particles: a fluid on
+/// the device is not read back (its arrays may be out of date).
+const fluid::FluidState& fluidSettingsFromId(const World& world, FluidId fluid);
+/// The fluid's state on the device, or null where the CPU solves it.
+DeviceFluid* deviceFluidFromId(const World& world, FluidId fluid);
 
 /// Advances every fluid by dt; appends one FluidStepStats per fluid to `stats`
 /// (fluid_api.cpp).

@@ -27,9 +27,10 @@
 // steps (argument 0: 1).
 // A device fluid's look at 960x540: the same dam break's tank with a column
 // of 11,250 particles at 8 mm solved on the device (backend gpu), stepped
-// between frames (the step not timed), drawn as the liquid surface from the
-// device's buffers (argument 0: 1) or from the particles read back (0, the
-// CPU fluid's path); bytes_down_per_frame is what a frame reads back.
+// between frames (the step not timed), drawn as the liquid surface
+// (argument 1: 0) or as the seven splat steps (1), from the device's buffers
+// (argument 0: 1) or from the particles read back (0, the CPU fluid's path);
+// bytes_down_per_frame is what a frame reads back.
 // Light at 960x540: 2,000 additive sprites of an HDR flame colour over a
 // floor; argument 0: 0 no tone map and no bloom (the tone map's pass is a
 // clamp), 1 the ACES curve without bloom, 2 ACES with bloom (the default).
@@ -331,6 +332,7 @@ void BM_DeviceFluidLook(benchmark::State& state) {
         def.camera.target = {1.6f, 0.8f, 0.0f};
         def.camera.orthographic = true;
         def.camera.orthoHeight = 2.0f;
+        if (state.range(1) == 1) def.fluid = FluidRenderDef::upTo(7);
         RendererId r = createRenderer(w, def);
         render::rendererOf(r).drawDeviceWater = state.range(0) == 1;
         renderFrame(r);  // warm-up: first-use costs
@@ -356,9 +358,11 @@ void BM_DeviceFluidLook(benchmark::State& state) {
     }
 }
 BENCHMARK(BM_DeviceFluidLook)
-    ->ArgNames({"device_water"})
-    ->Arg(0)
-    ->Arg(1)
+    ->ArgNames({"device_water", "splats"})
+    ->Args({0, 0})
+    ->Args({1, 0})
+    ->Args({0, 1})
+    ->Args({1, 1})
     ->Unit(benchmark::kMillisecond)
     ->Iterations(5);
 

@@ -143,5 +143,178 @@ SD_FN float splashSpeedFactor(uint id, uint frame) {
     return randomRange(key, 2u * frame + 1u, SD_SPLASH_SPEED_MIN, SD_SPLASH_SPEED_MAX);
 }
 
+// --- Sprinkle's splats (slides 55-69; src/render/fluid_splats.h lists the
+// steps): one oriented, stretched disc per particle -------------------------
+
+// Rule 2: radius multiplier sqrt(rho / rho0) clamped to this range: a lone
+// particle (rho / rho0 ~ 0.1 at the default h) shrinks to 0.3, a compressed
+// one grows by at most 20%.
+SD_CONST float SD_SPLAT_DENSITY_SCALE_MIN = 0.3f;
+SD_CONST float SD_SPLAT_DENSITY_SCALE_MAX = 1.2f;
+// Rules 3 and 5: |d| (average neighbour direction) at or below which a
+// particle is interior, and at or above which it is surface. On the block
+// lattice |d| is 0.45 on a flat top in 2D (h = 3 spacings) and 0.30 in 3D
+// (h = 2.5), one row below the top 0.06 (2D) and 0.009 (3D), and 0 deeper.
+SD_CONST float SD_SPLAT_EDGE_INTERIOR = 0.08f;
+SD_CONST float SD_SPLAT_EDGE_SURFACE = 0.25f;
+// Rule 3: extra stretch along the surface tangent at edge factor 1 (slide
+// 57: "stretch and rotate in direction of edge tangent") ...
+SD_CONST float SD_SPLAT_EDGE_STRETCH = 0.8f;
+// ... the most stretch (major semi-axis / radius) of the combined axis ...
+SD_CONST float SD_SPLAT_MAX_STRETCH = 3.0f;
+// ... the time constant (s) with which the displayed stretch follows its
+// target (slide 60: temporal coherence) ...
+SD_CONST float SD_SPLAT_STRETCH_TAU = 0.1f;
+// ... and the fastest turn of a displayed axis (rad/s): slide 60 "allow
+// small rotations"; 6 rad/s is 0.1 rad (5.7 degrees) per frame at 60 fps.
+SD_CONST float SD_SPLAT_MAX_TURN_RATE = 6.0f;
+// Rule 5: brightness 1 + this on a surface facing straight up (slide 58:
+// "render upward facing particles in brighter color").
+SD_CONST float SD_SPLAT_SUN_HIGHLIGHT = 0.5f;
+// Rule 7 (slide 68): one in SD_BUBBLE_ONE_IN particles (by id) denser than
+// SD_BUBBLE_DENSITY x rho0 is drawn as a bubble.
+SD_CONST float SD_BUBBLE_DENSITY = 1.02f;
+SD_CONST uint SD_BUBBLE_ONE_IN = 8u;
+SD_CONST uint SD_BUBBLE_SALT = 0xB0BB1Eu;
+
+// Rule 5's edge factor from |d|, d the average neighbour direction (slide
+// 57): 0 in the interior, 1 on a flat surface.
+SD_FN float splatEdgeFactor(float averageDirectionLength) {
+    return clamp((averageDirectionLength - SD_SPLAT_EDGE_INTERIOR) / (SD_SPLAT_EDGE_SURFACE - SD_SPLAT_EDGE_INTERIOR),
+                 0.0f, 1.0f);
+}
+
+// Rule 2's radius multiplier from rho / rho0 (slide 63): monotone, clamped.
+SD_FN float splatDensityScale(float density) {
+    return clamp(sqrt(max(density, 0.0f)), SD_SPLAT_DENSITY_SCALE_MIN, SD_SPLAT_DENSITY_SCALE_MAX);
+}
+
+// The average neighbour direction d = sum g / sum |g| (slide 57; g = w times
+// the unit direction to the neighbour) from the two sums over a particle's
+// list: ~0 inside, large at the surface, pointing into the fluid.
+SD_FN vec3 splatAverageDirection(vec3 sumG, float sumWeights) {
+    return sumWeights > 0.0f ? sumG / sumWeights : vec3(0.0f);
+}
+
+// Unit tangent of the surface whose inward direction is d (|d| > 0): in 2D d
+// turned by 90 degrees; in 3D the previous axis projected onto the tangent
+// plane (the most stable choice), else any tangent.
+SD_FN vec3 splatSurfaceTangent(vec3 d, vec3 previousAxis, uint dimension) {
+    vec3 n = normalize(d);
+    if (dimension == 2u) {
+        return vec3(-n.y, n.x, 0.0f);
+    }
+    vec3 projected = previousAxis - n * dot(previousAxis, n);
+    if (length(projected) > 0.3f) {
+        return normalize(projected);
+    }
+    vec3 helper = abs(n.x) < 0.9f ? vec3(1.0f, 0.0f, 0.0f) : vec3(0.0f, 1.0f, 0.0f);
+    return normalize(cross(n, helper));
+}
+
+// Rule 3's target orientation (xyz the unit axis, w the stretch): surface
+// stretch along the tangent (growing with the edge factor) plus velocity
+// stretch along the velocity (growing with speed), summed as sign-free
+// vectors (the velocity flipped into the tangent's hemisphere), capped at
+// SD_SPLAT_MAX_STRETCH.
+SD_FN vec4 splatTargetOrientation(vec3 tangent, float edge, vec3 velocity, float radius, vec3 previousAxis) {
+    vec3 sum = tangent * (SD_SPLAT_EDGE_STRETCH * edge);
+    float speed = length(velocity);
+    if (speed > 0.0f && radius > 0.0f) {
+        vec3 along = velocity / speed;
+        if (dot(along, sum) < 0.0f) {
+            along = -along;
+        }
+        sum += along * min(speed * SD_STRETCH_TIME / radius, SD_SPLAT_MAX_STRETCH - 1.0f);
+    }
+    float len = length(sum);
+    if (!(len > 1e-6f)) {
+        return vec4(previousAxis, 1.0f);
+    }
+    return vec4(sum / len, min(1.0f + len, SD_SPLAT_MAX_STRETCH));
+}
+
+// Rotates `previous` toward `target` (unit, sign-free: target is first
+// flipped into previous's hemisphere) by at most `maxAngle` radians.
+SD_FN vec3 splatTurnToward(vec3 previous, vec3 target, float maxAngle) {
+    if (!(maxAngle > 0.0f)) {
+        return previous;  // bit for bit: a repeated frame changes nothing
+    }
+    float cosine = dot(previous, target);
+    vec3 toward = cosine < 0.0f ? -target : target;  // sign-free: the nearer of +-target
+    float c = min(abs(cosine), 1.0f);
+    float angle = acos(c);
+    if (angle <= maxAngle) {
+        return toward;
+    }
+    vec3 offAxis = toward - previous * c;
+    float offLength = length(offAxis);
+    if (!(offLength > 0.0f)) {
+        return toward;
+    }
+    vec3 across = offAxis / offLength;
+    return normalize(previous * cos(maxAngle) + across * sin(maxAngle));
+}
+
+// Temporal smoothing of one particle's displayed orientation (slide 60;
+// xyz the axis, w the stretch) toward `target` over dt seconds.
+SD_FN vec4 splatSmoothOrientation(vec4 previous, vec4 target, float dt) {
+    float follow = 1.0f - exp(-max(dt, 0.0f) / SD_SPLAT_STRETCH_TAU);
+    vec3 axis = splatTurnToward(vec3(previous), vec3(target), SD_SPLAT_MAX_TURN_RATE * max(dt, 0.0f));
+    return vec4(axis, previous.w + (target.w - previous.w) * follow);
+}
+
+// Rule 7: whether particle `id` at density ratio `density` is drawn as a
+// bubble (slide 68): a pure function, so the choice never flickers.
+SD_FN uint splatIsBubble(uint id, float density) {
+    return density > SD_BUBBLE_DENSITY && pcgHash(id ^ SD_BUBBLE_SALT) % SD_BUBBLE_ONE_IN == 0u ? 1u : 0u;
+}
+
+// One particle's splat and its displayed orientation after this frame
+// (rules 1, 2, 3, 5, 7).
+struct WaterSplat {
+    SplatInstance instance;
+    vec4 shown;  // xyz the axis, w the stretch (0: never seen)
+};
+
+// Rules 1, 2, 3, 5 and 7 for a particle at x moving at `velocity`, at
+// density ratio `density`, whose average neighbour direction is d and whose
+// orientation was shown as `shown` (w 0: never seen).
+SD_FN WaterSplat splatOfParticle(vec3 x, vec3 velocity, float density, uint id, vec3 d, vec4 shown,
+                                 SD_IN(SplatSteps) s) {
+    WaterSplat result;
+    result.shown = shown;
+    // Rule 1: round, base colour (slide 62).
+    result.instance.centre = vec4(x, s.radius);
+    result.instance.axis = vec4(1.0f, 0.0f, 0.0f, 1.0f);
+    result.instance.shade = vec4(1.0f, 0.0f, float(SD_SPLAT_WATER), density);
+    // Rule 2: strays smaller (slide 63).
+    if (s.sizeFromDensity != 0u) {
+        result.instance.centre.w = s.radius * splatDensityScale(density);
+    }
+    float edge = s.stretch != 0u || s.edges != 0u ? splatEdgeFactor(length(d)) : 0.0f;
+    // Rule 3: stretch along surface and velocity, smoothed (slides 57, 60, 64).
+    if (s.stretch != 0u) {
+        vec3 previousAxis = shown.w > 0.0f ? vec3(shown) : vec3(1.0f, 0.0f, 0.0f);
+        vec3 tangent = edge > 0.0f ? splatSurfaceTangent(d, previousAxis, s.dimension) : vec3(0.0f);
+        vec4 target = splatTargetOrientation(tangent, edge, velocity, s.radius, previousAxis);
+        result.shown = shown.w > 0.0f ? splatSmoothOrientation(shown, target, s.up.w) : target;
+        result.instance.axis = result.shown;
+    }
+    // Rule 5: edge factor; upward-facing surface brighter (slides 57-58, 66).
+    if (s.edges != 0u) {
+        result.instance.shade.y = edge;
+        float len = length(d);
+        if (len > 0.0f) {
+            result.instance.shade.x = 1.0f + SD_SPLAT_SUN_HIGHLIGHT * max(dot(-d / len, vec3(s.up)), 0.0f) * edge;
+        }
+    }
+    // Rule 7: a stable subset of dense particles as bubbles (slide 68).
+    if (s.bubbles != 0u && splatIsBubble(id, density) != 0u) {
+        result.instance.shade.z = float(SD_SPLAT_BUBBLE);
+    }
+    return result;
+}
+
 SD_END
 #endif

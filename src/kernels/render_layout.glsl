@@ -132,12 +132,30 @@ SD_CONST uint SD_FLUID_WATER_BINDING_IDS = 3u;        // uint[]: serials
 SD_CONST uint SD_FLUID_WATER_BINDING_INSTANCES = 4u;  // SplatInstance[]: the renderer's splat buffer
 SD_CONST uint SD_FLUID_WATER_BINDING_PLANES = 5u;     // vec4[2 planes]: a point, then the unit normal
 SD_CONST uint SD_FLUID_WATER_BINDING_SPLASHES = 6u;   // FluidSplashList: the particles that throw one
-SD_CONST uint SD_FLUID_WATER_BINDINGS = 7u;
+SD_CONST uint SD_FLUID_WATER_BINDING_COUNTS = 7u;     // uint[]: the last setup's neighbours a particle (splats)
+SD_CONST uint SD_FLUID_WATER_BINDING_FIRST = 8u;      // uint[]: its first list entry
+SD_CONST uint SD_FLUID_WATER_BINDING_LIST = 9u;       // uint[]: each entry's neighbour
+SD_CONST uint SD_FLUID_WATER_BINDING_SHOWN = 10u;     // vec4[] by serial: a splat's shown axis, w its stretch (0: unseen)
+SD_CONST uint SD_FLUID_WATER_BINDINGS = 11u;
 SD_CONST uint SD_FLUID_WATER_SURFACE = 0u;  // FluidWaterPush::style: the 2D surface's kernels
 SD_CONST uint SD_FLUID_WATER_SCREEN = 1u;   // the 3D screen-space liquid's spheres
+SD_CONST uint SD_FLUID_WATER_SPLATS = 2u;   // Sprinkle's splats (fluid_look.glsl, splatOfParticle)
 // Most splash throwers one frame lists: more, and the host reads the
 // particles back that frame instead (every thrower, in particle order).
 SD_CONST uint SD_FLUID_SPLASH_ROOM = 1024u;
+// Which of Sprinkle's splat steps are on (FluidRenderDef), and the frame's
+// constants (src/kernels/fluid_look.glsl, splatOfParticle). 48 bytes.
+struct SplatSteps {
+    vec4 up;               // xyz: unit vector against gravity (highlights); w: the frame's dt (s)
+    float radius;          // m, rule 1's splat radius
+    uint sizeFromDensity;  // rule 2
+    uint stretch;          // rule 3
+    uint edges;            // rule 5
+    uint bubbles;          // rule 7
+    uint dimension;
+    uint pad0, pad1;
+};
+
 struct FluidWaterPush {
     vec4 up;          // xyz: unit vector against gravity; w: a splash's chance this frame
     uint count;       // particles
@@ -150,7 +168,9 @@ struct FluidWaterPush {
     uint splashes;    // 1: list the splash throwers
     uint frame;       // the splash RNG's counter (FluidSplatState::frame)
     float radius;     // m, a kernel's or sphere's
-    uint pad0, pad1;
+    float invH2;      // 1 / h^2 (1/m^2): the splats' pair entries g (fluid.glsl, fluidPairG)
+    uint lists;       // 1: the list bindings hold the last setup's lists
+    SplatSteps steps;  // the splat style's steps (fluid_look.glsl)
 };
 // A particle that throws a splash: its index (particle order), serial,
 // position and velocity (m, m/s; z 0 in 2D). 48 bytes.
@@ -219,9 +239,11 @@ static_assert(sizeof(TrailLook) == 368);
 static_assert(offsetof(TrailLook, width) == 352);
 static_assert(SD_SPRITE_BINDING_IMAGE == SD_SPRITE_BUFFERS);
 static_assert(sizeof(SplatInstance) == 48);
-static_assert(sizeof(FluidWaterPush) == 64);
+static_assert(sizeof(FluidWaterPush) == 112);
+static_assert(offsetof(FluidWaterPush, steps) == 64);
+static_assert(sizeof(SplatSteps) == 48);
 static_assert(sizeof(FluidSplashThrower) == 48);
-static_assert(SD_FLUID_WATER_BINDING_SPLASHES + 1u == SD_FLUID_WATER_BINDINGS);
+static_assert(SD_FLUID_WATER_BINDING_SHOWN + 1u == SD_FLUID_WATER_BINDINGS);
 static_assert(offsetof(SplatInstance, shade) == 32);
 static_assert(sizeof(FrameUniforms) == 592);
 static_assert(offsetof(FrameUniforms, invViewProj) == 240);

@@ -34,6 +34,28 @@ void writePlanes(gpu::Device& d, DeviceWater& w, const std::vector<glm::vec4>& p
     if (!planes.empty()) std::memcpy(w.planes.mapped, planes.data(), planes.size() * sizeof(glm::vec4));
 }
 
+/// `shown` grown to hold `serials` orientations, keeping those it holds;
+/// new ones are 0 (never seen). Grows by half again, so a jet's births do
+/// not copy it every frame.
+void growShown(gpu::Device& d, gpu::Buffer& shown, std::uint32_t serials) {
+    const VkDeviceSize bytes = std::max<VkDeviceSize>(serials, 1) * sizeof(glm::vec4);
+    if (shown.buffer != VK_NULL_HANDLE && shown.size >= bytes) return;
+    gpu::Buffer grown = gpu::createStorageBuffer(d, bytes + bytes / 2);
+    gpu::submitOnce(d, [&](VkCommandBuffer cmd) {
+        VkDeviceSize kept = 0;
+        if (shown.buffer != VK_NULL_HANDLE) {
+            kept = shown.size;
+            const VkBufferCopy region{0, 0, kept};
+            vkCmdCopyBuffer(cmd, shown.buffer, grown.buffer, 1, &region);
+        }
+        vkCmdFillBuffer(cmd, grown.buffer, kept, VK_WHOLE_SIZE, 0u);
+        gpu::memoryBarrier(cmd, VK_PIPELINE_STAGE_TRANSFER_BIT, VK_ACCESS_TRANSFER_WRITE_BIT,
+                           VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT, VK_ACCESS_SHADER_READ_BIT | VK_ACCESS_SHADER_WRITE_BIT);
+    });
+    gpu::destroyBuffer(d, shown);
+    shown = grown;
+}
+
 }  // namespace
 
 std::uint32_t deviceWaterInstances(std::uint32_t particles, std::size_t planes) {
@@ -58,6 +80,14 @@ SplashThrowers buildDeviceWater(gpu::Device& d, DeviceWater& w, const DeviceFlui
     buffers[kernels::SD_FLUID_WATER_BINDING_INSTANCES] = &instances;
     buffers[kernels::SD_FLUID_WATER_BINDING_PLANES] = &w.planes;
     buffers[kernels::SD_FLUID_WATER_BINDING_SPLASHES] = &w.splashes;
+    // Bindings a style does not read hold any buffer (the positions).
+    const bool splats = job.style == kernels::SD_FLUID_WATER_SPLATS;
+    const bool lists = splats && fluid.list != nullptr;
+    if (splats && job.shown != nullptr) growShown(d, *job.shown, job.serials);
+    buffers[kernels::SD_FLUID_WATER_BINDING_COUNTS] = lists ? fluid.counts : fluid.x;
+    buffers[kernels::SD_FLUID_WATER_BINDING_FIRST] = lists ? fluid.first : fluid.x;
+    buffers[kernels::SD_FLUID_WATER_BINDING_LIST] = lists ? fluid.list : fluid.x;
+    buffers[kernels::SD_FLUID_WATER_BINDING_SHOWN] = splats && job.shown != nullptr ? job.shown : &w.splashes;
     gpu::writeStorageSet(d, w.passes.sets[0], buffers);
     kernels::FluidWaterPush push{};
     push.up = glm::vec4(job.up, job.chance);
@@ -71,6 +101,9 @@ SplashThrowers buildDeviceWater(gpu::Device& d, DeviceWater& w, const DeviceFlui
     push.splashes = job.splashes ? 1u : 0u;
     push.frame = job.frame;
     push.radius = job.radius;
+    push.invH2 = job.invH2;
+    push.lists = lists ? 1u : 0u;
+    push.steps = job.steps;
     const std::uint32_t groups =
         gpu::workgroupsFor(d, std::max(fluid.count, 1u), kernels::SD_FLUID_WATER_WORKGROUP, "fluid water", "particles");
     gpu::submitOnce(d, [&](VkCommandBuffer cmd) {
@@ -115,7 +148,7 @@ SplashThrowers buildDeviceWater(gpu::Device& d, DeviceWater& w, const DeviceFlui
 }
 
 void destroyDeviceWater(gpu::Device& d, DeviceWater& w) {
-    if (!w.passes.pipelines.empty() || w.passes.pool != VK_NULL_HANDLE) gpu::destroyComputePasses(d, w.passes);
+    gpu::destroyComputePasses(d, w.passes);
     gpu::destroyBuffer(d, w.planes);
     gpu::destroyBuffer(d, w.splashes);
     w = DeviceWater{};

@@ -1,7 +1,8 @@
-// A device fluid's liquid built from the device's own buffers (issue 16): the
-// 2D surface's kernels or the 3D screen-space liquid's spheres written into
-// the renderer's splat instances by a compute pass (shaders/fluid_water.comp,
-// the rules of src/kernels/fluid_look.glsl that the host's instances use),
+// A device fluid's look built from the device's own buffers (issue 16): the
+// 2D surface's kernels, the 3D screen-space liquid's spheres or Sprinkle's
+// splats written into the renderer's splat instances by a compute pass
+// (shaders/fluid_water.comp, the rules of src/kernels/fluid_look.glsl that
+// the host's instances use),
 // and only the particles that throw a splash this frame read back (48 bytes
 // each), so a frame reads no particle arrays back.
 #pragma once
@@ -36,6 +37,11 @@ struct DeviceWaterJob {
     std::uint32_t frame = 0;    // the splash RNG's counter
     glm::vec3 up{0.0f, 1.0f, 0.0f};
     float chance = 0.0f;        // a thrower's probability this frame
+    // The splat style (SD_FLUID_WATER_SPLATS):
+    kernels::SplatSteps steps{};
+    float invH2 = 0.0f;              // the fluid's 1 / h^2 (1/m^2)
+    gpu::Buffer* shown = nullptr;    // the fluid's shown orientations by serial, grown to `serials`
+    std::uint32_t serials = 0;       // the fluid's serials so far (FluidState::nextSerial)
 };
 
 /// The particles that threw a splash, in particle order; `complete` is

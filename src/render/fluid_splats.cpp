@@ -19,28 +19,9 @@ namespace {
 /// Rule 1: splat radius = radiusScale * spacing / 2 (m); radiusScale 1 gives
 /// discs that touch on the block lattice (FluidRenderDef::radiusScale).
 constexpr float kRadiusPerSpacing = 0.5f;
-/// Rule 2: radius multiplier sqrt(rho / rho0) clamped to this range: a lone
-/// particle (rho / rho0 ~ 0.1 at the default h) shrinks to 0.3, a compressed
-/// one grows by at most 20%.
-constexpr float kDensityScaleMin = 0.3f;
-constexpr float kDensityScaleMax = 1.2f;
-/// Rule 3/5: |d| (average neighbour direction) at or below which a particle is
-/// interior, and at or above which it is surface. On the block lattice |d| is
-/// 0.45 on a flat top in 2D (h = 3 spacings) and 0.30 in 3D (h = 2.5), one
-/// row below the top 0.06 (2D) and 0.009 (3D), and 0 deeper.
-constexpr float kEdgeInterior = 0.08f;
-constexpr float kEdgeSurface = 0.25f;
-/// Rule 3: extra stretch along the surface tangent at edge factor 1 (slide
-/// 57: "stretch and rotate in direction of edge tangent").
-constexpr float kEdgeStretch = 0.8f;
-/// Rule 3: most stretch (major semi-axis / radius) of the combined axis.
-constexpr float kMaxStretch = 3.0f;
-/// Rule 3: time constant (s) with which the displayed stretch follows its
-/// target (slide 60: temporal coherence).
-constexpr float kStretchTau = 0.1f;
-/// Rule 5: brightness 1 + kSunHighlight on a surface facing straight up
-/// (slide 58: "render upward facing particles in brighter color").
-constexpr float kSunHighlight = 0.5f;
+/// Rules 2, 3, 5 and 7 are fluid_look.glsl's (splatOfParticle and its
+/// constants), which a fluid drawn from the device's buffers shares
+/// (device_water.h).
 /// Rule 6 (slide 61): which particles throw splashes, and how fast, is
 /// fluid_look.glsl's (throwsSplash, splashSpeedFactor), shared with the
 /// device's liquid (device_water.h). Smaller and brighter (slide 61), gone
@@ -48,13 +29,6 @@ constexpr float kSunHighlight = 0.5f;
 constexpr float kSplashRadius = 0.5f;
 constexpr float kSplashBrightness = 1.6f;
 constexpr float kSplashMaxAge = 2.0f;
-/// Rule 7 (slide 68): one in kBubbleOneIn particles (by id) denser than
-/// kBubbleDensity x rho0 is drawn as a bubble.
-constexpr float kBubbleDensity = 1.02f;
-constexpr std::uint32_t kBubbleOneIn = 8;
-/// The bubbles' salt of the counter-based RNG (src/kernels/random.glsl).
-constexpr std::uint32_t kBubbleSalt = 0xB0BB1Eu;
-
 // --- Helpers -----------------------------------------------------------------
 
 template <int D>
@@ -86,37 +60,7 @@ glm::vec3 averageDirection(const fluid::FluidView<D>& v, std::size_t i) {
         sum += list[k].g;
         weights += glm::length(list[k].g);
     }
-    return weights > 0.0f ? to3<D>(sum / weights) : glm::vec3(0.0f);
-}
-
-/// Unit tangent of the surface whose inward direction is d (|d| > 0): in 2D
-/// d turned by 90 degrees; in 3D the previous axis projected onto the tangent
-/// plane (the most stable choice), else any tangent.
-glm::vec3 surfaceTangent(glm::vec3 d, glm::vec3 previousAxis, std::uint32_t dimension) {
-    const glm::vec3 n = glm::normalize(d);
-    if (dimension == 2) return glm::vec3(-n.y, n.x, 0.0f);
-    const glm::vec3 projected = previousAxis - n * glm::dot(previousAxis, n);
-    if (glm::length(projected) > 0.3f) return glm::normalize(projected);
-    const glm::vec3 helper = std::abs(n.x) < 0.9f ? glm::vec3(1.0f, 0.0f, 0.0f) : glm::vec3(0.0f, 1.0f, 0.0f);
-    return glm::normalize(glm::cross(n, helper));
-}
-
-/// Rule 3's target orientation: surface stretch along the tangent (growing
-/// with the edge factor) plus velocity stretch along the velocity (growing
-/// with speed), summed as sign-free vectors (the velocity flipped into the
-/// tangent's hemisphere), capped at kMaxStretch.
-SplatOrientation targetOrientation(glm::vec3 tangent, float edge, glm::vec3 velocity, float radius,
-                                   glm::vec3 previousAxis) {
-    glm::vec3 sum = tangent * (kEdgeStretch * edge);
-    const float speed = glm::length(velocity);
-    if (speed > 0.0f && radius > 0.0f) {
-        glm::vec3 along = velocity / speed;
-        if (glm::dot(along, sum) < 0.0f) along = -along;
-        sum += along * std::min(speed * kStretchTime / radius, kMaxStretch - 1.0f);
-    }
-    const float len = glm::length(sum);
-    if (!(len > 1e-6f)) return SplatOrientation{previousAxis, 1.0f};
-    return SplatOrientation{sum / len, std::min(1.0f + len, kMaxStretch)};
+    return kernels::splatAverageDirection(to3<D>(sum), weights);
 }
 
 /// Exact ballistic position of a splash at its age.
@@ -145,38 +89,19 @@ template <int D>
 SplatInstance waterSplat(FluidSplatState& state, const FrameContext& c, const fluid::FluidView<D>& v,
                          std::size_t i) {
     const FluidRenderDef& s = *c.settings;
-    const glm::vec3 x = to3<D>(v.position[i]);
-    const float density = v.density[i];
-    const std::uint32_t id = v.id[i];
-    // Rule 1: round, base colour (slide 62).
-    SplatInstance out{glm::vec4(x, c.radius), glm::vec4(1.0f, 0.0f, 0.0f, 1.0f),
-                      glm::vec4(1.0f, 0.0f, static_cast<float>(SplatKind::Water), density)};
-    // Rule 2: strays smaller (slide 63).
-    if (s.sizeFromDensity) out.centre.w = c.radius * densityScale(density);
-    glm::vec3 d(0.0f);
-    float edge = 0.0f;
-    if (s.stretch || s.edges) {
-        d = averageDirection<D>(v, i);
-        edge = edgeFactor(glm::length(d));
+    const kernels::SplatSteps steps = splatSteps(s, c.radius, c.up, c.dt, D);
+    const glm::vec3 d = s.stretch || s.edges ? averageDirection<D>(v, i) : glm::vec3(0.0f);
+    if (!s.stretch) {
+        return kernels::splatOfParticle(to3<D>(v.position[i]), to3<D>(v.velocity[i]), v.density[i], v.id[i], d,
+                                        glm::vec4(0.0f), steps)
+            .instance;
     }
-    // Rule 3: stretch along surface and velocity, smoothed (slides 57, 60, 64).
-    if (s.stretch) {
-        SplatOrientation& shown = orientationOf(state, id);
-        const glm::vec3 previousAxis = shown.stretch > 0.0f ? shown.axis : glm::vec3(1.0f, 0.0f, 0.0f);
-        const glm::vec3 tangent = edge > 0.0f ? surfaceTangent(d, previousAxis, D) : glm::vec3(0.0f);
-        const SplatOrientation target = targetOrientation(tangent, edge, to3<D>(v.velocity[i]), c.radius, previousAxis);
-        shown = shown.stretch > 0.0f ? smoothOrientation(shown, target, c.dt) : target;
-        out.axis = glm::vec4(shown.axis, shown.stretch);
-    }
-    // Rule 5: edge factor; upward-facing surface brighter (slides 57-58, 66).
-    if (s.edges) {
-        out.shade.y = edge;
-        const float len = glm::length(d);
-        if (len > 0.0f) out.shade.x = 1.0f + kSunHighlight * std::max(glm::dot(-d / len, c.up), 0.0f) * edge;
-    }
-    // Rule 7: a stable subset of dense particles as bubbles (slide 68).
-    if (s.bubbles && isBubble(id, density)) out.shade.z = static_cast<float>(SplatKind::Bubble);
-    return out;
+    SplatOrientation& shown = orientationOf(state, v.id[i]);
+    const kernels::WaterSplat out = kernels::splatOfParticle(
+        to3<D>(v.position[i]), to3<D>(v.velocity[i]), v.density[i], v.id[i], d, glm::vec4(shown.axis, shown.stretch),
+        steps);
+    shown = SplatOrientation{glm::vec3(out.shown), out.shown.w};
+    return out.instance;
 }
 
 /// Rule 6, motion: each splash flies its exact parabola for dt and is removed
@@ -254,43 +179,44 @@ FrameContext frameContext(const World& world, WorldId worldId, const fluid::Flui
     const std::uint32_t dimension = f.def.dimension;
     const glm::vec3 gravity = flatIf2D(f.def.gravity, dimension);
     FrameContext c{&world, &f, &settings, std::max(dt, 0.0f),
-                   settings.radiusScale * f.def.spacing * kRadiusPerSpacing, gravity, upOf(gravity), {}};
+                   splatRadius(settings, f.def.spacing), gravity, upOf(gravity), {}};
     if (dimension == 2 && settings.splashes && dt > 0.0f) c.bodies = readBodies(worldId);
     return c;
 }
 
 }  // namespace
 
-float edgeFactor(float averageDirectionLength) {
-    return std::clamp((averageDirectionLength - kEdgeInterior) / (kEdgeSurface - kEdgeInterior), 0.0f, 1.0f);
-}
+float edgeFactor(float averageDirectionLength) { return kernels::splatEdgeFactor(averageDirectionLength); }
 
-float densityScale(float density) {
-    return std::clamp(std::sqrt(std::max(density, 0.0f)), kDensityScaleMin, kDensityScaleMax);
-}
+float densityScale(float density) { return kernels::splatDensityScale(density); }
 
 glm::vec3 turnToward(glm::vec3 previous, glm::vec3 target, float maxAngle) {
-    if (!(maxAngle > 0.0f)) return previous;  // bit for bit: a repeated frame changes nothing
-    const float cosine = glm::dot(previous, target);
-    if (cosine < 0.0f) target = -target;  // sign-free: the nearer of +-target
-    const float c = std::min(std::abs(cosine), 1.0f);
-    const float angle = std::acos(c);
-    if (angle <= maxAngle) return target;
-    const glm::vec3 offAxis = target - previous * c;
-    const float offLength = glm::length(offAxis);
-    if (!(offLength > 0.0f)) return target;
-    const glm::vec3 across = offAxis / offLength;
-    return glm::normalize(previous * std::cos(maxAngle) + across * std::sin(maxAngle));
+    return kernels::splatTurnToward(previous, target, maxAngle);
 }
 
 SplatOrientation smoothOrientation(SplatOrientation previous, SplatOrientation target, float dt) {
-    const float follow = 1.0f - std::exp(-std::max(dt, 0.0f) / kStretchTau);
-    return SplatOrientation{turnToward(previous.axis, target.axis, kMaxTurnRate * std::max(dt, 0.0f)),
-                            previous.stretch + (target.stretch - previous.stretch) * follow};
+    const glm::vec4 shown = kernels::splatSmoothOrientation(glm::vec4(previous.axis, previous.stretch),
+                                                            glm::vec4(target.axis, target.stretch), dt);
+    return SplatOrientation{glm::vec3(shown), shown.w};
 }
 
-bool isBubble(std::uint32_t id, float density) {
-    return density > kBubbleDensity && kernels::pcgHash(id ^ kBubbleSalt) % kBubbleOneIn == 0u;
+bool isBubble(std::uint32_t id, float density) { return kernels::splatIsBubble(id, density) != 0u; }
+
+kernels::SplatSteps splatSteps(const FluidRenderDef& settings, float radius, glm::vec3 up, float dt,
+                               std::uint32_t dimension) {
+    kernels::SplatSteps s{};
+    s.up = glm::vec4(up, std::max(dt, 0.0f));
+    s.radius = radius;
+    s.sizeFromDensity = settings.sizeFromDensity ? 1u : 0u;
+    s.stretch = settings.stretch ? 1u : 0u;
+    s.edges = settings.edges ? 1u : 0u;
+    s.bubbles = settings.bubbles ? 1u : 0u;
+    s.dimension = dimension;
+    return s;
+}
+
+float splatRadius(const FluidRenderDef& settings, float spacing) {
+    return settings.radiusScale * spacing * kRadiusPerSpacing;
 }
 
 float splashChance(float dt) { return 1.0f - std::exp(-kernels::SD_SPLASH_RATE * std::max(dt, 0.0f)); }

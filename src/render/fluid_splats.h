@@ -60,9 +60,8 @@ struct FluidSplatState {
 
 /// Most splashes alive at once (slide 61: 800 in the 2nd generation).
 inline constexpr std::size_t kMaxSplashes = 800;
-/// Fastest turn of a displayed axis (rad/s): slide 60 "allow small rotations";
-/// 6 rad/s is 0.1 rad (5.7 degrees) per frame at 60 fps.
-inline constexpr float kMaxTurnRate = 6.0f;
+/// Fastest turn of a displayed axis (rad/s; fluid_look.glsl).
+inline constexpr float kMaxTurnRate = kernels::SD_SPLAT_MAX_TURN_RATE;
 /// Rule 3: along the velocity a splat's major semi-axis grows by the distance
 /// the particle moves in this time (s), like a short motion blur (slide 64);
 /// the liquid surface stretches its kernels the same way (surface_field.cpp).
@@ -103,5 +102,11 @@ SplatOrientation smoothOrientation(SplatOrientation previous, SplatOrientation t
 /// Whether particle `id` at density ratio `density` is drawn as a bubble
 /// (slide 68): a pure function, so the choice never flickers.
 bool isBubble(std::uint32_t id, float density);
+/// The splat steps `settings` turns on, for a frame of `dt` s, splats of
+/// `radius` m (splatRadius), `up` against gravity (fluid_look.glsl).
+kernels::SplatSteps splatSteps(const FluidRenderDef& settings, float radius, glm::vec3 up, float dt,
+                               std::uint32_t dimension);
+/// Rule 1's splat radius (m) for particles `spacing` m apart.
+float splatRadius(const FluidRenderDef& settings, float spacing);
 
 }  // namespace spindrift::render

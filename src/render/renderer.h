@@ -82,6 +82,9 @@ struct SplatFluid {
     /// first `onDevice` instances (the water, `particles` of them) are
     /// written there by the device; `instances` holds only what follows.
     std::uint32_t onDevice = 0;
+    /// Its splats' shown orientations by serial, kept on the device (the
+    /// splat style of a fluid drawn from the device's buffers).
+    gpu::Buffer shownOnDevice;
 };
 
 /// The liquid surface's field (surface_pass.cpp): two float images at a

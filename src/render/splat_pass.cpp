@@ -1,6 +1,7 @@
 // Fluid splats (see splat_pass.h).
 #include "render/splat_pass.h"
 
+#include "fluid/fluid_state.h"
 #include "render/surface_field.h"
 #include "world/device_fluid.h"
 #include "world/world.h"
@@ -41,6 +42,12 @@ void reserve(Renderer& r, std::size_t count) {
 
 namespace {
 
+/// Whether fluid `id`'s water is drawn from the device's buffers: a fluid
+/// the device solves, unless the renderer is told to read it back.
+DeviceFluid* drawnFromDevice(const Renderer& r, FluidId id) {
+    return r.drawDeviceWater ? deviceFluidFromId(worldFromId(r.world), id) : nullptr;
+}
+
 /// The water of fluid `id`, on the device, drawn from its buffers: its
 /// instances' count (the particles, and in the surface style a slot per
 /// particle and wall plane for the mirror images).
@@ -55,10 +62,14 @@ std::uint32_t deviceWaterSlots(const Renderer& r, const SplatFluid& sf, const De
 /// for them as for a CPU fluid.
 void drawWaterFromDevice(Renderer& r, SplatFluid& sf, FluidId id, DeviceFluid& g, float dt) {
     const World& world = worldFromId(r.world);
+    const fluid::FluidState& f = fluidSettingsFromId(world, id);
     const DeviceFluidBuffers buffers = deviceFluidBuffers(g);
+    const bool splats = !sf.surface && !sf.screen;
     DeviceWaterJob job;
     job.first = sf.first;
-    job.style = sf.surface ? kernels::SD_FLUID_WATER_SURFACE : kernels::SD_FLUID_WATER_SCREEN;
+    job.style = sf.surface  ? kernels::SD_FLUID_WATER_SURFACE
+                : sf.screen ? kernels::SD_FLUID_WATER_SCREEN
+                            : kernels::SD_FLUID_WATER_SPLATS;
     job.stretch = r.def.fluid.stretch;
     job.radius = (sf.surface ? kSurfaceKernelSpacings : kScreenSphereSpacings) * sf.spacing;
     if (sf.surface) job.planes = wallPlanes(world);
@@ -66,14 +77,23 @@ void drawWaterFromDevice(Renderer& r, SplatFluid& sf, FluidId id, DeviceFluid& g
     job.frame = sf.state.frame;
     job.up = splashUp(r.world, id);
     job.chance = splashChance(dt);
+    // The splats' own rules take the splash's settings as the liquid's
+    // splashes do: the liquid styles draw splashes as raw splats.
+    FluidRenderDef splashSettings = FluidRenderDef::upTo(1);
+    splashSettings.splashes = r.def.fluid.splashes;
+    if (splats) {
+        splashSettings = r.def.fluid;
+        job.steps = splatSteps(r.def.fluid, splatRadius(r.def.fluid, sf.spacing), job.up, dt, f.def.dimension);
+        job.invH2 = 1.0f / (f.h * f.h);
+        job.shown = &sf.shownOnDevice;
+        job.serials = f.nextSerial;
+    }
     const SplashThrowers thrown = buildDeviceWater(*r.device, r.deviceWater, buffers, r.splatBuffer, job);
-    FluidRenderDef splashesOnly = FluidRenderDef::upTo(1);
-    splashesOnly.splashes = r.def.fluid.splashes;
     if (thrown.complete) {
-        updateSplashes(sf.state, r.world, id, splashesOnly, dt, thrown.throwers, sf.instances);
+        updateSplashes(sf.state, r.world, id, splashSettings, dt, thrown.throwers, sf.instances);
         return;
     }
-    updateFluidSplats(sf.state, r.world, id, splashesOnly, dt, sf.instances);
+    updateFluidSplats(sf.state, r.world, id, splashSettings, dt, sf.instances);
     sf.instances.erase(sf.instances.begin(), sf.instances.begin() + static_cast<std::ptrdiff_t>(buffers.count));
 }
 
@@ -81,7 +101,6 @@ void drawWaterFromDevice(Renderer& r, SplatFluid& sf, FluidId id, DeviceFluid& g
 
 void prepareSplats(Renderer& r, float dt) {
     const std::uint32_t fluids = fluidCount(r.world);
-    const World& world = worldFromId(r.world);
     r.fluids.resize(fluids);
     std::vector<DeviceFluid*> fromDevice(fluids, nullptr);  // fluids drawn from the device's buffers
     std::size_t total = 0;
@@ -95,12 +114,13 @@ void prepareSplats(Renderer& r, float dt) {
         sf.spacing = fluidSpacing(r.world, id);
         sf.first = static_cast<std::uint32_t>(total);
         sf.onDevice = 0;
-        DeviceFluid* g = deviceFluidFromId(world, id);
-        if ((sf.surface || sf.screen) && g != nullptr && r.drawDeviceWater) {
+        DeviceFluid* g = drawnFromDevice(r, id);
+        if (g != nullptr) {
             // Drawn below, once the buffer has room: the water, and at most
             // every splash alive after it.
             fromDevice[f] = g;
-            sf.onDevice = sf.particles = deviceWaterSlots(r, sf, *g);
+            sf.onDevice = deviceWaterSlots(r, sf, *g);
+            sf.particles = sf.surface || sf.screen ? sf.onDevice : 0;  // splats: every instance a splat
             sf.instances.clear();
             total += sf.onDevice + kMaxSplashes;
             continue;
@@ -152,6 +172,7 @@ void recordSplats(Renderer& r, VkCommandBuffer cmd) {
 
 void destroySplats(Renderer& r) {
     destroyDeviceWater(*r.device, r.deviceWater);
+    for (SplatFluid& f : r.fluids) gpu::destroyBuffer(*r.device, f.shownOnDevice);
     if (r.splatBuffer.buffer != VK_NULL_HANDLE) {
         gpu::destroyBuffer(*r.device, r.splatBuffer);
     }

@@ -608,7 +608,19 @@ void uploadDeviceFluid(DeviceFluid& g, const fluid::FluidState& f) {
 bool deviceFluidOnHost(const DeviceFluid& g) { return g.onHost; }
 
 DeviceFluidBuffers deviceFluidBuffers(const DeviceFluid& g) {
-    return {&g.x, &g.v, g.setUp ? &g.setup->constraints : nullptr, &g.ids, g.count, g.dimension};
+    DeviceFluidBuffers b;
+    b.x = &g.x;
+    b.v = &g.v;
+    b.ids = &g.ids;
+    if (g.setUp) {
+        b.constraints = &g.setup->constraints;
+        b.counts = &g.setup->counts;
+        b.first = &g.setup->first;
+        b.list = &g.setup->listIndex;
+    }
+    b.count = g.count;
+    b.dimension = g.dimension;
+    return b;
 }
 
 void readDeviceFluid(DeviceFluid& g, fluid::FluidState& f) {

@@ -109,12 +109,18 @@ bool deviceFluidOnHost(const DeviceFluid& g);
 /// (the renderer, issue 16), valid until the next step or edit: positions
 /// and velocities (`dimension` floats a particle), the last setup's
 /// constraints (rho / rho0 in z; null when no setup ran since the last
-/// upload or births) and serials, `count` particles in the device's order.
+/// upload or births) with its lists, and serials, `count` particles in the
+/// device's order.
 struct DeviceFluidBuffers {
     const gpu::Buffer* x = nullptr;
     const gpu::Buffer* v = nullptr;
     const gpu::Buffer* constraints = nullptr;
     const gpu::Buffer* ids = nullptr;
+    // The last setup's lists (null with its constraints): neighbours a
+    // particle, its first entry, each entry's neighbour (particle order).
+    const gpu::Buffer* counts = nullptr;
+    const gpu::Buffer* first = nullptr;
+    const gpu::Buffer* list = nullptr;
     std::uint32_t count = 0;
     std::uint32_t dimension = 2;
 };

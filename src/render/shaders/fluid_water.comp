@@ -1,10 +1,12 @@
 #version 450
 // A device fluid's liquid from its own buffers (issue 16; see
 // src/render/device_water.h): one invocation a particle writes its kernel
-// (2D surface) or sphere (3D screen-space liquid) into the splat instances,
-// then its mirror image behind each wall plane (a radius-0 instance where it
-// has none), and appends itself to the splash list when it throws one this
+// (2D surface), sphere (3D screen-space liquid) or splat (Sprinkle's steps,
+// its shown orientation kept here by serial) into the splat instances, then
+// its mirror image behind each wall plane (a radius-0 instance where it has
+// none), and appends itself to the splash list when it throws one this
 // frame. The rules are fluid_look.glsl's, which the host's instances use.
+#include "fluid.glsl"
 #include "fluid_look.glsl"
 
 layout(local_size_x = SD_FLUID_WATER_WORKGROUP) in;
@@ -23,6 +25,11 @@ layout(std430, set = 0, binding = SD_FLUID_WATER_BINDING_SPLASHES) buffer Splash
     FluidSplashThrower throwers[];
 };
 
+layout(std430, set = 0, binding = SD_FLUID_WATER_BINDING_COUNTS) readonly buffer Counts { uint counts[]; };
+layout(std430, set = 0, binding = SD_FLUID_WATER_BINDING_FIRST) readonly buffer First { uint firsts[]; };
+layout(std430, set = 0, binding = SD_FLUID_WATER_BINDING_LIST) readonly buffer List { uint listIndex[]; };
+layout(std430, set = 0, binding = SD_FLUID_WATER_BINDING_SHOWN) buffer Shown { vec4 shown[]; };
+
 layout(push_constant) uniform Push { FluidWaterPush args; };
 
 vec3 loadVector(uint i, bool velocity) {
@@ -40,14 +47,56 @@ vec3 loadVector(uint i, bool velocity) {
     return r;
 }
 
+// The average neighbour direction over particle i's list, each entry's g
+// computed from the positions now as the solve computes it
+// (fluid_solve.comp, pairG).
+vec3 averageDirection(uint i, vec3 xi) {
+    vec3 sumG = vec3(0.0f);
+    float weights = 0.0f;
+    if (args.lists == 0u) return sumG;
+    uint begin = firsts[i];
+    for (uint k = 0u; k < counts[i]; ++k) {
+        uint j = listIndex[begin + k];
+        precise vec3 offset = loadVector(j, false) - xi;
+        precise float r2x = offset.x * offset.x;
+        precise float r2y = offset.y * offset.y;
+        precise float r2 = r2x + r2y;
+        if (args.dimension == 3u) {
+            precise float r2z = offset.z * offset.z;
+            r2 = r2 + r2z;
+        }
+        vec3 g = fluidPairG(offset, r2, i, j, args.invH2);
+        sumG += g;
+        weights += length(g);
+    }
+    return splatAverageDirection(sumG, weights);
+}
+
+// Sprinkle's splat of particle i, its shown orientation read and kept by
+// serial.
+SplatInstance splatOf(uint i, vec3 x, vec3 v, float density) {
+    uint id = ids[i];
+    vec3 d = args.steps.stretch != 0u || args.steps.edges != 0u ? averageDirection(i, x) : vec3(0.0f);
+    vec4 was = args.steps.stretch != 0u ? shown[id] : vec4(0.0f);
+    WaterSplat s = splatOfParticle(x, v, density, id, d, was, args.steps);
+    if (args.steps.stretch != 0u) shown[id] = s.shown;
+    return s.instance;
+}
+
 void main() {
     uint i = gl_GlobalInvocationID.x;
     if (i >= args.count) return;
     vec3 x = loadVector(i, false);
     vec3 v = loadVector(i, true);
     float density = args.densities != 0u ? constraints[i].z : 1.0f;
-    SplatInstance s = args.style == SD_FLUID_WATER_SCREEN ? screenSphere(x, v, density, args.radius)
-                                                          : surfaceKernel(x, v, density, args.radius, args.stretch);
+    SplatInstance s;
+    if (args.style == SD_FLUID_WATER_SPLATS) {
+        s = splatOf(i, x, v, density);
+    } else if (args.style == SD_FLUID_WATER_SCREEN) {
+        s = screenSphere(x, v, density, args.radius);
+    } else {
+        s = surfaceKernel(x, v, density, args.radius, args.stretch);
+    }
     instances[args.first + i] = s;
     for (uint p = 0u; p < args.planes; ++p) {
         vec3 point = planes[2u * p].xyz;

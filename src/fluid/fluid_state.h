@@ -215,6 +215,10 @@ struct WallTerm {
 /// Fills FluidState::wallTable for its spacing and h.
 void buildWallTable(FluidState& f);
 WallTerm wallTerm(const WallTable& t, float distance);
+/// Whether wallTerm at `distance` is not zero: the table reaches it.
+inline bool wallReaches(const WallTable& t, float distance) {
+    return kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize).entry >= 0;
+}
 
 /// A particle near a collider surface this step (found once per step; the
 /// surface does not move while the solver iterates). 24 bytes.

@@ -471,6 +471,20 @@ SD_FN vec3 fluidWithoutInward(vec3 v, vec3 n) {
 }
 
 // Length of v (z 0 in 2D: the same number as the 2D length).
+SD_FN float fluidSquare(float a) {
+    SD_PRECISE float squared = a * a;
+    return squared;
+}
+
+// |v|^2, as fluidLength squares it.
+SD_FN float fluidLengthSquared(vec3 v) {
+    SD_PRECISE float xx = v.x * v.x;
+    SD_PRECISE float yy = v.y * v.y;
+    SD_PRECISE float zz = v.z * v.z;
+    SD_PRECISE float squared = xx + yy + zz;
+    return squared;
+}
+
 SD_FN float fluidLength(vec3 v) {
     SD_PRECISE float xx = v.x * v.x;
     SD_PRECISE float yy = v.y * v.y;
@@ -519,7 +533,7 @@ SD_FN FluidSleep fluidSleepStep(vec3 x, vec3 v, vec3 anchor, float still, float 
         }
         s.still = 0.0f;
         s.anchor = x;
-    } else if (fluidLength(x - anchor) > drift) {
+    } else if (fluidLengthSquared(x - anchor) > fluidSquare(drift)) {  // no root: the test of every moving particle
         s.still = 0.0f;
         s.anchor = x;
     } else {

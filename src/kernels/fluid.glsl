@@ -476,7 +476,9 @@ SD_FN float fluidSquare(float a) {
     return squared;
 }
 
-// |v|^2, as fluidLength squares it.
+// |v|^2, as fluidLength squares it. fluidLength does not call it: with
+// that call, Debian 12's glslc ran out of memory on fluid_contacts.comp
+// (13.7 GB in two minutes; the `precise` hang of layout.glsl's note).
 SD_FN float fluidLengthSquared(vec3 v) {
     SD_PRECISE float xx = v.x * v.x;
     SD_PRECISE float yy = v.y * v.y;

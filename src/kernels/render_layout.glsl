@@ -119,7 +119,7 @@ struct SplatInstance {
 // A device fluid's liquid drawn from its own buffers (issue 16;
 // src/render/device_water.cpp, shaders/fluid_water.comp): one invocation a
 // particle writes its kernel or sphere (fluid_look.glsl) into the splat
-// instances at `first`, then for each wall plane p its mirror image at
+// instances at `first`, then for each wall plane p near the water its mirror image at
 // first + (p + 1) count + i (radius 0, drawn as nothing, where it has none:
 // the host's order of instances, without a compaction), and lists the
 // particles that throw a splash this frame for the host, which keeps the

@@ -8,6 +8,7 @@
 
 #include <spindrift/fluid.h>
 
+#include <algorithm>
 #include <cstring>
 
 namespace spindrift::render {
@@ -48,12 +49,40 @@ DeviceFluid* drawnFromDevice(const Renderer& r, FluidId id) {
     return r.drawDeviceWater ? deviceFluidFromId(worldFromId(r.world), id) : nullptr;
 }
 
+/// The wall planes that may mirror some particle of `g` (its box, as its
+/// last substep reported it, reaches within a kernel radius in front of
+/// them): the others' slots would all be radius 0. Each a point, then the
+/// unit normal, in the colliders' order.
+std::vector<glm::vec4> planesNear(const Renderer& r, const SplatFluid& sf, const DeviceFluid& g) {
+    std::vector<glm::vec4> near;
+    if (!sf.surface) return near;
+    const DeviceFluidExtent box = deviceFluidExtent(g);
+    const float radius = kSurfaceKernelSpacings * sf.spacing;
+    const std::vector<glm::vec4> planes = wallPlanes(worldFromId(r.world));
+    for (std::size_t p = 0; p + 1 < planes.size(); p += 2) {
+        const glm::vec3 point(planes[p]), normal(planes[p + 1]);
+        // The distance is linear in x: its extremes over the box are at
+        // its corners, the low or the high end along each axis.
+        float lowest = 0.0f, highest = 0.0f;
+        for (int a = 0; a < 3; ++a) {
+            const float low = (box.low[a] - point[a]) * normal[a], high = (box.high[a] - point[a]) * normal[a];
+            lowest += std::min(low, high);
+            highest += std::max(low, high);
+        }
+        // A margin of a thousandth of the radius: the sums above round
+        // otherwise than the pass's dot product.
+        if (highest < -1e-3f * radius || lowest >= radius * 1.001f) continue;
+        near.push_back(planes[p]);
+        near.push_back(planes[p + 1]);
+    }
+    return near;
+}
+
 /// The water of fluid `id`, on the device, drawn from its buffers: its
 /// instances' count (the particles, and in the surface style a slot per
-/// particle and wall plane for the mirror images).
+/// particle and nearby wall plane for the mirror images).
 std::uint32_t deviceWaterSlots(const Renderer& r, const SplatFluid& sf, const DeviceFluid& g) {
-    const std::size_t planes = sf.surface ? wallPlanes(worldFromId(r.world)).size() / 2 : 0;
-    return deviceWaterInstances(deviceFluidBuffers(g).count, planes);
+    return deviceWaterInstances(deviceFluidBuffers(g).count, planesNear(r, sf, g).size() / 2);
 }
 
 /// Writes fluid `id`'s water on the device at sf.first and its splashes into
@@ -72,7 +101,7 @@ void drawWaterFromDevice(Renderer& r, SplatFluid& sf, FluidId id, DeviceFluid& g
                             : kernels::SD_FLUID_WATER_SPLATS;
     job.stretch = r.def.fluid.stretch;
     job.radius = (sf.surface ? kSurfaceKernelSpacings : kScreenSphereSpacings) * sf.spacing;
-    if (sf.surface) job.planes = wallPlanes(world);
+    job.planes = planesNear(r, sf, g);
     job.splashes = r.def.fluid.splashes && dt > 0.0f;
     job.frame = sf.state.frame;
     job.up = splashUp(r.world, id);

@@ -145,6 +145,19 @@ TEST_F(DeviceWater, A2DLiquidFromTheDevicesBuffersIsTheHostsAndReadsNoParticlesB
     EXPECT_GT(compareDamBreak(2, 8, 6), 0u) << "the dam break threw no splash: the throwers were not tested";
 }
 
+TEST_F(DeviceWater, OnlyWallsNearTheWaterGetMirrorSlots) {
+    // At t = 0.1 s the column (0.4 m wide, 0.5 m high) touches the left wall
+    // and the floor of its 1.2 x 1.0 m box and is far (more than a kernel
+    // radius, 4 cm) from the right wall and the top: a slot per particle
+    // for itself and for each of the two near walls.
+    DeviceFluidWorld w(2);
+    for (int s = 0; s < 6; ++s) stepWorld(w.id, kDt);
+    ScopedRenderer r(w.id, view(2));
+    renderFrame(r.id);
+    const std::size_t n = readFluid(w.id, w.fluid).count();
+    EXPECT_EQ(render::rendererOf(r.id).fluids.at(0).onDevice, 3 * n);
+}
+
 TEST_F(DeviceWater, A3DScreenLiquidFromTheDevicesBuffersIsTheHosts) {
     compareDamBreak(3, 4, 8);
 }

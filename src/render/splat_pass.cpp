@@ -39,10 +39,6 @@ void reserve(Renderer& r, std::size_t count) {
     bindSplatBuffer(r);
 }
 
-}  // namespace
-
-namespace {
-
 /// Whether fluid `id`'s water is drawn from the device's buffers: a fluid
 /// the device solves, unless the renderer is told to read it back.
 DeviceFluid* drawnFromDevice(const Renderer& r, FluidId id) {

@@ -22,13 +22,13 @@ struct FluidId { std::uint32_t index = 0; };
 enum class FluidBackend : std::uint32_t {
     /// The device in a Vulkan world on a hardware GPU (never lavapipe, which
     /// runs shaders on the CPU cores slower than the CPU solver) for the
-    /// Parallel solver; else the CPU. A fluid that meets a rigid body moves
-    /// to the CPU (bodies are not coupled on the device yet).
+    /// Parallel solver; else the CPU.
     Auto = 0,
     Cpu = 1,
-    /// The device of a Vulkan world (WorldDef::backend), lavapipe included;
-    /// an Error in a CPU world, and at a step that finds rigid bodies near
-    /// the fluid.
+    /// The device of a Vulkan world (WorldDef::backend), lavapipe included,
+    /// rigid bodies coupled there too; the renderer draws it from the
+    /// device's buffers. An Error in a CPU world and for the Sequential
+    /// solver.
     Gpu = 2,
 };
 

@@ -232,8 +232,9 @@ SPINDRIFT_API std::vector<std::uint32_t> sortEmitterBackToFront(WorldId world, E
 /// Bytes copied between host and device memory since the world was created.
 /// A GPU world moves particle data only on creation and readParticles (and,
 /// for a fluid on the device, a 336-byte report a substep, its particles
-/// when readFluid or the renderer reads them, and edits); the CPU backend
-/// moves nothing and returns zeros.
+/// when readFluid reads them, and edits; a rendered frame reads back 16
+/// bytes and 48 a particle that throws a splash); the CPU backend moves
+/// nothing and returns zeros.
 struct TransferStats {
     std::uint64_t bytesUploaded = 0;
     std::uint64_t bytesDownloaded = 0;

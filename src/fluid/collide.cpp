@@ -62,11 +62,11 @@ template <int D, class Fn>
 void forEachSurface(const StepContext& world, const FluidState& f, glm::vec3 x, float reach, Fn&& fn) {
     for (const kernels::ColliderParams& c : world.colliders) {
         if (!isFluidCollider(c)) continue;
-        if (c.kind == kernels::SD_COLLIDER_PLANE) {
-            const float d = kernels::fluidColliderSurface(c, x).distance;
-            if (!(d < reach) && !wallReaches(f.wallTable, d)) continue;
+        const kernels::FluidSurface s = kernels::fluidColliderSurface(c, x);
+        if (c.kind == kernels::SD_COLLIDER_PLANE && !(s.distance < reach) && !wallReaches(f.wallTable, s.distance)) {
+            continue;
         }
-        fn(flatten<D>(kernels::fluidColliderSurface(c, x)));
+        fn(flatten<D>(s));
     }
     for (const kernels::FluidPolygon& poly : f.polygons) {
         fn(kernels::fluidPolygonSurface(poly, x));

@@ -470,7 +470,6 @@ SD_FN vec3 fluidWithoutInward(vec3 v, vec3 n) {
     return out1;
 }
 
-// Length of v (z 0 in 2D: the same number as the 2D length).
 SD_FN float fluidSquare(float a) {
     SD_PRECISE float squared = a * a;
     return squared;
@@ -487,6 +486,7 @@ SD_FN float fluidLengthSquared(vec3 v) {
     return squared;
 }
 
+// Length of v (z 0 in 2D: the same number as the 2D length).
 SD_FN float fluidLength(vec3 v) {
     SD_PRECISE float xx = v.x * v.x;
     SD_PRECISE float yy = v.y * v.y;

@@ -42,7 +42,11 @@
 // all steps), max_speed (m/s, over all steps), number_density_median and
 // number_density_p95 (measureFluidNumberDensity at t = 6 s), particles, and
 // the passes' own wall times per timed step (FluidStepStats): grid_ms,
-// contacts_ms, setup_ms, solve_ms, integrate_ms.
+// contacts_ms, setup_ms, solve_ms, integrate_ms; what each substep rule
+// asked for, mean over the timed steps (substeps_for_speed, _depth,
+// _compression), and the share of timed steps in which it asked for the
+// count taken (steps_set_by_speed, _depth, _compression; ties count for
+// each).
 #include <spindrift/world.h>
 
 #include "bench_util.h"
@@ -187,6 +191,10 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
         std::vector<double> wallMs, cpu;
         double substeps = 0.0, maxMeanError = 0.0, maxSpeed = 0.0;
         double gridMs = 0.0, contactsMs = 0.0, setupMs = 0.0, solveMs = 0.0, integrateMs = 0.0;
+        // What the substep rules asked for (FluidStepStats::substepsFor*),
+        // summed, and the steps in which each asked for the count taken.
+        double forSpeed = 0.0, forDepth = 0.0, forCompression = 0.0;
+        double setBySpeed = 0.0, setByDepth = 0.0, setByCompression = 0.0;
         std::uint64_t overflows = 0;
         for (int step = 0; step < kTotalSteps; ++step) {
             const double c0 = cpuMs();
@@ -204,6 +212,12 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
                 setupMs += f.setupMs;
                 solveMs += f.solveMs;
                 integrateMs += f.integrateMs;
+                forSpeed += f.substepsForSpeed;
+                forDepth += f.substepsForDepth;
+                forCompression += f.substepsForCompression;
+                setBySpeed += f.substepsForSpeed == f.substeps ? 1.0 : 0.0;
+                setByDepth += f.substepsForDepth == f.substeps ? 1.0 : 0.0;
+                setByCompression += f.substepsForCompression == f.substeps ? 1.0 : 0.0;
             }
             maxMeanError = std::max(maxMeanError, f.meanDensityError);
             maxSpeed = std::max(maxSpeed, f.maxSpeed);
@@ -225,6 +239,12 @@ void BM_FluidLiquidFunDamBreak(benchmark::State& state) {
         state.counters["setup_ms"] = setupMs / timedSteps;
         state.counters["solve_ms"] = solveMs / timedSteps;
         state.counters["integrate_ms"] = integrateMs / timedSteps;
+        state.counters["substeps_for_speed"] = forSpeed / timedSteps;
+        state.counters["substeps_for_depth"] = forDepth / timedSteps;
+        state.counters["substeps_for_compression"] = forCompression / timedSteps;
+        state.counters["steps_set_by_speed"] = setBySpeed / timedSteps;
+        state.counters["steps_set_by_depth"] = setByDepth / timedSteps;
+        state.counters["steps_set_by_compression"] = setByCompression / timedSteps;
         state.counters["max_mean_density_error"] = maxMeanError;
         state.counters["neighbour_overflows"] = static_cast<double>(overflows);
         state.counters["max_speed"] = maxSpeed;

@@ -34,6 +34,9 @@ void statistics(Session& s) {
                            nameOr(fluidDef(s.world, f.fluid).name, "fluid", f.fluid.index).c_str(),
                            static_cast<unsigned long long>(f.particles), 100.0 * f.meanDensityError,
                            100.0 * f.maxDensityError);
+        // Why a step costs what it does: the substep rules' counts.
+        ImGui::Text("  substeps %u (speed %u, depth %u, compression %u)", f.substeps, f.substepsForSpeed,
+                    f.substepsForDepth, f.substepsForCompression);
     }
 }
 

@@ -199,6 +199,12 @@ struct FluidStepStats {
     /// which bounds what a crushed fluid costs (docs/fluid.md).
     std::uint64_t neighbourOverflows = 0;
     std::uint32_t substeps = 1;         ///< substeps taken (density stats: the last one's)
+    /// What each rule of the automatic count asked for this step (docs/fluid.md,
+    /// "Substeps"); `substeps` is the most of them, 1 to 16. All 0 when
+    /// FluidDef::substeps fixes the count. Speed: neighbours close in by at
+    /// most 0.4 h a substep; depth: the columns under pressure; compression:
+    /// the backstop on the last step's mean density error.
+    std::uint32_t substepsForSpeed = 0, substepsForDepth = 0, substepsForCompression = 0;
     bool device = false;                ///< solved on the device (FluidBackend)
     std::uint64_t bodyContacts = 0;     ///< particle-body contacts, all substeps
     /// Particles removed because their position or velocity became NaN or

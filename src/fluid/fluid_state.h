@@ -383,11 +383,12 @@ template <int D> void integratePositions(WorkerPool& pool, FluidState& f, const 
 /// bodies they sit on; returns how many. The CPU's step appends them to
 /// `f`'s arrays (appendBirths), the device's to its buffers.
 std::uint64_t emitStepJets(const StepContext& w, FluidState& f, std::size_t alive, float dt, Births& out);
-/// The substeps of this step when FluidDef::substeps is 0, from the last
-/// step's statistics (f.approach, which it empties, f.pressedDepth,
-/// f.lastMeanDensityError, f.lastSubsteps), so the count is deterministic;
-/// the device's step (src/world/device_fluid.cpp) fills the same fields.
-int automaticSubsteps(FluidState& f, float dt);
+/// The substeps of this step: FluidDef::substeps, or when it is 0 the count
+/// from the last step's statistics (f.approach, which it empties,
+/// f.pressedDepth, f.lastMeanDensityError, f.lastSubsteps), so the count is
+/// deterministic, with what each rule asked for in `stats`; the device's
+/// step (src/world/device_fluid.cpp) fills the same fields.
+int substepsOfStep(FluidState& f, float dt, FluidStepStats& stats);
 /// Whether a world collider is one the fluid meets (plane, sphere, box).
 bool isFluidCollider(const kernels::ColliderParams& c);
 

@@ -150,7 +150,13 @@ float closingSpeed(const ApproachHistogram& h) {
     return 0.0f;
 }
 
-}  // namespace
+/// A rule's count for FluidStepStats: NaN or inf after a blow-up reads as
+/// the most, as in the count taken.
+std::uint32_t wantedSubsteps(float count) {
+    return !(count < static_cast<float>(kFluidMaxSubsteps)) ? kFluidMaxSubsteps
+           : count > 0.0f                                    ? static_cast<std::uint32_t>(count)
+                                                             : 0u;
+}
 
 /// Substeps of this step when FluidDef::substeps is 0, from the last step's
 /// statistics, so the count is deterministic:
@@ -179,7 +185,7 @@ float closingSpeed(const ApproachHistogram& h) {
 ///   then comes down by a quarter (dam break of 10k particles: 5.4 substeps
 ///   on average, against 7.4 when it doubled and came down by one per 30
 ///   steps, with the same number density at 6 s).
-int automaticSubsteps(FluidState& f, float dt) {
+int automaticSubsteps(FluidState& f, float dt, FluidStepStats& stats) {
     constexpr float kCourant = 0.4f;
     constexpr float kCompressionLimit = 0.01f;
     const float depthNumber = f.def.iterations >= 2 ? 0.8f : 0.4f;
@@ -214,7 +220,16 @@ int automaticSubsteps(FluidState& f, float dt) {
         f.quietSteps = 0;
     }
     const float wanted = std::max({bySpeed, byDepth, static_cast<float>(f.compressionSubsteps)});
+    stats.substepsForSpeed = wantedSubsteps(bySpeed);
+    stats.substepsForDepth = wantedSubsteps(byDepth);
+    stats.substepsForCompression = static_cast<std::uint32_t>(f.compressionSubsteps);
     return wanted <= 1.0f ? 1 : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted) : kMaxSubsteps;
+}
+
+}  // namespace
+
+int substepsOfStep(FluidState& f, float dt, FluidStepStats& stats) {
+    return f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : automaticSubsteps(f, dt, stats);
 }
 
 std::uint64_t emitStepJets(const StepContext& w, FluidState& f, std::size_t alive, float dt, Births& out) {
@@ -233,7 +248,7 @@ FluidStepStats stepFluid(const StepContext& w, FluidState& f, FluidId id, float 
     Births births;
     stats.born = emitStepJets(w, f, f.size(), dt, births);
     appendBirths(f, births);
-    const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : automaticSubsteps(f, dt);
+    const int substeps = substepsOfStep(f, dt, stats);
     const float h = dt / static_cast<float>(substeps);
     // Rigid bodies near a 2D fluid: gathered from Box2D now, solved against as
     // local copies during the substeps, and given their impulses at the end.

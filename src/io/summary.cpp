@@ -111,6 +111,12 @@ void writeFluidStep(JsonWriter& json, const FluidStepStats& f, const FluidNumber
     json.value(f.neighbourOverflows);
     json.key("substeps");
     json.value(f.substeps);
+    json.key("substeps_for_speed");
+    json.value(f.substepsForSpeed);
+    json.key("substeps_for_depth");
+    json.value(f.substepsForDepth);
+    json.key("substeps_for_compression");
+    json.value(f.substepsForCompression);
     json.key("device");
     json.boolean(f.device);
     json.key("non_finite");

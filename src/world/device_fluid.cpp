@@ -538,7 +538,7 @@ FluidStepStats stepDeviceFluid(DeviceFluid& g, fluid::FluidState& f,
     FluidStepStats stats;
     stats.fluid = id;
     setSurfaces(g, f, colliders);
-    const int substeps = f.def.substeps > 0 ? static_cast<int>(f.def.substeps) : fluid::automaticSubsteps(f, dt);
+    const int substeps = fluid::substepsOfStep(f, dt, stats);
     const float h = dt / static_cast<float>(substeps);
     for (int k = 0; k < substeps && g.count > 0; ++k) {
         if (f.def.dimension == 2) {

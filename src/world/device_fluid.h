@@ -8,7 +8,7 @@
 // host reads back a few hundred bytes a substep (gpu_fluid_integrate.h,
 // FluidIntegrateReport): the box that places the next grid, and the
 // statistics the substep rule of the next step reads (fluid_step.cpp,
-// automaticSubsteps, the same function the CPU's step calls).
+// substepsOfStep, the same function the CPU's step calls).
 //
 // Rigid bodies are placed by the host each substep (a few hundred bytes a
 // shape) and met on the device; the contacts with bodies the fluid moves

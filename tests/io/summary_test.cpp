@@ -137,6 +137,11 @@ TEST(IoSummary, FluidNumberDensityOnTheMeasuredFramesAndInTheTotals) {
         spindrift::FluidStepStats f;
         f.fluid = spindrift::FluidId{1};
         f.particles = 100;
+        // What each substep rule asked for, the count taken the most of them.
+        f.substepsForSpeed = 2;
+        f.substepsForDepth = 3;
+        f.substepsForCompression = 4;
+        f.substeps = 4;
         st.fluids.push_back(f);
     }
     // Measured after steps 10, 20 and 25 (every = 10, and the last step).
@@ -156,6 +161,10 @@ TEST(IoSummary, FluidNumberDensityOnTheMeasuredFramesAndInTheTotals) {
     EXPECT_EQ(query(json, "per_step/24/fluids/0/number_density_median"), "1.5");
     EXPECT_FALSE(jsonQuery(json, "per_step/10/fluids/0/number_density_median").has_value());
     EXPECT_EQ(query(json, "per_step/10/fluids/0/particles"), "100");
+    EXPECT_EQ(query(json, "per_step/3/fluids/0/substeps"), "4");
+    EXPECT_EQ(query(json, "per_step/3/fluids/0/substeps_for_speed"), "2");
+    EXPECT_EQ(query(json, "per_step/3/fluids/0/substeps_for_depth"), "3");
+    EXPECT_EQ(query(json, "per_step/3/fluids/0/substeps_for_compression"), "4");
     EXPECT_EQ(query(json, "totals/fluids/0/number_density_reference"), "45");
     EXPECT_EQ(query(json, "totals/fluids/0/final_number_density_median"), "1.5");
     EXPECT_EQ(query(json, "totals/fluids/0/final_number_density_p95"), "2");

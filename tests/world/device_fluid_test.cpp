@@ -149,6 +149,10 @@ TEST_F(DeviceFluidTest, TankAtRestMatchesTheCpu) {
         EXPECT_EQ(g.nonFinite, 0u);
         cpuSubsteps += c.substeps;
         deviceSubsteps += g.substeps;
+        // The device's step reports its substep rules as the CPU's does (the
+        // same function, on the statistics the device read back).
+        EXPECT_EQ(g.substeps, std::max({1u, g.substepsForSpeed, g.substepsForDepth, g.substepsForCompression}))
+            << "step " << i;
         if (i >= 180) {
             cpuFastest = std::max(cpuFastest, static_cast<float>(c.maxSpeed));
             deviceFastest = std::max(deviceFastest, static_cast<float>(g.maxSpeed));

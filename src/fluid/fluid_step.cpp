@@ -150,8 +150,8 @@ float closingSpeed(const ApproachHistogram& h) {
     return 0.0f;
 }
 
-/// A rule's count for FluidStepStats: NaN or inf after a blow-up reads as
-/// the most, as in the count taken.
+/// A substep count as a whole number, 0 to the most: NaN or inf after a
+/// blow-up reads as the most. For each rule's report and the count taken.
 std::uint32_t wantedSubsteps(float count) {
     return !(count < static_cast<float>(kFluidMaxSubsteps)) ? kFluidMaxSubsteps
            : count > 0.0f                                    ? static_cast<std::uint32_t>(count)
@@ -223,7 +223,7 @@ int automaticSubsteps(FluidState& f, float dt, FluidStepStats& stats) {
     stats.substepsForSpeed = wantedSubsteps(bySpeed);
     stats.substepsForDepth = wantedSubsteps(byDepth);
     stats.substepsForCompression = static_cast<std::uint32_t>(f.compressionSubsteps);
-    return wanted <= 1.0f ? 1 : wanted < static_cast<float>(kMaxSubsteps) ? static_cast<int>(wanted) : kMaxSubsteps;
+    return static_cast<int>(std::max(1u, wantedSubsteps(wanted)));
 }
 
 }  // namespace

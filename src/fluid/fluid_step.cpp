@@ -179,17 +179,21 @@ std::uint32_t wantedSubsteps(float count) {
 ///   tank at 2.5 cm kept moving at 0.1 to 0.2 m/s at one substep and rests
 ///   at two);
 /// - compression, the backstop: a step that ended more than
-///   kCompressionLimit over rest density asks for the count that would have
-///   brought it to kAim (the error falls about as 1 / substeps^2); that count
+///   compressionLimit over rest density asks for the count that would have
+///   brought it to aim (the error falls about as 1 / substeps^2); that count
 ///   holds until a smaller one would have done for kHoldSteps steps in a row,
 ///   then comes down by a quarter (dam break of 10k particles: 5.4 substeps
 ///   on average, against 7.4 when it doubled and came down by one per 30
-///   steps, with the same number density at 6 s).
+///   steps, with the same number density at 6 s). 1.5 % and 0.75 % with two
+///   iterations or more, 1 % and 0.5 % with one: the one-iteration resting
+///   tank kept moving at 0.056 m/s under the looser pair, which every other
+///   tank, floating box and the showcase keep (docs/fluid.md, "Substeps").
 int automaticSubsteps(FluidState& f, float dt, FluidStepStats& stats) {
     constexpr float kCourant = 0.4f;
-    constexpr float kCompressionLimit = 0.01f;
-    const float depthNumber = f.def.iterations >= 2 ? 0.8f : 0.4f;
-    constexpr float kAim = 0.005f;
+    const bool oneIteration = f.def.iterations < 2;
+    const float compressionLimit = oneIteration ? 0.01f : 0.015f;
+    const float depthNumber = oneIteration ? 0.4f : 0.8f;
+    const float aim = oneIteration ? 0.005f : 0.0075f;
     constexpr std::uint32_t kHoldSteps = 10;
     constexpr int kMaxSubsteps = static_cast<int>(kFluidMaxSubsteps);
     const float reach = closingSpeed(f.approach) * dt;
@@ -200,10 +204,10 @@ int automaticSubsteps(FluidState& f, float dt, FluidStepStats& stats) {
     const float byDepth = std::ceil(std::sqrt(layers * glm::length(f.def.gravity) * dt * dt / (depthNumber * f.h)));
     // The compression of a step falls about as 1 / substeps^2 (each substep
     // lets the fluid sink by g dt^2 / substeps^2 before the pressure answers):
-    // the count that would have brought the last step's error to kAim.
+    // the count that would have brought the last step's error to aim.
     const float error = f.lastMeanDensityError;
-    const float needed = std::ceil(static_cast<float>(f.lastSubsteps) * std::sqrt(std::max(error, 0.0f) / kAim));
-    if (!(error <= kCompressionLimit)) {
+    const float needed = std::ceil(static_cast<float>(f.lastSubsteps) * std::sqrt(std::max(error, 0.0f) / aim));
+    if (!(error <= compressionLimit)) {
         // NaN or inf after a blow-up: the most.
         f.compressionSubsteps = std::isfinite(needed) ? static_cast<int>(std::min(
                                                             std::max(static_cast<float>(f.compressionSubsteps), needed),

@@ -7,6 +7,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdio>
 
 namespace spindrift {
 namespace {
@@ -66,6 +67,34 @@ TEST(FluidSubsteps, BlocksMeetingHeadOnAskForTheirClosingSpeed) {
     EXPECT_LE(beforeMeeting, 1u) << "each block moves as one before they meet";
     EXPECT_GE(most, 5u);
     EXPECT_LE(most, 6u);
+}
+
+TEST(FluidSubsteps, TheBackstopHoldsADamBreakUnderTheIssuesBound) {
+    // LiquidFun's dam break (docs/performance.md) at 2 cm: a 1.6 x 2.0 m
+    // column in a 4 x 4 m box, through its first impact on the far wall
+    // (t = 0.55 s) and the run-up. Issue 12, item 7 bounds the mean density
+    // error at 3 % on every step; the speed and depth rules alone ask for 2
+    // to 3 substeps, which compress it past that (measured with the backstop
+    // switched off: 4.6 %), so the bound holds only if the compression
+    // backstop answers (it triggers at 1.5 %, docs/fluid.md "Substeps").
+    test::FluidWorld w;
+    test::closedBox(w.id, glm::vec3(0.0f), glm::vec3(4.0f, 4.0f, 0.0f), 2);
+    FluidDef def;
+    def.spacing = 0.02f;
+    def.gravity = glm::vec3(0.0f, -10.0f, 0.0f);
+    def.blocks.push_back({glm::vec3(0.0f), glm::vec3(1.6f, 2.0f, 0.0f), glm::vec3(0.0f)});
+    createFluid(w.id, def);
+    double worst = 0.0;
+    std::uint32_t mostForCompression = 0;
+    for (int step = 0; step < 90; ++step) {
+        const FluidStepStats s = stepWorld(w.id, kDt).fluids.at(0);
+        worst = std::max(worst, s.meanDensityError);
+        mostForCompression = std::max(mostForCompression, s.substepsForCompression);
+    }
+    std::printf("dam break at 2 cm: largest mean density error %.4f, most substeps for compression %u\n", worst,
+                mostForCompression);
+    EXPECT_LT(worst, 0.03);
+    EXPECT_GT(mostForCompression, 3u) << "the backstop answered";
 }
 
 TEST(FluidSubsteps, AFixedCountReportsNoRule) {

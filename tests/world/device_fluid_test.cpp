@@ -136,9 +136,12 @@ TEST_F(DeviceFluidTest, TankAtRestMatchesTheCpu) {
     //   the CPU's: one neighbour more or fewer moves a ratio by 1/45;
     // - the substeps within 5 % of the CPU's over the run (the same rule,
     //   on statistics summed in another order);
-    // - every particle, found by its creation serial, within a quarter
-    //   spacing of the CPU's particle of that serial: both runs settle on
-    //   the same sites, and a serial carried wrong lands a spacing away.
+    // - every particle, found by its creation serial, within half a spacing
+    //   of the CPU's particle of that serial: a serial carried wrong lands
+    //   a spacing away. Both runs settle on the same sites but for rounding,
+    //   which the settling amplifies: at most 0.05 spacings apart under the
+    //   compression backstop's old 1 % trigger (660 substeps), one particle
+    //   0.31 spacings apart under today's 1.5 % (502; docs/fluid.md).
     constexpr float kSpacing = 0.025f, kFill = 0.25f;
     TwoRuns runs(*shared().device, waterDef(2, kSpacing, glm::vec3(1.0f, kFill, 0.0f)), glm::vec3(1.0f, 0.5f, 0.0f));
     float cpuFastest = 0.0f, deviceFastest = 0.0f;
@@ -175,7 +178,7 @@ TEST_F(DeviceFluidTest, TankAtRestMatchesTheCpu) {
     EXPECT_NEAR(static_cast<double>(deviceSubsteps), static_cast<double>(cpuSubsteps), 0.05 * cpuSubsteps);
     const std::vector<glm::vec3> cs = TwoRuns::bySerial(*runs.cpu), gs = TwoRuns::bySerial(runs.device);
     int apart = 0;
-    for (std::size_t k = 0; k < cs.size(); ++k) apart += glm::length(gs[k] - cs[k]) > 0.25f * kSpacing ? 1 : 0;
+    for (std::size_t k = 0; k < cs.size(); ++k) apart += glm::length(gs[k] - cs[k]) > 0.5f * kSpacing ? 1 : 0;
     EXPECT_EQ(apart, 0) << "particles away from the CPU's particle of the same serial";
 }
 
@@ -321,11 +324,16 @@ TEST_F(DeviceFluidTest, AVulkanWorldSolvesAGpuFluidOnTheDeviceAndTakesEdits) {
     // rounding apart part by 1.9 cm in those 20 steps (1.1 mm at 1.0,
     // growing smoothly step by step at both: the flow's sensitivity, not an
     // edit lost). The device relaxes as the CPU does (GpuFluidSetupTest
-    // compares the effective masses, GpuFluidSolveTest the sweeps).
+    // compares the effective masses, GpuFluidSolveTest the sweeps). For the
+    // same reason the substeps are fixed: under the automatic count's
+    // looser compression backstop (1.5 %, docs/fluid.md) a particle of the
+    // pour parted by 0.59 spacings; the automatic count on the device is
+    // TankAtRestMatchesTheCpu's.
     constexpr float kSpacing = 0.025f;
     OwnedWorld cpu(Backend::Cpu), vulkan(Backend::Vulkan);
     FluidDef def = waterDef(2, kSpacing, glm::vec3(1.0f, 0.25f, 0.0f));
     def.relaxation = 1.0f;
+    def.substeps = 3;
     def.capacity = 2000;
     for (WorldId w : {cpu.id, vulkan.id}) test::closedBox(w, glm::vec3(0.0f), glm::vec3(1.0f, 0.5f, 0.0f), 2);
     def.backend = FluidBackend::Cpu;

@@ -73,10 +73,11 @@ TEST(FluidSubsteps, TheBackstopHoldsADamBreakUnderTheIssuesBound) {
     // LiquidFun's dam break (docs/performance.md) at 2 cm: a 1.6 x 2.0 m
     // column in a 4 x 4 m box, through its first impact on the far wall
     // (t = 0.55 s) and the run-up. Issue 12, item 7 bounds the mean density
-    // error at 3 % on every step; the speed and depth rules alone ask for 2
-    // to 3 substeps, which compress it past that (measured with the backstop
-    // switched off: 4.6 %), so the bound holds only if the compression
-    // backstop answers (it triggers at 1.5 %, docs/fluid.md "Substeps").
+    // error at 3 % on every step; the speed and depth rules alone ask for at
+    // most 3 and 4 substeps here (measured), which compress it past that
+    // (with the backstop switched off: 4.6 %), so the bound holds only if
+    // the compression backstop answers (it triggers at 1.5 %, docs/fluid.md
+    // "Substeps").
     test::FluidWorld w;
     test::closedBox(w.id, glm::vec3(0.0f), glm::vec3(4.0f, 4.0f, 0.0f), 2);
     FluidDef def;

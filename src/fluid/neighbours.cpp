@@ -310,6 +310,19 @@ template <int D, bool kClosing>
     return t;
 }
 
+/// The sum of 16 lanes as a tree: lane l and l + 8, then l and l + 4, l and
+/// l + 2, the last two. The order a 512-bit register's halves are added in,
+/// so the hand-written AVX-512 loop (setUpPairsAvx512) reduces its
+/// registers in four additions where adding the lanes in order took a chain
+/// of sixteen per sum; every other target adds the same tree.
+inline float laneTree(const float* lanes) {
+    float half[8];
+    for (std::size_t l = 0; l < 8; ++l) half[l] = lanes[l] + lanes[l + 8];
+    for (std::size_t l = 0; l < 4; ++l) half[l] = half[l] + half[l + 4];
+    for (std::size_t l = 0; l < 2; ++l) half[l] = half[l] + half[l + 2];
+    return half[0] + half[1];
+}
+
 /// One particle's sums over its pairs, per lane: entry k of the near list
 /// goes to lane k % kPairLanes. Not zeroed by itself (value-initialise it):
 /// the baseline writes every lane, and zeroing it per particle was 4 % of
@@ -322,17 +335,17 @@ struct PairLanes {
     float gSum[D][kPairLanes];
     float warm[D][kPairLanes];
 
-    /// The lanes' sums in lane order, the same on every target.
+    /// The lanes' sums as a tree (laneTree), the same on every target.
     PairSums<D> sum() const {
         PairSums<D> sums;
+        sums.density = laneTree(density);
+        sums.mass = laneTree(mass);
         for (std::size_t l = 0; l < kPairLanes; ++l) {
-            sums.density += density[l];
-            sums.mass += mass[l];
             sums.fastest = fastest[l] > sums.fastest ? fastest[l] : sums.fastest;
-            for (int a = 0; a < D; ++a) {
-                sums.gSum[a] += gSum[a][l];
-                sums.warm[a] += warm[a][l];
-            }
+        }
+        for (int a = 0; a < D; ++a) {
+            sums.gSum[a] = laneTree(gSum[a]);
+            sums.warm[a] = laneTree(warm[a]);
         }
         return sums;
     }
@@ -432,13 +445,155 @@ __attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& 
     return setUpPairLanes<D, kClosing>(arrays, listed, paired, dst);
 }
 
-// 512-bit vectors: g++ would otherwise keep 256-bit ones (as in
-// src/effects/batch_update.cpp).
-template <int D, bool kClosing>
-__attribute__((target("avx512f,avx512vl,avx512bw,avx512dq,prefer-vector-width=512"))) PairSums<D>
-setUpPairsAvx512(const PairArrays<D>& arrays, std::size_t listed, std::size_t paired, Neighbour<D>* dst) {
-    return setUpPairLanes<D, kClosing>(arrays, listed, paired, dst);
+#define SD_PAIRS_AVX512 "avx512f,avx512vl,avx512bw,avx512dq"
+
+/// The sum of a register's 16 lanes in laneTree's order.
+__attribute__((target(SD_PAIRS_AVX512))) inline float laneTree512(__m512 v) {
+    const __m256 eight = _mm256_add_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
+    const __m128 four = _mm_add_ps(_mm256_castps256_ps128(eight), _mm256_extractf128_ps(eight, 1));
+    const __m128 two = _mm_add_ps(four, _mm_movehl_ps(four, four));
+    return _mm_cvtss_f32(_mm_add_ss(two, _mm_shuffle_ps(two, two, 1)));
 }
+
+/// The largest of a register's 16 lanes (all >= 0: the lanes start at 0).
+__attribute__((target(SD_PAIRS_AVX512))) inline float laneMax512(__m512 v) {
+    const __m256 eight = _mm256_max_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
+    const __m128 four = _mm_max_ps(_mm256_castps256_ps128(eight), _mm256_extractf128_ps(eight, 1));
+    const __m128 two = _mm_max_ps(four, _mm_movehl_ps(four, four));
+    return _mm_cvtss_f32(_mm_max_ss(two, _mm_shuffle_ps(two, two, 1)));
+}
+
+/// Lanes [0, count) of a 16-lane mask (count may exceed 16).
+inline __mmask16 firstLanes(std::size_t count) {
+    return count >= 16 ? static_cast<__mmask16>(0xffff) : static_cast<__mmask16>((1u << count) - 1u);
+}
+
+/// Writes lanes [0, stored) of (gx, gy) and the indices as 2D Neighbour
+/// entries (12 bytes: gx, gy, index), 16 entries in three registers: two
+/// permutes each, and masked stores that touch nothing past `stored`.
+__attribute__((target(SD_PAIRS_AVX512))) inline void storeEntries2(Neighbour<2>* dst, __m512 gx, __m512 gy,
+                                                                   __m512i index, std::size_t stored) {
+    // Float p of the 48 is component p % 3 of entry p / 3. First gx and gy
+    // (an index of 16 + e picks gy's lane e), then the indices' lanes.
+    alignas(64) static constexpr std::array<std::array<std::int32_t, 16>, 3> kG = [] {
+        std::array<std::array<std::int32_t, 16>, 3> t{};
+        for (int o = 0; o < 3; ++o)
+            for (int l = 0; l < 16; ++l) {
+                const int p = 16 * o + l;
+                t[o][l] = (p % 3 == 1 ? 16 : 0) + p / 3;  // the index lanes are filled next
+            }
+        return t;
+    }();
+    alignas(64) static constexpr std::array<std::array<std::int32_t, 16>, 3> kI = [] {
+        std::array<std::array<std::int32_t, 16>, 3> t{};
+        for (int o = 0; o < 3; ++o)
+            for (int l = 0; l < 16; ++l) {
+                const int p = 16 * o + l;
+                t[o][l] = p % 3 == 2 ? 16 + p / 3 : l;  // l: keep the g lane already there
+            }
+        return t;
+    }();
+    float* out = &dst[0].g.x;
+    const __m512 indexBits = _mm512_castsi512_ps(index);
+    std::size_t floats = 3 * stored;
+    for (int o = 0; o < 3 && floats > 0; ++o) {
+        const __m512 g = _mm512_permutex2var_ps(gx, _mm512_load_si512(kG[static_cast<std::size_t>(o)].data()), gy);
+        const __m512 entries =
+            _mm512_permutex2var_ps(g, _mm512_load_si512(kI[static_cast<std::size_t>(o)].data()), indexBits);
+        _mm512_mask_storeu_ps(out + 16 * o, firstLanes(floats), entries);
+        floats -= std::min<std::size_t>(floats, 16);
+    }
+}
+
+/// The pairs' loop written with AVX-512 intrinsics: the same operations,
+/// lane for lane, as pairTerm and setUpPairLanes (no fused multiply-add, the
+/// same order), so the same bits; the sums stay in registers (the compiled
+/// lane loop kept them in memory, zeroed per particle) and are reduced by
+/// laneTree's order. The neighbours' pressures (and velocities) are masked
+/// gathers: only listed lanes read.
+template <int D, bool kClosing>
+__attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const PairArrays<D>& a, std::size_t listed,
+                                                                     std::size_t paired, Neighbour<D>* dst) {
+    const __m512 zero = _mm512_setzero_ps();
+    const __m512 one = _mm512_set1_ps(1.0f);
+    const __m512 invH = _mm512_set1_ps(a.invH);
+    const __m512 invH2 = _mm512_set1_ps(a.invH2);
+    const __m512 lambdaI = _mm512_set1_ps(a.lambdaI);
+    const __m512 warmFraction = _mm512_set1_ps(a.warmFraction);
+    const __m512i self = _mm512_set1_epi32(static_cast<int>(a.i));
+    __m512 density = zero, mass = zero, fastest = zero;
+    __m512 gSum[D], warm[D];
+    for (int axis = 0; axis < D; ++axis) gSum[axis] = warm[axis] = zero;
+    for (std::size_t base = 0; base < listed; base += 16) {
+        const __mmask16 inList = firstLanes(listed - base);
+        const __mmask16 inPairs = paired > base ? firstLanes(paired - base) : static_cast<__mmask16>(0);
+        const __m512 r2 = _mm512_loadu_ps(a.r2 + base);
+        const __m512i index = _mm512_loadu_si512(a.index + base);
+        const __m512 r = _mm512_maskz_sqrt_ps(0xffff, r2);  // maskz: g++ 12 warns on the plain form's undefined source
+        // W(r / h) (fluidDensityKernel), in its order of operations.
+        const __m512 d = _mm512_mul_ps(r, invH);
+        const __m512 d2 = _mm512_mul_ps(d, d);
+        const __m512 d3 = _mm512_mul_ps(d2, d);
+        const __m512 fifth = _mm512_mul_ps(_mm512_mul_ps(_mm512_set1_ps(0.6f), d3), d2);
+        const __m512 seventh =
+            _mm512_mul_ps(_mm512_mul_ps(_mm512_mul_ps(d3, d2), d2), _mm512_set1_ps(1.0f / 7.0f));
+        const __m512 inner = _mm512_sub_ps(_mm512_add_ps(_mm512_sub_ps(d, d3), fifth), seventh);
+        const __m512 kernel = _mm512_sub_ps(one, _mm512_mul_ps(_mm512_set1_ps(2.1875f), inner));
+        density = _mm512_mask_add_ps(density, inList, density, kernel);
+        // w (fluidWeight), 1 / r and g (fluidPairGradient).
+        const __mmask16 apart = _mm512_cmp_ps_mask(r2, zero, _CMP_GT_OQ);
+        const __m512 invR = _mm512_maskz_div_ps(apart, one, r);
+        const __m512 q = _mm512_sub_ps(one, _mm512_mul_ps(r2, invH2));
+        const __m512 w = _mm512_maskz_mul_ps(_mm512_cmp_ps_mask(q, zero, _CMP_GT_OQ), _mm512_mul_ps(q, q), q);
+        const __m512 wOverR = _mm512_mul_ps(w, invR);
+        const __m512 side = _mm512_mask_blend_ps(_mm512_cmpgt_epu32_mask(index, self), _mm512_set1_ps(-1.0f), one);
+        const __m512 pressure = _mm512_mask_i32gather_ps(zero, inPairs, index, a.pressure, 4);
+        const __m512 warmPressure = _mm512_add_ps(lambdaI, _mm512_mul_ps(pressure, warmFraction));
+        __m512 g[D];
+        __m512 closing = zero;
+        for (int axis = 0; axis < D; ++axis) {
+            const __m512 offset = _mm512_loadu_ps(a.offset[axis] + base);
+            const __m512 together = axis == 0 ? _mm512_mul_ps(side, w) : zero;
+            g[axis] = _mm512_mask_blend_ps(apart, together, _mm512_mul_ps(offset, wOverR));
+            gSum[axis] = _mm512_mask_add_ps(gSum[axis], inPairs, gSum[axis], g[axis]);
+            warm[axis] = _mm512_mask_sub_ps(warm[axis], inPairs, warm[axis], _mm512_mul_ps(g[axis], warmPressure));
+            if constexpr (kClosing) {
+                const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(index, _mm512_set1_epi32(D)),
+                                                    _mm512_set1_epi32(axis));
+                const __m512 vj = _mm512_mask_i32gather_ps(zero, inPairs, at, a.velocity, 4);
+                const __m512 approach = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(a.vi[axis]), vj), offset);
+                closing = axis == 0 ? approach : _mm512_add_ps(closing, approach);
+            }
+        }
+        if constexpr (kClosing) {
+            fastest = _mm512_maskz_max_ps(0xffff, _mm512_maskz_mov_ps(inPairs, _mm512_mul_ps(closing, invR)), fastest);
+        }
+        mass = _mm512_mask_add_ps(mass, inPairs, mass, _mm512_mul_ps(w, w));
+        const std::size_t stored = paired > base ? std::min<std::size_t>(16, paired - base) : 0;
+        if constexpr (D == 2) {
+            if (stored != 0) storeEntries2(dst + base, g[0], g[1], index, stored);
+        } else {
+            alignas(64) float lanes[D][16];
+            alignas(64) std::uint32_t indices[16];
+            for (int axis = 0; axis < D; ++axis) _mm512_store_ps(lanes[axis], g[axis]);
+            _mm512_store_si512(indices, index);
+            for (std::size_t l = 0; l < stored; ++l) {
+                for (int axis = 0; axis < D; ++axis) dst[base + l].g[axis] = lanes[axis][l];
+                dst[base + l].index = indices[l];
+            }
+        }
+    }
+    PairSums<D> sums;
+    sums.density = laneTree512(density);
+    sums.mass = laneTree512(mass);
+    sums.fastest = laneMax512(fastest);
+    for (int axis = 0; axis < D; ++axis) {
+        sums.gSum[axis] = laneTree512(gSum[axis]);
+        sums.warm[axis] = laneTree512(warm[axis]);
+    }
+    return sums;
+}
+#undef SD_PAIRS_AVX512
 
 /// The copy of a setup phase (the filter, the pairs) for the process's
 /// update target (core/cpu_target.h): AVX-512, AVX2, or the baseline for

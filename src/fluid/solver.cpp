@@ -11,11 +11,16 @@
 // velocity (the slides' form) every density fluctuation of a disordered
 // packing becomes kinetic energy: a tank at rest keeps boiling at about 0.2
 // m/s (measured; docs/performance.md).
+#include "core/cpu_target.h"
 #include "core/room.h"
 #include "fluid/fluid_state.h"
 
 #include <algorithm>
 #include <cstring>
+
+#if SPINDRIFT_X86
+#include <immintrin.h>
+#endif
 
 namespace spindrift::fluid {
 namespace {
@@ -54,18 +59,48 @@ struct SolverView {
     float allowanceSlop;  // m/s of bias an under-dense particle's allowance starts above
 };
 
+// The order of every sum over a particle's neighbours (both backends; the
+// device's fluid_solve.comp makes the same additions): entry k goes to chain
+// k % 4, the first chain starting from the particle's own ghost term, and the
+// chains are added as (0 + 1) + (2 + 3). One chain of 28 dependent additions
+// bound the sweep; four are what a 512-bit register holds of a 2D particle's
+// (velocity, pseudo velocity), so the AVX-512 sweep (below) loads four
+// neighbours at a time and adds the same numbers in the same order.
+constexpr std::uint32_t kChains = 4;
+
+template <class T>
+inline T chainSum(const T (&chain)[kChains]) {
+    return (chain[0] + chain[1]) + (chain[2] + chain[3]);
+}
+
+/// Adds term(k) for every entry k < count into chain k % 4 (four entries an
+/// iteration, so the chains stay in registers: indexed by k % 4 in one loop
+/// they went through memory, 17 % slower a step with AVX2, measured).
+template <class T, class Term>
+[[gnu::always_inline]] inline void addInChains(T (&chain)[kChains], std::uint32_t count, Term term) {
+    std::uint32_t k = 0;
+    for (; k + kChains <= count; k += kChains) {
+        chain[0] += term(k);
+        chain[1] += term(k + 1);
+        chain[2] += term(k + 2);
+        chain[3] += term(k + 3);
+    }
+    for (std::uint32_t c = 0; k + c < count; ++c) chain[c] += term(k + c);
+}
+
 /// Applies impulse `delta` of particle i's constraint to the velocities: v_n +=
 /// g delta on every neighbour, v_i -= sum g delta (Newton's third law, slide 39).
 template <int D>
 inline void applyImpulse(const SolverView<D>& s, std::size_t i, float delta) {
     const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
-    Vec<D> self = Vec<D>(s.wall[i]) * delta;  // the motionless ghosts take no impulse
-    for (std::uint32_t k = 0; k < s.count[i]; ++k) {
+    Motion<D>* m = s.motion;
+    Vec<D> self[kChains] = {Vec<D>(s.wall[i]) * delta, Vec<D>(0.0f), Vec<D>(0.0f), Vec<D>(0.0f)};  // ghosts take none
+    addInChains(self, s.count[i], [&](std::uint32_t k) {
         const Vec<D> impulse = list[k].g * delta;
-        s.motion[list[k].index].velocity += impulse;
-        self += impulse;
-    }
-    s.motion[i].velocity -= self;
+        m[list[k].index].velocity += impulse;
+        return impulse;
+    });
+    m[i].velocity -= chainSum(self);
 }
 
 /// C' of particle i's constraint over the velocities (slide 36).
@@ -74,18 +109,10 @@ inline float rateOf(const SolverView<D>& s, std::size_t i) {
     const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
     const Motion<D>* m = s.motion;
     const Vec<D> vi = m[i].velocity;
-    const std::uint32_t count = s.count[i];
-    // Two chains of additions (even and odd neighbours), summed at the end:
-    // one chain of 28 dependent additions bound the sweep (measured).
-    float even = -glm::dot(Vec<D>(s.wall[i]), vi);  // ghosts at rest
-    float odd = 0.0f;
-    std::uint32_t k = 0;
-    for (; k + 1 < count; k += 2) {
-        even += glm::dot(list[k].g, m[list[k].index].velocity - vi);
-        odd += glm::dot(list[k + 1].g, m[list[k + 1].index].velocity - vi);
-    }
-    if (k < count) even += glm::dot(list[k].g, m[list[k].index].velocity - vi);
-    return even + odd;
+    float chain[kChains] = {-glm::dot(Vec<D>(s.wall[i]), vi), 0.0f, 0.0f, 0.0f};  // ghosts at rest
+    addInChains(chain, s.count[i],
+                [&](std::uint32_t k) { return glm::dot(list[k].g, m[list[k].index].velocity - vi); });
+    return chainSum(chain);
 }
 
 /// C' of an over-dense particle's two constraints, over the velocities and
@@ -102,39 +129,27 @@ inline SplitRates splitRates(const SolverView<D>& s, std::size_t i) {
     const Motion<D>* m = s.motion;
     const Vec<D> wall(s.wall[i]);
     if constexpr (D == 2) {
-        // The same sums as below, two lanes at a time (bit-identical).
+        // Both rates two lanes at a time: lane 0 the velocities', lane 2 the
+        // pseudo velocities' (the same sums as glm::dot's, bit for bit).
         const Float4 mi = bothOf(m[i]);
-        Float4 even{-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f};
-        Float4 odd{0.0f, 0.0f, 0.0f, 0.0f};
-        std::uint32_t k = 0;
-        for (; k + 1 < count; k += 2) {
-            even += pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi));
-            odd += pairDots(twice(list[k + 1].g) * (bothOf(m[list[k + 1].index]) - mi));
-        }
-        if (k < count) even += pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi));
-        return {even[0] + odd[0], even[2] + odd[2]};
+        Float4 chain[kChains] = {Float4{-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f},
+                                 Float4{}, Float4{}, Float4{}};
+        addInChains(chain, count, [&](std::uint32_t k) {
+            return pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi));
+        });
+        const Float4 sum = chainSum(chain);
+        return {sum[0], sum[2]};
     } else {
         const Vec<D> vi = m[i].velocity;
         const Vec<D> pi = m[i].pseudo;
-        float rate = -glm::dot(wall, vi);
-        float pseudoRate = -glm::dot(wall, pi);
-        float rateOdd = 0.0f;
-        float pseudoOdd = 0.0f;
-        std::uint32_t k = 0;
-        for (; k + 1 < count; k += 2) {
+        glm::vec2 chain[kChains] = {glm::vec2(-glm::dot(wall, vi), -glm::dot(wall, pi)), glm::vec2(0.0f),
+                                    glm::vec2(0.0f), glm::vec2(0.0f)};
+        addInChains(chain, count, [&](std::uint32_t k) {
             const Motion<D>& a = m[list[k].index];
-            const Motion<D>& b = m[list[k + 1].index];
-            rate += glm::dot(list[k].g, a.velocity - vi);
-            pseudoRate += glm::dot(list[k].g, a.pseudo - pi);
-            rateOdd += glm::dot(list[k + 1].g, b.velocity - vi);
-            pseudoOdd += glm::dot(list[k + 1].g, b.pseudo - pi);
-        }
-        if (k < count) {
-            const Motion<D>& a = m[list[k].index];
-            rate += glm::dot(list[k].g, a.velocity - vi);
-            pseudoRate += glm::dot(list[k].g, a.pseudo - pi);
-        }
-        return {rate + rateOdd, pseudoRate + pseudoOdd};
+            return glm::vec2(glm::dot(list[k].g, a.velocity - vi), glm::dot(list[k].g, a.pseudo - pi));
+        });
+        const glm::vec2 sum = chainSum(chain);
+        return {sum.x, sum.y};
     }
 }
 
@@ -148,39 +163,161 @@ inline void applySplitImpulses(const SolverView<D>& s, std::size_t i, float delt
     const Vec<D> wall(s.wall[i]);
     if constexpr (D == 2) {
         const Float4 both{delta, delta, push, push};
-        Float4 self = twice(wall) * both;
-        for (std::uint32_t k = 0; k < count; ++k) {
+        Float4 self[kChains] = {twice(wall) * both, Float4{}, Float4{}, Float4{}};
+        addInChains(self, count, [&](std::uint32_t k) {
             const Float4 impulse = twice(list[k].g) * both;
             Motion<2>& n = m[list[k].index];
             storeBoth(n, bothOf(n) + impulse);
-            self += impulse;
-        }
-        storeBoth(m[i], bothOf(m[i]) - self);
+            return impulse;
+        });
+        storeBoth(m[i], bothOf(m[i]) - chainSum(self));
     } else {
-        Vec<D> self = wall * delta;
-        Vec<D> pseudoSelf = wall * push;
-        for (std::uint32_t k = 0; k < count; ++k) {
+        // (impulse, shift) as the columns of a matrix: one pass over the list.
+        using Pair = glm::mat<2, D, float>;
+        Pair self[kChains] = {Pair(wall * delta, wall * push), Pair(0.0f), Pair(0.0f), Pair(0.0f)};
+        addInChains(self, count, [&](std::uint32_t k) {
+            const Pair moved(list[k].g * delta, list[k].g * push);
             Motion<D>& n = m[list[k].index];
-            const Vec<D> impulse = list[k].g * delta;
-            const Vec<D> shift = list[k].g * push;
-            n.velocity += impulse;
-            n.pseudo += shift;
-            self += impulse;
-            pseudoSelf += shift;
-        }
-        m[i].velocity -= self;
-        m[i].pseudo -= pseudoSelf;
+            n.velocity += moved[0];
+            n.pseudo += moved[1];
+            return moved;
+        });
+        const Pair sum = chainSum(self);
+        m[i].velocity -= sum[0];
+        m[i].pseudo -= sum[1];
     }
 }
 
-/// One visit of particle i's constraint (slide 36, signs in fluid.glsl).
+/// The neighbour loops of a visit, in plain C++ (every target; the
+/// compiler's own vector code for Float4).
 template <int D>
-inline void visit(const SolverView<D>& s, std::size_t i) {
+struct PlainLoops {
+    static float rate(const SolverView<D>& s, std::size_t i) { return rateOf<D>(s, i); }
+    static void apply(const SolverView<D>& s, std::size_t i, float delta) { applyImpulse<D>(s, i, delta); }
+    static SplitRates rates(const SolverView<D>& s, std::size_t i) { return splitRates<D>(s, i); }
+    static void applySplit(const SolverView<D>& s, std::size_t i, float delta, float push) {
+        applySplitImpulses<D>(s, i, delta, push);
+    }
+};
+
+#if SPINDRIFT_X86
+#define SD_SOLVE_AVX512 "avx512f,avx512vl,avx512bw,avx512dq"
+
+/// A 2D particle's neighbour loops with AVX-512: four neighbours a register,
+/// each in a 128-bit chunk as (vx, vy, px, py), chunk c holding chain c of
+/// the sums (kChains), so the same numbers are added in the same order as
+/// the plain loops and the results are the same bits.
+struct Avx512Loops {
+    /// Entries k .. k + n - 1 (n <= 4) as (gx, gy, gx, gy) per chunk, 0
+    /// past n: one masked load of their 12-byte entries and one permute.
+    [[gnu::target(SD_SOLVE_AVX512)]] static __m512 gOf(const Neighbour<2>* e, std::uint32_t n) {
+        const __mmask16 floats = static_cast<__mmask16>((1u << (3 * n)) - 1u);
+        const __m512 raw = _mm512_maskz_loadu_ps(floats, &e[0].g.x);
+        return _mm512_maskz_permutexvar_ps(0xffff, _mm512_setr_epi32(0, 1, 0, 1, 3, 4, 3, 4, 6, 7, 6, 7, 9, 10, 9, 10), raw);
+    }
+    /// Their motions (16 bytes each), 0 past n.
+    [[gnu::target(SD_SOLVE_AVX512)]] static __m512 motionOf(const Motion<2>* m, const Neighbour<2>* e,
+                                                            std::uint32_t n) {
+        __m512 r = _mm512_insertf32x4(_mm512_setzero_ps(), _mm_loadu_ps(&m[e[0].index].velocity.x), 0);
+        if (n > 1) r = _mm512_insertf32x4(r, _mm_loadu_ps(&m[e[1].index].velocity.x), 1);
+        if (n > 2) r = _mm512_insertf32x4(r, _mm_loadu_ps(&m[e[2].index].velocity.x), 2);
+        if (n > 3) r = _mm512_insertf32x4(r, _mm_loadu_ps(&m[e[3].index].velocity.x), 3);
+        return r;
+    }
+    [[gnu::target(SD_SOLVE_AVX512)]] static void storeMotions(Motion<2>* m, const Neighbour<2>* e, std::uint32_t n,
+                                                              __m512 r) {
+        _mm_storeu_ps(&m[e[0].index].velocity.x, _mm512_maskz_extractf32x4_ps(0xf, r, 0));
+        if (n > 1) _mm_storeu_ps(&m[e[1].index].velocity.x, _mm512_maskz_extractf32x4_ps(0xf, r, 1));
+        if (n > 2) _mm_storeu_ps(&m[e[2].index].velocity.x, _mm512_maskz_extractf32x4_ps(0xf, r, 2));
+        if (n > 3) _mm_storeu_ps(&m[e[3].index].velocity.x, _mm512_maskz_extractf32x4_ps(0xf, r, 3));
+    }
+    /// Chunks [0, n) of a register.
+    static __mmask16 chunks(std::uint32_t n) { return static_cast<__mmask16>((1u << (4 * n)) - 1u); }
+    /// chainSum of the four chunks: (0 + 1) + (2 + 3).
+    [[gnu::target(SD_SOLVE_AVX512)]] static __m128 chainSum512(__m512 v) {
+        const __m128 low = _mm_add_ps(_mm512_maskz_extractf32x4_ps(0xf, v, 0), _mm512_maskz_extractf32x4_ps(0xf, v, 1));
+        const __m128 high = _mm_add_ps(_mm512_maskz_extractf32x4_ps(0xf, v, 2), _mm512_maskz_extractf32x4_ps(0xf, v, 3));
+        return _mm_add_ps(low, high);
+    }
+    /// The rates over the velocities (lane 0) and the pseudo velocities
+    /// (lane 2): splitRates' sums, chunk by chunk.
+    [[gnu::target(SD_SOLVE_AVX512)]] static __m128 rates128(const SolverView<2>& s, std::size_t i) {
+        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const std::uint32_t count = s.count[i];
+        const Motion<2>* m = s.motion;
+        const glm::vec2 wall(s.wall[i]);
+        const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
+        const __m512 mi = _mm512_maskz_broadcast_f32x4(0xffff, own);
+        __m512 chain = _mm512_insertf32x4(
+            _mm512_setzero_ps(), _mm_setr_ps(-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f), 0);
+        std::uint32_t k = 0;
+        for (; k + 4 <= count; k += 4) {
+            const __m512 t = _mm512_mul_ps(gOf(list + k, 4), _mm512_sub_ps(motionOf(m, list + k, 4), mi));
+            chain = _mm512_add_ps(chain, _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1)));  // pairDots
+        }
+        if (k < count) {
+            const std::uint32_t n = count - k;
+            const __m512 t = _mm512_mul_ps(gOf(list + k, n), _mm512_sub_ps(motionOf(m, list + k, n), mi));
+            chain = _mm512_mask_add_ps(chain, chunks(n), chain, _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1)));
+        }
+        return chainSum512(chain);
+    }
+    [[gnu::target(SD_SOLVE_AVX512)]] static float rate(const SolverView<2>& s, std::size_t i) {
+        return _mm_cvtss_f32(rates128(s, i));
+    }
+    [[gnu::target(SD_SOLVE_AVX512)]] static SplitRates rates(const SolverView<2>& s, std::size_t i) {
+        const __m128 r = rates128(s, i);
+        return {_mm_cvtss_f32(r), _mm_cvtss_f32(_mm_movehl_ps(r, r))};
+    }
+    /// Adds g (delta, delta, push, push) to every neighbour's motion (only
+    /// the lanes of `lanes`, per chunk: 0x3333 leaves the pseudo velocities'
+    /// bits alone) and subtracts the chains' sum from the particle's.
+    [[gnu::target(SD_SOLVE_AVX512)]] static void scatter(const SolverView<2>& s, std::size_t i, __m128 both,
+                                                         __mmask16 lanes) {
+        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const std::uint32_t count = s.count[i];
+        Motion<2>* m = s.motion;
+        const glm::vec2 wall(s.wall[i]);
+        const __m512 both512 = _mm512_maskz_broadcast_f32x4(0xffff, both);
+        __m512 self = _mm512_insertf32x4(_mm512_setzero_ps(),
+                                         _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both), 0);
+        std::uint32_t k = 0;
+        for (; k + 4 <= count; k += 4) {
+            const __m512 impulse = _mm512_mul_ps(gOf(list + k, 4), both512);
+            const __m512 moved = motionOf(m, list + k, 4);
+            storeMotions(m, list + k, 4, _mm512_mask_add_ps(moved, lanes, moved, impulse));
+            self = _mm512_add_ps(self, impulse);
+        }
+        if (k < count) {
+            const std::uint32_t n = count - k;
+            const __m512 impulse = _mm512_mul_ps(gOf(list + k, n), both512);
+            const __m512 moved = motionOf(m, list + k, n);
+            storeMotions(m, list + k, n, _mm512_mask_add_ps(moved, lanes, moved, impulse));
+            self = _mm512_mask_add_ps(self, chunks(n), self, impulse);
+        }
+        const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
+        _mm_storeu_ps(&m[i].velocity.x,
+                      _mm_mask_sub_ps(own, static_cast<__mmask8>(lanes & 0xf), own, chainSum512(self)));
+    }
+    [[gnu::target(SD_SOLVE_AVX512)]] static void apply(const SolverView<2>& s, std::size_t i, float delta) {
+        scatter(s, i, _mm_setr_ps(delta, delta, 0.0f, 0.0f), 0x3333);
+    }
+    [[gnu::target(SD_SOLVE_AVX512)]] static void applySplit(const SolverView<2>& s, std::size_t i, float delta,
+                                                            float push) {
+        scatter(s, i, _mm_setr_ps(delta, delta, push, push), 0xffff);
+    }
+};
+#endif
+
+/// One visit of particle i's constraint (slide 36, signs in fluid.glsl), with
+/// the neighbour loops of `Loops`.
+template <int D, class Loops>
+[[gnu::always_inline]] inline void visit(const SolverView<D>& s, std::size_t i) {
     if (!s.split) {
         const kernels::FluidImpulse r =
-            kernels::fluidSolveImpulse(rateOf<D>(s, i), s.bias[i], s.invMass[i], s.pressure[i]);
+            kernels::fluidSolveImpulse(Loops::rate(s, i), s.bias[i], s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;
-        if (r.delta != 0.0f) applyImpulse<D>(s, i, r.delta);
+        if (r.delta != 0.0f) Loops::apply(s, i, r.delta);
         return;
     }
     // The bias splits by sign: an under-dense particle's positive bias lets
@@ -192,19 +329,59 @@ inline void visit(const SolverView<D>& s, std::size_t i) {
     const float bias = s.bias[i];
     if (bias >= 0.0f) {
         const kernels::FluidImpulse r = kernels::fluidSolveImpulse(
-            rateOf<D>(s, i), kernels::fluidAllowance(bias, s.allowanceSlop), s.invMass[i], s.pressure[i]);
+            Loops::rate(s, i), kernels::fluidAllowance(bias, s.allowanceSlop), s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;
-        if (r.delta != 0.0f) applyImpulse<D>(s, i, r.delta);
+        if (r.delta != 0.0f) Loops::apply(s, i, r.delta);
         return;
     }
-    const SplitRates rates = splitRates<D>(s, i);
+    const SplitRates rates = Loops::rates(s, i);
     const kernels::FluidImpulse r =
         kernels::fluidSolveImpulse(rates.rate, kernels::fluidRealBias(bias), s.invMass[i], s.pressure[i]);
     const kernels::FluidImpulse q =
         kernels::fluidSolveImpulse(rates.pseudoRate, kernels::fluidPseudoBias(bias), s.invMass[i], s.pseudoImpulse[i]);
     s.pressure[i] = r.accumulated;
     s.pseudoImpulse[i] = q.accumulated;
-    applySplitImpulses<D>(s, i, r.delta, q.delta);
+    Loops::applySplit(s, i, r.delta, q.delta);
+}
+
+/// The visits of the particles of cells[begin, end) of one colour, cell by
+/// cell, each cell's particles in grid order.
+template <int D, class Loops>
+[[gnu::always_inline]] inline void visitCells(const SolverView<D>& s, const Grid<D>& g, const std::uint32_t* cells,
+                                              std::size_t begin, std::size_t end) {
+    constexpr std::uint32_t kQuadrants = 1u << D;
+    for (std::size_t c = begin; c < end; ++c) {
+        const std::uint32_t first = g.keyStart[cells[c] * kQuadrants];
+        const std::uint32_t last = g.keyStart[(cells[c] + 1) * kQuadrants];
+        for (std::uint32_t i = first; i < last; ++i) visit<D, Loops>(s, i);
+    }
+}
+
+template <int D>
+void visitCellsPlain(const SolverView<D>& s, const Grid<D>& g, const std::uint32_t* cells, std::size_t begin,
+                     std::size_t end) {
+    visitCells<D, PlainLoops<D>>(s, g, cells, begin, end);
+}
+
+#if SPINDRIFT_X86
+[[gnu::target(SD_SOLVE_AVX512)]] void visitCellsAvx512(const SolverView<2>& s, const Grid<2>& g,
+                                                       const std::uint32_t* cells, std::size_t begin,
+                                                       std::size_t end) {
+    visitCells<2, Avx512Loops>(s, g, cells, begin, end);
+}
+#undef SD_SOLVE_AVX512
+#endif
+
+/// The sweeps' copy for the process's update target (core/cpu_target.h):
+/// the AVX-512 loops for a 2D fluid where the CPU has them.
+template <int D>
+auto visitCellsFor() {
+#if SPINDRIFT_X86
+    if constexpr (D == 2) {
+        if (updateTarget() == UpdateTarget::Avx512) return &visitCellsAvx512;
+    }
+#endif
+    return &visitCellsPlain<D>;
 }
 
 /// The accumulated impulse particle i starts the solve with: the previous
@@ -287,7 +464,7 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
         for (std::size_t i = 0; i < n; ++i) warmStart<D>(s, i, fraction);
         solveContacts<D>(pool, f, dt);
         for (std::uint32_t it = 0; it < iterations; ++it) {
-            for (std::size_t i = 0; i < n; ++i) visit<D>(s, i);
+            for (std::size_t i = 0; i < n; ++i) visit<D, PlainLoops<D>>(s, i);
             solveContacts<D>(pool, f, dt);
         }
     } else {
@@ -300,8 +477,14 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
             forEachByColour<D>(pool, g, [&](std::size_t i) { warmStart<D>(s, i, fraction); });
         }
         solveContacts<D>(pool, f, dt);
+        const auto sweep = visitCellsFor<D>();
         for (std::uint32_t it = 0; it < iterations; ++it) {
-            forEachByColour<D>(pool, g, [&](std::size_t i) { visit<D>(s, i); });
+            for (int colour = 0; colour < (1 << D); ++colour) {
+                const std::vector<std::uint32_t>& cells = g.colourCells[colour];
+                pool.forChunks(cells.size(), kCellChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+                    sweep(s, g, cells.data(), begin, end);
+                });
+            }
             solveContacts<D>(pool, f, dt);
         }
     }

@@ -91,7 +91,8 @@ float rateTerm(uint i, vec3 xi, uint j, vec3 mi, uint part) {
 }
 
 // C' of particle i's constraint over part `part` of the motion (slide 36):
-// two chains of additions, even and odd entries, as the CPU's rateOf.
+// four chains of additions, entry k in chain k % 4, the first starting from
+// the ghosts' term, added as (0 + 1) + (2 + 3), as the CPU's rateOf.
 float rateOf(uint i, uint part) {
     uint d = dimension();
     vec3 mi = motionOf(i, part);
@@ -103,63 +104,101 @@ float rateOf(uint i, uint part) {
         precise float ownZ = ghosts.z * mi.z;
         ownDot = ownDot + ownZ;
     }
-    precise float even = -ownDot;  // the ghosts are at rest
-    precise float odd = 0.0f;
+    precise float chain0 = -ownDot;  // the ghosts are at rest
+    precise float chain1 = 0.0f;
+    precise float chain2 = 0.0f;
+    precise float chain3 = 0.0f;
     uint begin = first[i];
     uint count = counts[i];
     vec3 xi = xAt(i);
     uint k = 0u;
-    for (; k + 1u < count; k += 2u) {
-        even = even + rateTerm(i, xi, listIndex[begin + k], mi, part);
-        odd = odd + rateTerm(i, xi, listIndex[begin + k + 1u], mi, part);
+    for (; k + 3u < count; k += 4u) {
+        chain0 = chain0 + rateTerm(i, xi, listIndex[begin + k], mi, part);
+        chain1 = chain1 + rateTerm(i, xi, listIndex[begin + k + 1u], mi, part);
+        chain2 = chain2 + rateTerm(i, xi, listIndex[begin + k + 2u], mi, part);
+        chain3 = chain3 + rateTerm(i, xi, listIndex[begin + k + 3u], mi, part);
     }
-    if (k < count) even = even + rateTerm(i, xi, listIndex[begin + k], mi, part);
-    precise float rate = even + odd;
+    if (k < count) chain0 = chain0 + rateTerm(i, xi, listIndex[begin + k], mi, part);
+    if (k + 1u < count) chain1 = chain1 + rateTerm(i, xi, listIndex[begin + k + 1u], mi, part);
+    if (k + 2u < count) chain2 = chain2 + rateTerm(i, xi, listIndex[begin + k + 2u], mi, part);
+    precise float low = chain0 + chain1;
+    precise float high = chain2 + chain3;
+    precise float rate = low + high;
     return rate;
+}
+
+// Adds g delta to neighbour j's part `part` of the motion and returns it.
+vec3 pushNeighbour(uint i, vec3 xi, uint j, float delta, uint part) {
+    uint m = motionAt(j, part);
+    vec3 g = pairG(i, xi, j);
+    precise float x = g.x * delta;
+    precise float y = g.y * delta;
+    precise float z = 0.0f;
+    precise float movedX = motion[m] + x;
+    precise float movedY = motion[m + 1u] + y;
+    motion[m] = movedX;
+    motion[m + 1u] = movedY;
+    if (dimension() == 3u) {
+        z = g.z * delta;
+        precise float movedZ = motion[m + 2u] + z;
+        motion[m + 2u] = movedZ;
+    }
+    return vec3(x, y, z);
 }
 
 // Applies impulse `delta` of particle i's constraint to part `part` of the
 // motion: m_n += g delta on every neighbour, m_i -= (wall + sum g) delta
-// (Newton's third law, slide 39; the motionless ghosts take none). One
-// variable per component: written as a `precise vec3` indexed by the axis in
-// a loop, lavapipe lost whole visits of the 3D split impulses when several
+// (Newton's third law, slide 39; the motionless ghosts take none), the sum
+// in rateOf's four chains. One variable per component and chain, no array
+// indexed at run time: written as a `precise vec3` indexed by the axis in a
+// loop, lavapipe lost whole visits of the 3D split impulses when several
 // invocations of a workgroup diverged (tests/gpu/gpu_fluid_solve_test.cpp
 // found it; one active invocation per workgroup gave the CPU's bits).
 void applyImpulse(uint i, float delta, uint part) {
     uint d = dimension();
     vec3 ghosts = wall[i].yzw;
-    precise float selfX = ghosts.x * delta;
-    precise float selfY = ghosts.y * delta;
-    precise float selfZ = ghosts.z * delta;
+    precise float x0 = ghosts.x * delta;
+    precise float y0 = ghosts.y * delta;
+    precise float z0 = ghosts.z * delta;
+    precise float x1 = 0.0f, y1 = 0.0f, z1 = 0.0f;
+    precise float x2 = 0.0f, y2 = 0.0f, z2 = 0.0f;
+    precise float x3 = 0.0f, y3 = 0.0f, z3 = 0.0f;
     uint begin = first[i];
     uint count = counts[i];
     vec3 xi = xAt(i);
-    for (uint k = 0u; k < count; ++k) {
-        uint j = listIndex[begin + k];
-        uint m = motionAt(j, part);
-        vec3 g = pairG(i, xi, j);
-        precise float x = g.x * delta;
-        precise float y = g.y * delta;
-        precise float movedX = motion[m] + x;
-        precise float movedY = motion[m + 1u] + y;
-        motion[m] = movedX;
-        motion[m + 1u] = movedY;
-        selfX = selfX + x;
-        selfY = selfY + y;
-        if (d == 3u) {
-            precise float z = g.z * delta;
-            precise float movedZ = motion[m + 2u] + z;
-            motion[m + 2u] = movedZ;
-            selfZ = selfZ + z;
-        }
+    uint k = 0u;
+    for (; k + 3u < count; k += 4u) {
+        vec3 a = pushNeighbour(i, xi, listIndex[begin + k], delta, part);
+        vec3 b = pushNeighbour(i, xi, listIndex[begin + k + 1u], delta, part);
+        vec3 c = pushNeighbour(i, xi, listIndex[begin + k + 2u], delta, part);
+        vec3 e = pushNeighbour(i, xi, listIndex[begin + k + 3u], delta, part);
+        x0 = x0 + a.x; y0 = y0 + a.y; z0 = z0 + a.z;
+        x1 = x1 + b.x; y1 = y1 + b.y; z1 = z1 + b.z;
+        x2 = x2 + c.x; y2 = y2 + c.y; z2 = z2 + c.z;
+        x3 = x3 + e.x; y3 = y3 + e.y; z3 = z3 + e.z;
     }
+    if (k < count) {
+        vec3 a = pushNeighbour(i, xi, listIndex[begin + k], delta, part);
+        x0 = x0 + a.x; y0 = y0 + a.y; z0 = z0 + a.z;
+    }
+    if (k + 1u < count) {
+        vec3 b = pushNeighbour(i, xi, listIndex[begin + k + 1u], delta, part);
+        x1 = x1 + b.x; y1 = y1 + b.y; z1 = z1 + b.z;
+    }
+    if (k + 2u < count) {
+        vec3 c = pushNeighbour(i, xi, listIndex[begin + k + 2u], delta, part);
+        x2 = x2 + c.x; y2 = y2 + c.y; z2 = z2 + c.z;
+    }
+    precise float sumX = (x0 + x1) + (x2 + x3);
+    precise float sumY = (y0 + y1) + (y2 + y3);
     uint m = motionAt(i, part);
-    precise float leftX = motion[m] - selfX;
-    precise float leftY = motion[m + 1u] - selfY;
+    precise float leftX = motion[m] - sumX;
+    precise float leftY = motion[m + 1u] - sumY;
     motion[m] = leftX;
     motion[m + 1u] = leftY;
     if (d == 3u) {
-        precise float leftZ = motion[m + 2u] - selfZ;
+        precise float sumZ = (z0 + z1) + (z2 + z3);
+        precise float leftZ = motion[m + 2u] - sumZ;
         motion[m + 2u] = leftZ;
     }
 }

@@ -147,7 +147,7 @@ struct FluidDef {
     /// Substeps per world step, 1 to kFluidMaxSubsteps (16); 0: automatic (up
     /// to 16): enough that neighbours close in by at most 0.4 h per substep,
     /// that the deepest column is held up, and more after a step compressed
-    /// over 1.5 % (1 % at one iteration; docs/fluid.md).
+    /// over 1.5 % (two or three iterations; 1 % otherwise; docs/fluid.md).
     std::uint32_t substeps = 0;
     /// Sleeping, as Box2D's bodies and FleX's particles: a particle that
     /// stays within `sleepSpeed` x `sleepTime` (m), and within half a

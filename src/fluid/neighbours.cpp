@@ -232,11 +232,11 @@ __attribute__((target("avx2"))) std::size_t filterNearAvx2(const CandidateBlock<
 }
 #endif
 
-
 /// Lanes of the pairs' loop (phase 2 of the setup): one particle's sums over
-/// its pairs are kept per lane, 16 of them (AVX-512's width), and added in
-/// lane order at the end, so every target, whatever its vector width (or
-/// none), adds the same numbers in the same order: bit-identical results.
+/// its pairs are kept per lane, 16 of them (AVX-512's width), and added as
+/// one tree at the end (laneTree), so every target, whatever its vector
+/// width (or none), adds the same numbers in the same order: bit-identical
+/// results.
 constexpr std::size_t kPairLanes = 16;
 
 /// One particle's sums over its pairs.
@@ -449,7 +449,8 @@ __attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& 
 
 /// The sum of a register's 16 lanes in laneTree's order.
 __attribute__((target(SD_PAIRS_AVX512))) inline float laneTree512(__m512 v) {
-    const __m256 eight = _mm256_add_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
+    const __m256 eight =
+        _mm256_add_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
     const __m128 four = _mm_add_ps(_mm256_castps256_ps128(eight), _mm256_extractf128_ps(eight, 1));
     const __m128 two = _mm_add_ps(four, _mm_movehl_ps(four, four));
     return _mm_cvtss_f32(_mm_add_ss(two, _mm_shuffle_ps(two, two, 1)));
@@ -457,7 +458,8 @@ __attribute__((target(SD_PAIRS_AVX512))) inline float laneTree512(__m512 v) {
 
 /// The largest of a register's 16 lanes (all >= 0: the lanes start at 0).
 __attribute__((target(SD_PAIRS_AVX512))) inline float laneMax512(__m512 v) {
-    const __m256 eight = _mm256_max_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
+    const __m256 eight =
+        _mm256_max_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
     const __m128 four = _mm_max_ps(_mm256_castps256_ps128(eight), _mm256_extractf128_ps(eight, 1));
     const __m128 two = _mm_max_ps(four, _mm_movehl_ps(four, four));
     return _mm_cvtss_f32(_mm_max_ss(two, _mm_shuffle_ps(two, two, 1)));
@@ -513,7 +515,7 @@ __attribute__((target(SD_PAIRS_AVX512))) inline void storeEntries2(Neighbour<2>*
 /// gathers: only listed lanes read.
 template <int D, bool kClosing>
 __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const PairArrays<D>& a, std::size_t listed,
-                                                                     std::size_t paired, Neighbour<D>* dst) {
+                                                                      std::size_t paired, Neighbour<D>* dst) {
     const __m512 zero = _mm512_setzero_ps();
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 invH = _mm512_set1_ps(a.invH);
@@ -535,8 +537,7 @@ __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const Pair
         const __m512 d2 = _mm512_mul_ps(d, d);
         const __m512 d3 = _mm512_mul_ps(d2, d);
         const __m512 fifth = _mm512_mul_ps(_mm512_mul_ps(_mm512_set1_ps(0.6f), d3), d2);
-        const __m512 seventh =
-            _mm512_mul_ps(_mm512_mul_ps(_mm512_mul_ps(d3, d2), d2), _mm512_set1_ps(1.0f / 7.0f));
+        const __m512 seventh = _mm512_mul_ps(_mm512_mul_ps(_mm512_mul_ps(d3, d2), d2), _mm512_set1_ps(1.0f / 7.0f));
         const __m512 inner = _mm512_sub_ps(_mm512_add_ps(_mm512_sub_ps(d, d3), fifth), seventh);
         const __m512 kernel = _mm512_sub_ps(one, _mm512_mul_ps(_mm512_set1_ps(2.1875f), inner));
         density = _mm512_mask_add_ps(density, inList, density, kernel);
@@ -558,8 +559,8 @@ __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const Pair
             gSum[axis] = _mm512_mask_add_ps(gSum[axis], inPairs, gSum[axis], g[axis]);
             warm[axis] = _mm512_mask_sub_ps(warm[axis], inPairs, warm[axis], _mm512_mul_ps(g[axis], warmPressure));
             if constexpr (kClosing) {
-                const __m512i at = _mm512_add_epi32(_mm512_mullo_epi32(index, _mm512_set1_epi32(D)),
-                                                    _mm512_set1_epi32(axis));
+                const __m512i at =
+                    _mm512_add_epi32(_mm512_mullo_epi32(index, _mm512_set1_epi32(D)), _mm512_set1_epi32(axis));
                 const __m512 vj = _mm512_mask_i32gather_ps(zero, inPairs, at, a.velocity, 4);
                 const __m512 approach = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(a.vi[axis]), vj), offset);
                 closing = axis == 0 ? approach : _mm512_add_ps(closing, approach);

@@ -134,9 +134,8 @@ inline SplitRates splitRates(const SolverView<D>& s, std::size_t i) {
         const Float4 mi = bothOf(m[i]);
         Float4 chain[kChains] = {Float4{-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f},
                                  Float4{}, Float4{}, Float4{}};
-        addInChains(chain, count, [&](std::uint32_t k) {
-            return pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi));
-        });
+        addInChains(chain, count,
+                    [&](std::uint32_t k) { return pairDots(twice(list[k].g) * (bothOf(m[list[k].index]) - mi)); });
         const Float4 sum = chainSum(chain);
         return {sum[0], sum[2]};
     } else {
@@ -206,14 +205,17 @@ struct PlainLoops {
 /// A 2D particle's neighbour loops with AVX-512: four neighbours a register,
 /// each in a 128-bit chunk as (vx, vy, px, py), chunk c holding chain c of
 /// the sums (kChains), so the same numbers are added in the same order as
-/// the plain loops and the results are the same bits.
+/// the plain loops and the results are the same bits. (The masked forms of
+/// broadcasts, permutes and extracts throughout: g++ 12 warns, under
+/// -Werror, that the plain forms' undefined source is used uninitialised.)
 struct Avx512Loops {
     /// Entries k .. k + n - 1 (n <= 4) as (gx, gy, gx, gy) per chunk, 0
     /// past n: one masked load of their 12-byte entries and one permute.
     [[gnu::target(SD_SOLVE_AVX512)]] static __m512 gOf(const Neighbour<2>* e, std::uint32_t n) {
         const __mmask16 floats = static_cast<__mmask16>((1u << (3 * n)) - 1u);
         const __m512 raw = _mm512_maskz_loadu_ps(floats, &e[0].g.x);
-        return _mm512_maskz_permutexvar_ps(0xffff, _mm512_setr_epi32(0, 1, 0, 1, 3, 4, 3, 4, 6, 7, 6, 7, 9, 10, 9, 10), raw);
+        return _mm512_maskz_permutexvar_ps(0xffff, _mm512_setr_epi32(0, 1, 0, 1, 3, 4, 3, 4, 6, 7, 6, 7, 9, 10, 9, 10),
+                                           raw);
     }
     /// Their motions (16 bytes each), 0 past n.
     [[gnu::target(SD_SOLVE_AVX512)]] static __m512 motionOf(const Motion<2>* m, const Neighbour<2>* e,
@@ -236,7 +238,8 @@ struct Avx512Loops {
     /// chainSum of the four chunks: (0 + 1) + (2 + 3).
     [[gnu::target(SD_SOLVE_AVX512)]] static __m128 chainSum512(__m512 v) {
         const __m128 low = _mm_add_ps(_mm512_maskz_extractf32x4_ps(0xf, v, 0), _mm512_maskz_extractf32x4_ps(0xf, v, 1));
-        const __m128 high = _mm_add_ps(_mm512_maskz_extractf32x4_ps(0xf, v, 2), _mm512_maskz_extractf32x4_ps(0xf, v, 3));
+        const __m128 high =
+            _mm_add_ps(_mm512_maskz_extractf32x4_ps(0xf, v, 2), _mm512_maskz_extractf32x4_ps(0xf, v, 3));
         return _mm_add_ps(low, high);
     }
     /// The rates over the velocities (lane 0) and the pseudo velocities
@@ -249,7 +252,8 @@ struct Avx512Loops {
         const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
         const __m512 mi = _mm512_maskz_broadcast_f32x4(0xffff, own);
         __m512 chain = _mm512_insertf32x4(
-            _mm512_setzero_ps(), _mm_setr_ps(-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f), 0);
+            _mm512_setzero_ps(), _mm_setr_ps(-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f),
+            0);
         std::uint32_t k = 0;
         for (; k + 4 <= count; k += 4) {
             const __m512 t = _mm512_mul_ps(gOf(list + k, 4), _mm512_sub_ps(motionOf(m, list + k, 4), mi));
@@ -258,7 +262,8 @@ struct Avx512Loops {
         if (k < count) {
             const std::uint32_t n = count - k;
             const __m512 t = _mm512_mul_ps(gOf(list + k, n), _mm512_sub_ps(motionOf(m, list + k, n), mi));
-            chain = _mm512_mask_add_ps(chain, chunks(n), chain, _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1)));
+            chain =
+                _mm512_mask_add_ps(chain, chunks(n), chain, _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1)));
         }
         return chainSum512(chain);
     }
@@ -279,8 +284,8 @@ struct Avx512Loops {
         Motion<2>* m = s.motion;
         const glm::vec2 wall(s.wall[i]);
         const __m512 both512 = _mm512_maskz_broadcast_f32x4(0xffff, both);
-        __m512 self = _mm512_insertf32x4(_mm512_setzero_ps(),
-                                         _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both), 0);
+        __m512 self =
+            _mm512_insertf32x4(_mm512_setzero_ps(), _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both), 0);
         std::uint32_t k = 0;
         for (; k + 4 <= count; k += 4) {
             const __m512 impulse = _mm512_mul_ps(gOf(list + k, 4), both512);
@@ -365,8 +370,7 @@ void visitCellsPlain(const SolverView<D>& s, const Grid<D>& g, const std::uint32
 
 #if SPINDRIFT_X86
 [[gnu::target(SD_SOLVE_AVX512)]] void visitCellsAvx512(const SolverView<2>& s, const Grid<2>& g,
-                                                       const std::uint32_t* cells, std::size_t begin,
-                                                       std::size_t end) {
+                                                       const std::uint32_t* cells, std::size_t begin, std::size_t end) {
     visitCells<2, Avx512Loops>(s, g, cells, begin, end);
 }
 #undef SD_SOLVE_AVX512

@@ -19,7 +19,8 @@
 // Instructions": 3 ulp for sqrt as 1 / inversesqrt, 2.5 for division), may
 // fuse a multiply-add outside the `precise` expressions, and adds a
 // particle's pair terms in list order where the CPU adds sixteen lanes and
-// then the lanes. Each term is then within about 4 ulp of its own size, and
+// then the lanes as a tree (fewer roundings than in order, so the bound
+// below holds). Each term is then within about 4 ulp of its own size, and
 // each of the n additions rounds by at most half an ulp of the running sum,
 // which is at most the sum of the terms' sizes S: so a sum of n terms
 // may differ by at most about (n + 4) x 4 ulp x S, the bound used below with

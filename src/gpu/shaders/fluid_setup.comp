@@ -18,7 +18,7 @@
 // The candidates are visited in the CPU's order (the 3^D sub-cells z, y, x
 // outermost first, each in grid order), so the lists are the CPU's entry for
 // entry; the sums over them are added in list order, where the CPU adds
-// sixteen lanes and then the lanes, so they may differ in the last bits
+// sixteen lanes and then the lanes as a tree, so they may differ in the last bits
 // (tests/gpu/gpu_fluid_setup_test.cpp states the tolerance).
 #include "fluid.glsl"
 #include "layout.glsl"

@@ -447,22 +447,19 @@ __attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& 
 
 #define SD_PAIRS_AVX512 "avx512f,avx512vl,avx512bw,avx512dq"
 
-/// The sum of a register's 16 lanes in laneTree's order.
-__attribute__((target(SD_PAIRS_AVX512))) inline float laneTree512(__m512 v) {
-    const __m256 eight =
-        _mm256_add_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
-    const __m128 four = _mm_add_ps(_mm256_castps256_ps128(eight), _mm256_extractf128_ps(eight, 1));
-    const __m128 two = _mm_add_ps(four, _mm_movehl_ps(four, four));
-    return _mm_cvtss_f32(_mm_add_ss(two, _mm_shuffle_ps(two, two, 1)));
-}
-
-/// The largest of a register's 16 lanes (all >= 0: the lanes start at 0).
-__attribute__((target(SD_PAIRS_AVX512))) inline float laneMax512(__m512 v) {
-    const __m256 eight =
-        _mm256_max_ps(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
-    const __m128 four = _mm_max_ps(_mm256_castps256_ps128(eight), _mm256_extractf128_ps(eight, 1));
-    const __m128 two = _mm_max_ps(four, _mm_movehl_ps(four, four));
-    return _mm_cvtss_f32(_mm_max_ss(two, _mm_shuffle_ps(two, two, 1)));
+/// A register's 16 lanes reduced in laneTree's order: their sum, or with
+/// kMax their largest (the closing speeds: all >= 0, the lanes start at 0).
+template <bool kMax>
+__attribute__((target(SD_PAIRS_AVX512))) inline float reduceLanes512(__m512 v) {
+    const __m256 low = _mm512_maskz_extractf32x8_ps(0xff, v, 0);
+    const __m256 high = _mm512_maskz_extractf32x8_ps(0xff, v, 1);
+    const __m256 eight = kMax ? _mm256_max_ps(low, high) : _mm256_add_ps(low, high);
+    const __m128 left = _mm256_castps256_ps128(eight);
+    const __m128 right = _mm256_extractf128_ps(eight, 1);
+    const __m128 four = kMax ? _mm_max_ps(left, right) : _mm_add_ps(left, right);
+    const __m128 two = kMax ? _mm_max_ps(four, _mm_movehl_ps(four, four)) : _mm_add_ps(four, _mm_movehl_ps(four, four));
+    const __m128 last = _mm_shuffle_ps(two, two, 1);
+    return _mm_cvtss_f32(kMax ? _mm_max_ss(two, last) : _mm_add_ss(two, last));
 }
 
 /// Lanes [0, count) of a 16-lane mask (count may exceed 16).
@@ -585,12 +582,12 @@ __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const Pair
         }
     }
     PairSums<D> sums;
-    sums.density = laneTree512(density);
-    sums.mass = laneTree512(mass);
-    sums.fastest = laneMax512(fastest);
+    sums.density = reduceLanes512<false>(density);
+    sums.mass = reduceLanes512<false>(mass);
+    sums.fastest = reduceLanes512<true>(fastest);
     for (int axis = 0; axis < D; ++axis) {
-        sums.gSum[axis] = laneTree512(gSum[axis]);
-        sums.warm[axis] = laneTree512(warm[axis]);
+        sums.gSum[axis] = reduceLanes512<false>(gSum[axis]);
+        sums.warm[axis] = reduceLanes512<false>(warm[axis]);
     }
     return sums;
 }

@@ -584,7 +584,7 @@ __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const Pair
     PairSums<D> sums;
     sums.density = reduceLanes512<false>(density);
     sums.mass = reduceLanes512<false>(mass);
-    sums.fastest = reduceLanes512<true>(fastest);
+    if constexpr (kClosing) sums.fastest = reduceLanes512<true>(fastest);
     for (int axis = 0; axis < D; ++axis) {
         sums.gSum[axis] = reduceLanes512<false>(gSum[axis]);
         sums.warm[axis] = reduceLanes512<false>(warm[axis]);

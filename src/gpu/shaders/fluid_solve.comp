@@ -10,7 +10,7 @@
 // A colour is the cells whose coordinates have its parities: cells 2h wide,
 // so two cells of one colour are at least 2h apart and their particles'
 // constraints (reach h) share no particle. One invocation takes one cell and
-// visits its particles in grid order, as the CPU's forEachByColour does, so
+// visits its particles in grid order, as the CPU's forEachColourChunk does, so
 // the visits are the CPU's, in the same order per cell. The arithmetic is the
 // CPU's too, operation for operation (`precise`: no fused multiply-adds, no
 // reordering), so on a device that rounds to nearest the results are the

@@ -78,6 +78,33 @@ struct CandidateBlock {
     std::uint64_t overflows = 0;
 };
 
+/// A near list's and a candidate block's arrays as plain addresses, for the
+/// vector filters' loops.
+template <int D>
+struct NearOut {
+    float* offset[D];
+    float* r2;
+    std::uint32_t* index;
+};
+template <int D>
+NearOut<D> nearOut(NearList<D>& near) {
+    NearOut<D> out{{}, near.r2.data(), near.index.data()};
+    for (int a = 0; a < D; ++a) out.offset[a] = near.offset[a].data();
+    return out;
+}
+template <int D>
+struct BlockIn {
+    const float* position[D];
+    const std::uint32_t* index;
+    std::size_t size;  // padded
+};
+template <int D>
+BlockIn<D> blockIn(const CandidateBlock<D>& block) {
+    BlockIn<D> in{{}, block.index.data(), block.index.size()};
+    for (int a = 0; a < D; ++a) in.position[a] = block.position[a].data();
+    return in;
+}
+
 /// Fills `block` with the candidates of the 3^D sub-cells around sub-cell
 /// `key`. A sub-cell crushed past kCrushedSubCell times its count at rest
 /// (fluid_state.h) is read only `readLimit` far: the rest count as
@@ -166,19 +193,23 @@ __attribute__((target("avx512f"))) std::size_t filterNearAvx512(const CandidateB
     const __m512i self = _mm512_set1_epi32(static_cast<int>(i));
     __m512 origin[D];
     for (int a = 0; a < D; ++a) origin[a] = _mm512_set1_ps(xi[a]);
+    // The addresses in locals: read through `near` after each store, g++
+    // reloads them (it cannot tell the stores don't reach them), and those
+    // reloads stalled behind the compressed stores (measured, two thirds of
+    // the filter's time with two threads).
+    const NearOut<D> out = nearOut(near);
+    const BlockIn<D> in = blockIn(block);
     std::size_t kept = 0;
-    for (std::size_t k = 0; k < block.index.size(); k += 16) {
+    for (std::size_t k = 0; k < in.size; k += 16) {
         __m512 offset[D];
-        for (int a = 0; a < D; ++a) offset[a] = _mm512_sub_ps(_mm512_loadu_ps(block.position[a].data() + k), origin[a]);
+        for (int a = 0; a < D; ++a) offset[a] = _mm512_sub_ps(_mm512_loadu_ps(in.position[a] + k), origin[a]);
         __m512 r2 = _mm512_add_ps(_mm512_mul_ps(offset[0], offset[0]), _mm512_mul_ps(offset[1], offset[1]));
         if constexpr (D == 3) r2 = _mm512_add_ps(r2, _mm512_mul_ps(offset[2], offset[2]));
-        const __m512i index = _mm512_loadu_si512(block.index.data() + k);
+        const __m512i index = _mm512_loadu_si512(in.index + k);
         const __mmask16 keep = _mm512_cmp_ps_mask(r2, limit, _CMP_LT_OQ) & _mm512_cmpneq_epi32_mask(index, self);
-        for (int a = 0; a < D; ++a) {
-            _mm512_storeu_ps(near.offset[a].data() + kept, _mm512_maskz_compress_ps(keep, offset[a]));
-        }
-        _mm512_storeu_ps(near.r2.data() + kept, _mm512_maskz_compress_ps(keep, r2));
-        _mm512_storeu_si512(near.index.data() + kept, _mm512_maskz_compress_epi32(keep, index));
+        for (int a = 0; a < D; ++a) _mm512_storeu_ps(out.offset[a] + kept, _mm512_maskz_compress_ps(keep, offset[a]));
+        _mm512_storeu_ps(out.r2 + kept, _mm512_maskz_compress_ps(keep, r2));
+        _mm512_storeu_si512(out.index + kept, _mm512_maskz_compress_epi32(keep, index));
         kept += static_cast<std::size_t>(__builtin_popcount(keep));
     }
     return kept;
@@ -209,23 +240,22 @@ __attribute__((target("avx2"))) std::size_t filterNearAvx2(const CandidateBlock<
     const __m256i self = _mm256_set1_epi32(static_cast<int>(i));
     __m256 origin[D];
     for (int a = 0; a < D; ++a) origin[a] = _mm256_set1_ps(xi[a]);
+    const NearOut<D> out = nearOut(near);  // in locals, as in filterNearAvx512
+    const BlockIn<D> in = blockIn(block);
     std::size_t kept = 0;
-    for (std::size_t k = 0; k < block.index.size(); k += 8) {
+    for (std::size_t k = 0; k < in.size; k += 8) {
         __m256 offset[D];
-        for (int a = 0; a < D; ++a) offset[a] = _mm256_sub_ps(_mm256_loadu_ps(block.position[a].data() + k), origin[a]);
+        for (int a = 0; a < D; ++a) offset[a] = _mm256_sub_ps(_mm256_loadu_ps(in.position[a] + k), origin[a]);
         __m256 r2 = _mm256_add_ps(_mm256_mul_ps(offset[0], offset[0]), _mm256_mul_ps(offset[1], offset[1]));
         if constexpr (D == 3) r2 = _mm256_add_ps(r2, _mm256_mul_ps(offset[2], offset[2]));
-        const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(block.index.data() + k));
+        const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(in.index + k));
         const int within = _mm256_movemask_ps(_mm256_cmp_ps(r2, limit, _CMP_LT_OQ));
         const int isSelf = _mm256_movemask_ps(_mm256_castsi256_ps(_mm256_cmpeq_epi32(index, self)));
         const auto keep = static_cast<unsigned>(within & ~isSelf);
         const __m256i pack = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPackTable.lanes[keep]));
-        for (int a = 0; a < D; ++a) {
-            _mm256_storeu_ps(near.offset[a].data() + kept, _mm256_permutevar8x32_ps(offset[a], pack));
-        }
-        _mm256_storeu_ps(near.r2.data() + kept, _mm256_permutevar8x32_ps(r2, pack));
-        _mm256_storeu_si256(reinterpret_cast<__m256i*>(near.index.data() + kept),
-                            _mm256_permutevar8x32_epi32(index, pack));
+        for (int a = 0; a < D; ++a) _mm256_storeu_ps(out.offset[a] + kept, _mm256_permutevar8x32_ps(offset[a], pack));
+        _mm256_storeu_ps(out.r2 + kept, _mm256_permutevar8x32_ps(r2, pack));
+        _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.index + kept), _mm256_permutevar8x32_epi32(index, pack));
         kept += static_cast<std::size_t>(__builtin_popcount(keep));
     }
     return kept;
@@ -511,8 +541,12 @@ __attribute__((target(SD_PAIRS_AVX512))) inline void storeEntries2(Neighbour<2>*
 /// laneTree's order. The neighbours' pressures (and velocities) are masked
 /// gathers: only listed lanes read.
 template <int D, bool kClosing>
-__attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const PairArrays<D>& a, std::size_t listed,
+__attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const PairArrays<D>& arrays, std::size_t listed,
                                                                       std::size_t paired, Neighbour<D>* dst) {
+    // A copy the stores cannot reach: read through the reference after each
+    // store, g++ reloaded the addresses, and those reloads stalled behind
+    // the stores (measured, a third of the loop's time with two threads).
+    const PairArrays<D> a = arrays;
     const __m512 zero = _mm512_setzero_ps();
     const __m512 one = _mm512_set1_ps(1.0f);
     const __m512 invH = _mm512_set1_ps(a.invH);
@@ -606,6 +640,24 @@ Fn forUpdateTarget(Fn baseline, Fn avx2, Fn avx512) {
 }
 #endif
 
+/// What the setup writes for each particle after its pairs, and reads to
+/// do it, as plain addresses and values.
+struct ParticleOutputs {
+    const float* wallDensity;
+    const glm::vec3* wallGradient;
+    glm::vec3* warmVelocity;  // m/s
+    float* invMass;
+    float* bias;              // m/s
+    std::uint32_t* count;
+    float* density;           // over rest density
+    float restDensity;
+    float invRest;
+    float relaxation;
+    float baumgarte;
+    float h;                  // m
+    float invDt;              // 1/s
+};
+
 /// The pairs' copy for the process's update target, with or without the
 /// closing speeds.
 template <int D>
@@ -652,8 +704,20 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
     const auto filter = &filterNearScalar<D>;
 #endif
     const auto pairs = pairsFor<D>(countClosing);
+    const ParticleOutputs outputs{c.wallDensity.data(), c.wallGradient.data(), c.warmVelocity.data(),
+                                  c.invMass.data(),     c.bias.data(),         c.count.data(),
+                                  p.density.data(),     f.restDensity,         invRest,
+                                  f.def.relaxation,     f.def.baumgarte,       f.h,
+                                  invDt};
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        // What is read after each particle's pairs, copied in: read through
+        // the lambda's captured references, each load waited behind the
+        // pairs' stores (measured with two threads: a tenth of this loop's
+        // time on the test of `countClosing` alone).
+        const bool closing = countClosing;
+        const auto pairsOf = pairs;
+        const ParticleOutputs o = outputs;
         ChunkStats s;
         std::vector<Neighbour<D>>& out = lists[chunk];
         // out[0, used) is this step's; out keeps its size from step to step
@@ -694,28 +758,28 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
                 arrays.offset[a] = near.offset[a].data();
                 arrays.vi[a] = vi[a];
             }
-            PairSums<D> sums = pairs(arrays, nearCount, paired, out.data() + used);
+            PairSums<D> sums = pairsOf(arrays, nearCount, paired, out.data() + used);
             const auto count = static_cast<std::uint32_t>(paired);
-            if (countClosing) s.approach[approachBin(sums.fastest)] += 1;
-            c.count[i] = count;
+            if (closing) s.approach[approachBin(sums.fastest)] += 1;
+            o.count[i] = count;
             used += count;
             // The colliders' ghosts (wall_density.cpp): motionless
             // neighbours, so they add to the density and to the particle's
             // own Jacobian entry, -(sum g + wall). W(0) = 1 is the particle
             // itself.
-            const float density = 1.0f + sums.density + c.wallDensity[i];
-            sums.gSum += Vec<D>(c.wallGradient[i]);
-            if (count != 0) sums.warm -= Vec<D>(c.wallGradient[i]) * lambdaI;  // the ghosts take no impulse
+            const float density = 1.0f + sums.density + o.wallDensity[i];
+            sums.gSum += Vec<D>(o.wallGradient[i]);
+            if (count != 0) sums.warm -= Vec<D>(o.wallGradient[i]) * lambdaI;  // the ghosts take no impulse
             glm::vec3 warm3(0.0f);
             for (int a = 0; a < D; ++a) warm3[a] = sums.warm[a];
-            c.warmVelocity[i] = warm3;
+            o.warmVelocity[i] = warm3;
             // Effective mass of the Jacobian (fluid.glsl).
             glm::vec3 gSum3(0.0f);
             for (int a = 0; a < D; ++a) gSum3[a] = sums.gSum[a];
-            c.invMass[i] = kernels::fluidInverseMass(sums.mass, gSum3, f.def.relaxation);
-            c.bias[i] = kernels::fluidBias(density, f.restDensity, f.def.baumgarte, f.h, invDt);
-            const float relative = density * invRest;
-            p.density[i] = relative;
+            o.invMass[i] = kernels::fluidInverseMass(sums.mass, gSum3, o.relaxation);
+            o.bias[i] = kernels::fluidBias(density, o.restDensity, o.baumgarte, o.h, o.invDt);
+            const float relative = density * o.invRest;
+            o.density[i] = relative;
             s.errorSum += std::max(relative - 1.0f, 0.0f);
 
             s.maxError = std::max<double>(s.maxError, relative - 1.0f);

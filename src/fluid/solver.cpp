@@ -312,6 +312,117 @@ struct Avx512Loops {
         scatter(s, i, _mm_setr_ps(delta, delta, push, push), 0xffff);
     }
 };
+
+#define SD_SOLVE_AVX2 "avx2"
+
+/// Avx512Loops with AVX2: two neighbours a register, each in a 128-bit half
+/// as (vx, vy, px, py), and the four chains of the sums in two registers
+/// (chains 0 and 1 in `low`'s halves, 2 and 3 in `high`'s), so the same
+/// numbers are added in the same order as the plain loops: the same bits.
+struct Avx2Loops {
+    /// Entry e's g as (gx, gy, gx, gy).
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m128 gOf(const Neighbour<2>& e) {
+        const __m128 g = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&e.g.x)));
+        return _mm_movelh_ps(g, g);
+    }
+    /// Entries e[0] and e[1] (only e[0] when n is 1, the other half 0).
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 gOf(const Neighbour<2>* e, std::uint32_t n) {
+        return _mm256_set_m128(n > 1 ? gOf(e[1]) : _mm_setzero_ps(), gOf(e[0]));
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 motionOf(const Motion<2>* m, const Neighbour<2>* e,
+                                                          std::uint32_t n) {
+        const __m128 first = _mm_loadu_ps(&m[e[0].index].velocity.x);
+        return _mm256_set_m128(n > 1 ? _mm_loadu_ps(&m[e[1].index].velocity.x) : _mm_setzero_ps(), first);
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static void storeMotions(Motion<2>* m, const Neighbour<2>* e, std::uint32_t n,
+                                                            __m256 r) {
+        _mm_storeu_ps(&m[e[0].index].velocity.x, _mm256_castps256_ps128(r));
+        if (n > 1) _mm_storeu_ps(&m[e[1].index].velocity.x, _mm256_extractf128_ps(r, 1));
+    }
+    /// `chain` + `t` in the halves of a pair of n entries: both halves, or
+    /// the low one alone.
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 addTo(__m256 chain, __m256 t, std::uint32_t n) {
+        const __m256 sum = _mm256_add_ps(chain, t);
+        return n > 1 ? sum : _mm256_blend_ps(chain, sum, 0x0f);
+    }
+    /// chainSum of the four chains: (0 + 1) + (2 + 3).
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m128 chainSum256(__m256 low, __m256 high) {
+        return _mm_add_ps(_mm_add_ps(_mm256_castps256_ps128(low), _mm256_extractf128_ps(low, 1)),
+                          _mm_add_ps(_mm256_castps256_ps128(high), _mm256_extractf128_ps(high, 1)));
+    }
+    /// pairDots of the products of n entries (n <= 2) with their motions.
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 dotsOf(const Motion<2>* m, const Neighbour<2>* e, std::uint32_t n,
+                                                        __m256 mi) {
+        const __m256 t = _mm256_mul_ps(gOf(e, n), _mm256_sub_ps(motionOf(m, e, n), mi));
+        return _mm256_add_ps(t, _mm256_permute_ps(t, 0xb1));
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m128 rates128(const SolverView<2>& s, std::size_t i) {
+        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const std::uint32_t count = s.count[i];
+        const Motion<2>* m = s.motion;
+        const glm::vec2 wall(s.wall[i]);
+        const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
+        const __m256 mi = _mm256_set_m128(own, own);
+        __m256 low = _mm256_set_m128(
+            _mm_setzero_ps(), _mm_setr_ps(-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f));
+        __m256 high = _mm256_setzero_ps();
+        std::uint32_t k = 0;
+        for (; k + 4 <= count; k += 4) {
+            low = _mm256_add_ps(low, dotsOf(m, list + k, 2, mi));
+            high = _mm256_add_ps(high, dotsOf(m, list + k + 2, 2, mi));
+        }
+        const std::uint32_t n = count - k;
+        if (n > 0) low = addTo(low, dotsOf(m, list + k, std::min(n, 2u), mi), n);
+        if (n > 2) high = addTo(high, dotsOf(m, list + k + 2, 1, mi), 1);
+        return chainSum256(low, high);
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static float rate(const SolverView<2>& s, std::size_t i) {
+        return _mm_cvtss_f32(rates128(s, i));
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static SplitRates rates(const SolverView<2>& s, std::size_t i) {
+        const __m128 r = rates128(s, i);
+        return {_mm_cvtss_f32(r), _mm_cvtss_f32(_mm_movehl_ps(r, r))};
+    }
+    /// Adds g (delta, delta, push, push) to n neighbours' motions (n <= 2;
+    /// `velocityOnly`: leaves the pseudo velocities' bits alone) and
+    /// returns the impulses.
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 pushNeighbours(Motion<2>* m, const Neighbour<2>* e, std::uint32_t n,
+                                                      __m256 both, bool velocityOnly) {
+        const __m256 impulse = _mm256_mul_ps(gOf(e, n), both);
+        const __m256 moved = motionOf(m, e, n);
+        const __m256 sum = _mm256_add_ps(moved, impulse);
+        storeMotions(m, e, n, velocityOnly ? _mm256_blend_ps(moved, sum, 0x33) : sum);
+        return impulse;
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static void scatter(const SolverView<2>& s, std::size_t i, __m128 both,
+                                                       bool velocityOnly) {
+        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const std::uint32_t count = s.count[i];
+        Motion<2>* m = s.motion;
+        const glm::vec2 wall(s.wall[i]);
+        const __m256 both256 = _mm256_set_m128(both, both);
+        __m256 low = _mm256_set_m128(_mm_setzero_ps(), _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both));
+        __m256 high = _mm256_setzero_ps();
+        std::uint32_t k = 0;
+        for (; k + 4 <= count; k += 4) {
+            low = _mm256_add_ps(low, pushNeighbours(m, list + k, 2, both256, velocityOnly));
+            high = _mm256_add_ps(high, pushNeighbours(m, list + k + 2, 2, both256, velocityOnly));
+        }
+        const std::uint32_t n = count - k;
+        if (n > 0) low = addTo(low, pushNeighbours(m, list + k, std::min(n, 2u), both256, velocityOnly), n);
+        if (n > 2) high = addTo(high, pushNeighbours(m, list + k + 2, 1, both256, velocityOnly), 1);
+        const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
+        const __m128 moved = _mm_sub_ps(own, chainSum256(low, high));
+        _mm_storeu_ps(&m[i].velocity.x, velocityOnly ? _mm_blend_ps(own, moved, 0x3) : moved);
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static void apply(const SolverView<2>& s, std::size_t i, float delta) {
+        scatter(s, i, _mm_setr_ps(delta, delta, 0.0f, 0.0f), true);
+    }
+    [[gnu::target(SD_SOLVE_AVX2)]] static void applySplit(const SolverView<2>& s, std::size_t i, float delta,
+                                                          float push) {
+        scatter(s, i, _mm_setr_ps(delta, delta, push, push), false);
+    }
+};
 #endif
 
 /// One visit of particle i's constraint (slide 36, signs in fluid.glsl), with
@@ -382,16 +493,22 @@ void visitCellsPlain(const SolverView<D>& s, const Grid<D>& g, const std::uint32
                                                        const std::uint32_t* cells, std::size_t begin, std::size_t end) {
     visitCells<2, Avx512Loops>(s, g, cells, begin, end);
 }
+[[gnu::target(SD_SOLVE_AVX2)]] void visitCellsAvx2(const SolverView<2>& s, const Grid<2>& g,
+                                                   const std::uint32_t* cells, std::size_t begin, std::size_t end) {
+    visitCells<2, Avx2Loops>(s, g, cells, begin, end);
+}
 #undef SD_SOLVE_AVX512
+#undef SD_SOLVE_AVX2
 #endif
 
 /// The sweeps' copy for the process's update target (core/cpu_target.h):
-/// the AVX-512 loops for a 2D fluid where the CPU has them.
+/// the AVX-512 or AVX2 loops for a 2D fluid where the CPU has them.
 template <int D>
 auto visitCellsFor() {
 #if SPINDRIFT_X86
     if constexpr (D == 2) {
         if (updateTarget() == UpdateTarget::Avx512) return &visitCellsAvx512;
+        if (updateTarget() == UpdateTarget::Avx2) return &visitCellsAvx2;
     }
 #endif
     return &visitCellsPlain<D>;

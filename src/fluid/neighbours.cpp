@@ -469,10 +469,156 @@ PairSums<D> setUpPairsBaseline(const PairArrays<D>& arrays, std::size_t listed, 
 }
 
 #if SPINDRIFT_X86
+/// Lanes [0, count) of an 8-lane register, all bits set (count may exceed 8).
+__attribute__((target("avx2"))) inline __m256 firstLanes8(std::size_t count) {
+    const int lanes = static_cast<int>(std::min<std::size_t>(count, 8));
+    return _mm256_castsi256_ps(_mm256_cmpgt_epi32(_mm256_set1_epi32(lanes), _mm256_setr_epi32(0, 1, 2, 3, 4, 5, 6, 7)));
+}
+
+/// One particle's sums over the lanes of half of the 16 (kPairLanes): lanes
+/// 0 to 7 or 8 to 15.
+struct PairHalf2 {
+    __m256 density, mass, fastest, gSum[2], warm[2];
+};
+
+/// Register o (0 to 2) of the 2D Neighbour entries of 8 lanes (gx, gy,
+/// index): lane l is float p = 8 o + l, component p % 3 of entry p / 3;
+/// `entry` holds p / 3 for each lane, kFromY and kFromIndex have bit l set
+/// where the component is 1 (gy) or 2 (the index). Stores its first
+/// `floats` floats (masked: nothing past them).
+template <int kFromY, int kFromIndex>
+__attribute__((target("avx2"))) inline void storeEntryFloats(float* out, __m256i entry, __m256 gx, __m256 gy,
+                                                             __m256 index, std::size_t floats) {
+    const __m256 g = _mm256_blend_ps(_mm256_permutevar8x32_ps(gx, entry), _mm256_permutevar8x32_ps(gy, entry), kFromY);
+    const __m256 e = _mm256_blend_ps(g, _mm256_permutevar8x32_ps(index, entry), kFromIndex);
+    if (floats >= 8) {
+        _mm256_storeu_ps(out, e);
+    } else if (floats > 0) {
+        _mm256_maskstore_ps(out, _mm256_castps_si256(firstLanes8(floats)), e);
+    }
+}
+
+/// Writes lanes [0, stored) of (gx, gy) and the indices (stored may exceed
+/// 8) as 2D Neighbour entries (12 bytes: gx, gy, index), 8 entries in three
+/// registers, each from one permute of each source and two blends.
+__attribute__((target("avx2"))) inline void storeEntries2Avx2(Neighbour<2>* dst, __m256 gx, __m256 gy, __m256 index,
+                                                              std::size_t stored) {
+    float* out = &dst[0].g.x;
+    const std::size_t floats = 3 * std::min<std::size_t>(stored, 8);
+    storeEntryFloats<0b10010010, 0b00100100>(out, _mm256_setr_epi32(0, 0, 0, 1, 1, 1, 2, 2), gx, gy, index, floats);
+    if (floats <= 8) return;
+    storeEntryFloats<0b00100100, 0b01001001>(out + 8, _mm256_setr_epi32(2, 3, 3, 3, 4, 4, 4, 5), gx, gy, index,
+                                             floats - 8);
+    if (floats <= 16) return;
+    storeEntryFloats<0b01001001, 0b10010010>(out + 16, _mm256_setr_epi32(5, 5, 6, 6, 6, 7, 7, 7), gx, gy, index,
+                                             floats - 16);
+}
+
+/// The sum (or with kMax the largest) of 16 lanes held as two halves, in
+/// laneTree's order (reduceLanes512 from its second addition on).
+template <bool kMax>
+__attribute__((target("avx2"))) inline float reduceHalves(__m256 low, __m256 high) {
+    const __m256 eight = kMax ? _mm256_max_ps(low, high) : _mm256_add_ps(low, high);
+    const __m128 left = _mm256_castps256_ps128(eight);
+    const __m128 right = _mm256_extractf128_ps(eight, 1);
+    const __m128 four = kMax ? _mm_max_ps(left, right) : _mm_add_ps(left, right);
+    const __m128 two = kMax ? _mm_max_ps(four, _mm_movehl_ps(four, four)) : _mm_add_ps(four, _mm_movehl_ps(four, four));
+    const __m128 last = _mm_shuffle_ps(two, two, 1);
+    return _mm_cvtss_f32(kMax ? _mm_max_ss(two, last) : _mm_add_ss(two, last));
+}
+
+/// Entries [at, at + 8) of a 2D particle's near list into the lanes of
+/// `half` (setUpPairsAvx512's operations, lane for lane).
+template <bool kClosing>
+__attribute__((target("avx2"), always_inline)) inline void addPairHalf2(const PairArrays<2>& a, std::size_t at,
+                                                                         std::size_t listed, std::size_t paired,
+                                                                         Neighbour<2>* dst, PairHalf2& half) {
+    const __m256 zero = _mm256_setzero_ps();
+    const __m256 one = _mm256_set1_ps(1.0f);
+    const __m256 inList = firstLanes8(listed - at);
+    const __m256 inPairs = paired > at ? firstLanes8(paired - at) : zero;
+    const __m256 r2 = _mm256_loadu_ps(a.r2 + at);
+    const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a.index + at));
+    const __m256 r = _mm256_sqrt_ps(r2);
+    // W(r / h) (fluidDensityKernel), in its order of operations.
+    const __m256 d = _mm256_mul_ps(r, _mm256_set1_ps(a.invH));
+    const __m256 d2 = _mm256_mul_ps(d, d);
+    const __m256 d3 = _mm256_mul_ps(d2, d);
+    const __m256 fifth = _mm256_mul_ps(_mm256_mul_ps(_mm256_set1_ps(0.6f), d3), d2);
+    const __m256 seventh = _mm256_mul_ps(_mm256_mul_ps(_mm256_mul_ps(d3, d2), d2), _mm256_set1_ps(1.0f / 7.0f));
+    const __m256 inner = _mm256_sub_ps(_mm256_add_ps(_mm256_sub_ps(d, d3), fifth), seventh);
+    const __m256 kernel = _mm256_sub_ps(one, _mm256_mul_ps(_mm256_set1_ps(2.1875f), inner));
+    half.density = _mm256_blendv_ps(half.density, _mm256_add_ps(half.density, kernel), inList);
+    // w (fluidWeight), 1 / r and g (fluidPairGradient).
+    const __m256 apart = _mm256_cmp_ps(r2, zero, _CMP_GT_OQ);
+    const __m256 invR = _mm256_and_ps(apart, _mm256_div_ps(one, r));
+    const __m256 q = _mm256_sub_ps(one, _mm256_mul_ps(r2, _mm256_set1_ps(a.invH2)));
+    const __m256 w = _mm256_and_ps(_mm256_cmp_ps(q, zero, _CMP_GT_OQ), _mm256_mul_ps(_mm256_mul_ps(q, q), q));
+    const __m256 wOverR = _mm256_mul_ps(w, invR);
+    // fluidCoincidentSide: +1 where j > i, as unsigned numbers (the sign
+    // bits flipped for AVX2's signed comparison).
+    const __m256i flip = _mm256_set1_epi32(static_cast<int>(0x80000000u));
+    const __m256 above = _mm256_castsi256_ps(_mm256_cmpgt_epi32(
+        _mm256_xor_si256(index, flip), _mm256_xor_si256(_mm256_set1_epi32(static_cast<int>(a.i)), flip)));
+    const __m256 side = _mm256_blendv_ps(_mm256_set1_ps(-1.0f), one, above);
+    const __m256 pressure = _mm256_mask_i32gather_ps(zero, a.pressure, index, inPairs, 4);
+    const __m256 warmPressure =
+        _mm256_add_ps(_mm256_set1_ps(a.lambdaI), _mm256_mul_ps(pressure, _mm256_set1_ps(a.warmFraction)));
+    __m256 g[2];
+    __m256 closing = zero;
+    for (int axis = 0; axis < 2; ++axis) {
+        const __m256 offset = _mm256_loadu_ps(a.offset[axis] + at);
+        const __m256 together = axis == 0 ? _mm256_mul_ps(side, w) : zero;
+        g[axis] = _mm256_blendv_ps(together, _mm256_mul_ps(offset, wOverR), apart);
+        half.gSum[axis] = _mm256_blendv_ps(half.gSum[axis], _mm256_add_ps(half.gSum[axis], g[axis]), inPairs);
+        half.warm[axis] = _mm256_blendv_ps(
+            half.warm[axis], _mm256_sub_ps(half.warm[axis], _mm256_mul_ps(g[axis], warmPressure)), inPairs);
+        if constexpr (kClosing) {
+            const __m256i component = _mm256_add_epi32(_mm256_slli_epi32(index, 1), _mm256_set1_epi32(axis));
+            const __m256 vj = _mm256_mask_i32gather_ps(zero, a.velocity, component, inPairs, 4);
+            const __m256 approach = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(a.vi[axis]), vj), offset);
+            closing = axis == 0 ? approach : _mm256_add_ps(closing, approach);
+        }
+    }
+    if constexpr (kClosing) {
+        half.fastest = _mm256_max_ps(_mm256_and_ps(inPairs, _mm256_mul_ps(closing, invR)), half.fastest);
+    }
+    half.mass = _mm256_blendv_ps(half.mass, _mm256_add_ps(half.mass, _mm256_mul_ps(w, w)), inPairs);
+    if (paired > at) storeEntries2Avx2(dst + at, g[0], g[1], _mm256_castsi256_ps(index), paired - at);
+}
+
+/// The pairs' loop of a 2D fluid with AVX2 intrinsics: setUpPairsAvx512's
+/// operations with each 16-lane register as two halves of 8, so the same
+/// bits; the sums stay in registers.
+template <bool kClosing>
+__attribute__((target("avx2"))) PairSums<2> setUpPairs2Avx2(const PairArrays<2>& arrays, std::size_t listed,
+                                                            std::size_t paired, Neighbour<2>* dst) {
+    const PairArrays<2> a = arrays;  // a copy the stores cannot reach (setUpPairsAvx512)
+    PairHalf2 low{}, high{};
+    for (std::size_t base = 0; base < listed; base += 16) {
+        addPairHalf2<kClosing>(a, base, listed, paired, dst, low);
+        if (base + 8 < listed) addPairHalf2<kClosing>(a, base + 8, listed, paired, dst, high);
+    }
+    PairSums<2> sums;
+    sums.density = reduceHalves<false>(low.density, high.density);
+    sums.mass = reduceHalves<false>(low.mass, high.mass);
+    if constexpr (kClosing) sums.fastest = reduceHalves<true>(low.fastest, high.fastest);
+    for (int axis = 0; axis < 2; ++axis) {
+        sums.gSum[axis] = reduceHalves<false>(low.gSum[axis], high.gSum[axis]);
+        sums.warm[axis] = reduceHalves<false>(low.warm[axis], high.warm[axis]);
+    }
+    return sums;
+}
+
+/// The pairs' copy for AVX2: written by hand in 2D, the compiled lanes in 3D.
 template <int D, bool kClosing>
 __attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& arrays, std::size_t listed,
                                                            std::size_t paired, Neighbour<D>* dst) {
-    return setUpPairLanes<D, kClosing>(arrays, listed, paired, dst);
+    if constexpr (D == 2) {
+        return setUpPairs2Avx2<kClosing>(arrays, listed, paired, dst);
+    } else {
+        return setUpPairLanes<D, kClosing>(arrays, listed, paired, dst);
+    }
 }
 
 #define SD_PAIRS_AVX512 "avx512f,avx512vl,avx512bw,avx512dq"

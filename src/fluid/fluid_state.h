@@ -31,8 +31,11 @@ template <int D>
 using Vec = glm::vec<D, float, glm::defaultp>;
 
 /// Particles per chunk of the per-particle passes: fixed, so per-chunk sums
-/// are combined in the same order for any thread count (determinism).
-inline constexpr std::size_t kParticleChunk = 2048;
+/// are combined in the same order for any thread count (determinism). 512,
+/// not 2048: a 10k fluid then has 20 chunks, not 5, and with two threads
+/// the setup's load was uneven (three chunks against two): 7.77 to 7.15 ms
+/// a step on the 10k dam break, one thread unchanged (docs/performance.md).
+inline constexpr std::size_t kParticleChunk = 512;
 /// Grid cells per chunk of one colour of the parallel solver.
 inline constexpr std::size_t kCellChunk = 8;
 

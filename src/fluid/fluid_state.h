@@ -144,10 +144,12 @@ struct Grid {
     std::array<std::vector<std::uint32_t>, 8> colourCells;
     std::vector<std::uint32_t> order;     // scratch: grid order -> previous index
     std::vector<std::uint32_t> counts;    // scratch
-    // Scratch arrays of the gather into grid order (swapped with the live ones).
-    std::vector<Vec<D>> scratchVec;
-    std::vector<float> scratchFloat;
-    std::vector<std::uint32_t> scratchUint;
+    // Scratch arrays of the gather into grid order, one for each particle
+    // array of its type (swapped with the live ones).
+    std::vector<std::vector<Vec<D>>> scratchVec;
+    std::vector<std::vector<float>> scratchFloat;
+    std::vector<std::vector<std::uint32_t>> scratchUint;
+    std::vector<float> scratchMedian;  // medianAlong's
 };
 
 /// Particles counted by the fastest closing speed of a neighbour (m/s, the rate at which their
@@ -349,7 +351,7 @@ std::uint64_t emitJets(FluidState& f, std::size_t alive, double t0, float dt, st
 void appendBirths(FluidState& f, const Births& births);
 
 /// Where buildGrid puts the grid for particles at `x` (m) with sub-cells `h`
-/// m wide: sets g.h, g.origin and g.cells (uses g.scratchFloat), nothing
+/// m wide: sets g.h, g.origin and g.cells (uses g.scratchMedian), nothing
 /// else. The device's grid (src/gpu/gpu_fluid_grid.h) takes its place from here.
 template <int D> void placeGrid(WorkerPool& pool, const std::vector<Vec<D>>& x, float h, Grid<D>& g);
 /// placeGrid's window for `n` particles whose box is [lo, hi]: sets g.h,

@@ -52,8 +52,8 @@ struct GatherArray {
 
 /// sorted[i] = live[order[i]] for i in [begin, end), for every array.
 template <class T>
-void gatherRange(const std::vector<GatherArray<T>>& arrays, const std::vector<std::uint32_t>& order,
-                 std::size_t begin, std::size_t end) {
+void gatherRange(const std::vector<GatherArray<T>>& arrays, const std::vector<std::uint32_t>& order, std::size_t begin,
+                 std::size_t end) {
     for (const GatherArray<T>& a : arrays) {
         const T* from = a.live->data();
         T* to = a.sorted->data();

@@ -531,8 +531,8 @@ __attribute__((target("avx2"))) inline float reduceHalves(__m256 low, __m256 hig
 /// `half` (setUpPairsAvx512's operations, lane for lane).
 template <bool kClosing>
 __attribute__((target("avx2"), always_inline)) inline void addPairHalf2(const PairArrays<2>& a, std::size_t at,
-                                                                         std::size_t listed, std::size_t paired,
-                                                                         Neighbour<2>* dst, PairHalf2& half) {
+                                                                        std::size_t listed, std::size_t paired,
+                                                                        Neighbour<2>* dst, PairHalf2& half) {
     const __m256 zero = _mm256_setzero_ps();
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 inList = firstLanes8(listed - at);
@@ -793,15 +793,15 @@ struct ParticleOutputs {
     const glm::vec3* wallGradient;
     glm::vec3* warmVelocity;  // m/s
     float* invMass;
-    float* bias;              // m/s
+    float* bias;  // m/s
     std::uint32_t* count;
-    float* density;           // over rest density
+    float* density;  // over rest density
     float restDensity;
     float invRest;
     float relaxation;
     float baumgarte;
-    float h;                  // m
-    float invDt;              // 1/s
+    float h;      // m
+    float invDt;  // 1/s
 };
 
 /// The pairs' copy for the process's update target, with or without the
@@ -850,10 +850,18 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
     const auto filter = &filterNearScalar<D>;
 #endif
     const auto pairs = pairsFor<D>(countClosing);
-    const ParticleOutputs outputs{c.wallDensity.data(), c.wallGradient.data(), c.warmVelocity.data(),
-                                  c.invMass.data(),     c.bias.data(),         c.count.data(),
-                                  p.density.data(),     f.restDensity,         invRest,
-                                  f.def.relaxation,     f.def.baumgarte,       f.h,
+    const ParticleOutputs outputs{c.wallDensity.data(),
+                                  c.wallGradient.data(),
+                                  c.warmVelocity.data(),
+                                  c.invMass.data(),
+                                  c.bias.data(),
+                                  c.count.data(),
+                                  p.density.data(),
+                                  f.restDensity,
+                                  invRest,
+                                  f.def.relaxation,
+                                  f.def.baumgarte,
+                                  f.h,
                                   invDt};
 
     pool.forChunks(n, kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {

@@ -329,8 +329,7 @@ struct Avx2Loops {
     [[gnu::target(SD_SOLVE_AVX2)]] static __m256 gOf(const Neighbour<2>* e, std::uint32_t n) {
         return _mm256_set_m128(n > 1 ? gOf(e[1]) : _mm_setzero_ps(), gOf(e[0]));
     }
-    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 motionOf(const Motion<2>* m, const Neighbour<2>* e,
-                                                          std::uint32_t n) {
+    [[gnu::target(SD_SOLVE_AVX2)]] static __m256 motionOf(const Motion<2>* m, const Neighbour<2>* e, std::uint32_t n) {
         const __m128 first = _mm_loadu_ps(&m[e[0].index].velocity.x);
         return _mm256_set_m128(n > 1 ? _mm_loadu_ps(&m[e[1].index].velocity.x) : _mm_setzero_ps(), first);
     }
@@ -387,7 +386,7 @@ struct Avx2Loops {
     /// `velocityOnly`: leaves the pseudo velocities' bits alone) and
     /// returns the impulses.
     [[gnu::target(SD_SOLVE_AVX2)]] static __m256 pushNeighbours(Motion<2>* m, const Neighbour<2>* e, std::uint32_t n,
-                                                      __m256 both, bool velocityOnly) {
+                                                                __m256 both, bool velocityOnly) {
         const __m256 impulse = _mm256_mul_ps(gOf(e, n), both);
         const __m256 moved = motionOf(m, e, n);
         const __m256 sum = _mm256_add_ps(moved, impulse);
@@ -493,8 +492,8 @@ void visitCellsPlain(const SolverView<D>& s, const Grid<D>& g, const std::uint32
                                                        const std::uint32_t* cells, std::size_t begin, std::size_t end) {
     visitCells<2, Avx512Loops>(s, g, cells, begin, end);
 }
-[[gnu::target(SD_SOLVE_AVX2)]] void visitCellsAvx2(const SolverView<2>& s, const Grid<2>& g,
-                                                   const std::uint32_t* cells, std::size_t begin, std::size_t end) {
+[[gnu::target(SD_SOLVE_AVX2)]] void visitCellsAvx2(const SolverView<2>& s, const Grid<2>& g, const std::uint32_t* cells,
+                                                   std::size_t begin, std::size_t end) {
     visitCells<2, Avx2Loops>(s, g, cells, begin, end);
 }
 #undef SD_SOLVE_AVX512

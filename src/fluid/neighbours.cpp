@@ -515,7 +515,7 @@ __attribute__((target("avx2"))) inline void storeEntries2Avx2(Neighbour<2>* dst,
 }
 
 /// The sum (or with kMax the largest) of 16 lanes held as two halves, in
-/// laneTree's order (reduceLanes512 from its second addition on).
+/// laneTree's order: lane l and l + 8, then l + 4, l + 2, the last two.
 template <bool kMax>
 __attribute__((target("avx2"))) inline float reduceHalves(__m256 low, __m256 high) {
     const __m256 eight = kMax ? _mm256_max_ps(low, high) : _mm256_add_ps(low, high);
@@ -627,15 +627,7 @@ __attribute__((target("avx2"))) PairSums<D> setUpPairsAvx2(const PairArrays<D>& 
 /// kMax their largest (the closing speeds: all >= 0, the lanes start at 0).
 template <bool kMax>
 __attribute__((target(SD_PAIRS_AVX512))) inline float reduceLanes512(__m512 v) {
-    const __m256 low = _mm512_maskz_extractf32x8_ps(0xff, v, 0);
-    const __m256 high = _mm512_maskz_extractf32x8_ps(0xff, v, 1);
-    const __m256 eight = kMax ? _mm256_max_ps(low, high) : _mm256_add_ps(low, high);
-    const __m128 left = _mm256_castps256_ps128(eight);
-    const __m128 right = _mm256_extractf128_ps(eight, 1);
-    const __m128 four = kMax ? _mm_max_ps(left, right) : _mm_add_ps(left, right);
-    const __m128 two = kMax ? _mm_max_ps(four, _mm_movehl_ps(four, four)) : _mm_add_ps(four, _mm_movehl_ps(four, four));
-    const __m128 last = _mm_shuffle_ps(two, two, 1);
-    return _mm_cvtss_f32(kMax ? _mm_max_ss(two, last) : _mm_add_ss(two, last));
+    return reduceHalves<kMax>(_mm512_maskz_extractf32x8_ps(0xff, v, 0), _mm512_maskz_extractf32x8_ps(0xff, v, 1));
 }
 
 /// Lanes [0, count) of a 16-lane mask (count may exceed 16).

@@ -202,6 +202,13 @@ struct PlainLoops {
 #if SPINDRIFT_X86
 #define SD_SOLVE_AVX512 "avx512f,avx512vl,avx512bw,avx512dq"
 
+/// The ghosts' terms of a 2D particle's two rates, where the first chain
+/// starts (splitRates): lane 0 over the velocity, lane 2 over the pseudo
+/// velocity.
+inline __m128 ghostRates(glm::vec2 wall, const Motion<2>& m) {
+    return _mm_setr_ps(-glm::dot(wall, m.velocity), 0.0f, -glm::dot(wall, m.pseudo), 0.0f);
+}
+
 /// A 2D particle's neighbour loops with AVX-512: four neighbours a register,
 /// each in a 128-bit chunk as (vx, vy, px, py), chunk c holding chain c of
 /// the sums (kChains), so the same numbers are added in the same order as
@@ -251,9 +258,7 @@ struct Avx512Loops {
         const glm::vec2 wall(s.wall[i]);
         const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
         const __m512 mi = _mm512_maskz_broadcast_f32x4(0xffff, own);
-        __m512 chain = _mm512_insertf32x4(
-            _mm512_setzero_ps(), _mm_setr_ps(-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f),
-            0);
+        __m512 chain = _mm512_insertf32x4(_mm512_setzero_ps(), ghostRates(wall, m[i]), 0);
         std::uint32_t k = 0;
         for (; k + 4 <= count; k += 4) {
             const __m512 t = _mm512_mul_ps(gOf(list + k, 4), _mm512_sub_ps(motionOf(m, list + k, 4), mi));
@@ -362,8 +367,7 @@ struct Avx2Loops {
         const glm::vec2 wall(s.wall[i]);
         const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
         const __m256 mi = _mm256_set_m128(own, own);
-        __m256 low = _mm256_set_m128(
-            _mm_setzero_ps(), _mm_setr_ps(-glm::dot(wall, m[i].velocity), 0.0f, -glm::dot(wall, m[i].pseudo), 0.0f));
+        __m256 low = _mm256_set_m128(_mm_setzero_ps(), ghostRates(wall, m[i]));
         __m256 high = _mm256_setzero_ps();
         std::uint32_t k = 0;
         for (; k + 4 <= count; k += 4) {

@@ -191,6 +191,7 @@ inline void applySplitImpulses(const SolverView<D>& s, std::size_t i, float delt
 /// compiler's own vector code for Float4).
 template <int D>
 struct PlainLoops {
+    static constexpr bool kHeld = false;
     static float rate(const SolverView<D>& s, std::size_t i) { return rateOf<D>(s, i); }
     static void apply(const SolverView<D>& s, std::size_t i, float delta) { applyImpulse<D>(s, i, delta); }
     static SplitRates rates(const SolverView<D>& s, std::size_t i) { return splitRates<D>(s, i); }
@@ -198,6 +199,54 @@ struct PlainLoops {
         applySplitImpulses<D>(s, i, delta, push);
     }
 };
+
+/// What one visit applies: `delta` to the velocities and, for an
+/// over-dense particle with split impulses (`split`), `push` to the pseudo
+/// velocities; nothing when `apply` is false.
+struct VisitImpulses {
+    float delta;
+    float push;
+    bool split;
+    bool apply;
+};
+
+/// Whether particle i's visit solves two constraints (visit).
+template <int D>
+inline bool solvesTwo(const SolverView<D>& s, std::size_t i) {
+    return s.split && s.bias[i] < 0.0f;
+}
+
+/// The impulses of particle i's visit from its rates (slide 36, signs in
+/// fluid.glsl), with its accumulated impulses updated; `pseudoRate` is read
+/// only when solvesTwo.
+template <int D>
+inline VisitImpulses impulsesOf(const SolverView<D>& s, std::size_t i, float rate, float pseudoRate) {
+    if (!s.split) {
+        const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, s.bias[i], s.invMass[i], s.pressure[i]);
+        s.pressure[i] = r.accumulated;
+        return {r.delta, 0.0f, false, r.delta != 0.0f};
+    }
+    // The bias splits by sign: an under-dense particle's positive bias lets
+    // its neighbours approach (it relaxes the constraint, no energy added) and
+    // stays with the real velocity, past a slop; an over-dense particle's
+    // negative bias pushes apart, which is the pseudo velocity's job. Only an
+    // over-dense particle has a pseudo constraint, so both are solved in one
+    // pass over its neighbours (half the memory traffic of two visits).
+    const float bias = s.bias[i];
+    if (bias >= 0.0f) {
+        const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, kernels::fluidAllowance(bias, s.allowanceSlop),
+                                                                   s.invMass[i], s.pressure[i]);
+        s.pressure[i] = r.accumulated;
+        return {r.delta, 0.0f, false, r.delta != 0.0f};
+    }
+    const kernels::FluidImpulse r =
+        kernels::fluidSolveImpulse(rate, kernels::fluidRealBias(bias), s.invMass[i], s.pressure[i]);
+    const kernels::FluidImpulse q =
+        kernels::fluidSolveImpulse(pseudoRate, kernels::fluidPseudoBias(bias), s.invMass[i], s.pseudoImpulse[i]);
+    s.pressure[i] = r.accumulated;
+    s.pseudoImpulse[i] = q.accumulated;
+    return {r.delta, q.delta, true, true};
+}
 
 #if SPINDRIFT_X86
 #define SD_SOLVE_AVX512 "avx512f,avx512vl,avx512bw,avx512dq"
@@ -221,6 +270,16 @@ struct Avx512Loops {
     [[gnu::target(SD_SOLVE_AVX512)]] static __m512 gOf(const Neighbour<2>* e, std::uint32_t n) {
         const __mmask16 floats = static_cast<__mmask16>((1u << (3 * n)) - 1u);
         const __m512 raw = _mm512_maskz_loadu_ps(floats, &e[0].g.x);
+        return _mm512_maskz_permutexvar_ps(0xffff, _mm512_setr_epi32(0, 1, 0, 1, 3, 4, 3, 4, 6, 7, 6, 7, 9, 10, 9, 10),
+                                           raw);
+    }
+    /// gOf of four whole entries (48 bytes), by two plain loads. The masked
+    /// load was the sweep's costliest instruction at 30k, and unmasked loads
+    /// took 4 % off a step there, 2 % off the sweeps at 10k (docs/fluid.md).
+    [[gnu::target(SD_SOLVE_AVX512)]] static __m512 gOf4(const Neighbour<2>* e) {
+        const float* floats = &e[0].g.x;
+        const __m512 raw =
+            _mm512_insertf32x4(_mm512_castps256_ps512(_mm256_loadu_ps(floats)), _mm_loadu_ps(floats + 8), 2);
         return _mm512_maskz_permutexvar_ps(0xffff, _mm512_setr_epi32(0, 1, 0, 1, 3, 4, 3, 4, 6, 7, 6, 7, 9, 10, 9, 10),
                                            raw);
     }
@@ -261,7 +320,7 @@ struct Avx512Loops {
         __m512 chain = _mm512_insertf32x4(_mm512_setzero_ps(), ghostRates(wall, m[i]), 0);
         std::uint32_t k = 0;
         for (; k + 4 <= count; k += 4) {
-            const __m512 t = _mm512_mul_ps(gOf(list + k, 4), _mm512_sub_ps(motionOf(m, list + k, 4), mi));
+            const __m512 t = _mm512_mul_ps(gOf4(list + k), _mm512_sub_ps(motionOf(m, list + k, 4), mi));
             chain = _mm512_add_ps(chain, _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1)));  // pairDots
         }
         if (k < count) {
@@ -293,7 +352,7 @@ struct Avx512Loops {
             _mm512_insertf32x4(_mm512_setzero_ps(), _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both), 0);
         std::uint32_t k = 0;
         for (; k + 4 <= count; k += 4) {
-            const __m512 impulse = _mm512_mul_ps(gOf(list + k, 4), both512);
+            const __m512 impulse = _mm512_mul_ps(gOf4(list + k), both512);
             const __m512 moved = motionOf(m, list + k, 4);
             storeMotions(m, list + k, 4, _mm512_mask_add_ps(moved, lanes, moved, impulse));
             self = _mm512_add_ps(self, impulse);
@@ -312,6 +371,92 @@ struct Avx512Loops {
     [[gnu::target(SD_SOLVE_AVX512)]] static void apply(const SolverView<2>& s, std::size_t i, float delta) {
         scatter(s, i, _mm_setr_ps(delta, delta, 0.0f, 0.0f), 0x3333);
     }
+    /// The most neighbours a visit holds in registers (visitHeld): g and
+    /// motion of four a register each, 16 of AVX-512's 32.
+    static constexpr std::uint32_t kHeldGroups = 8;
+    static constexpr bool kHeld = true;
+    /// A whole visit (rates, impulses, scatter) with its `groups` registers
+    /// of entries and motions loaded once: rates128's and scatter's
+    /// operations in their order, so the same bits, without the scatter's
+    /// second loads of the list and the motions (the visit's own writes are
+    /// the only ones between, and no list holds its particle).
+    template <std::uint32_t kGroups>
+    [[gnu::target(SD_SOLVE_AVX512), gnu::always_inline]] static inline void visitGroups(const SolverView<2>& s,
+                                                                                        std::size_t i) {
+        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const std::uint32_t tail = s.count[i] - 4 * (kGroups - 1);  // 1 to 4 in the last register
+        Motion<2>* m = s.motion;
+        __m512 g[kGroups];
+        __m512 moved[kGroups];
+#pragma GCC unroll 8
+        for (std::uint32_t k = 0; k + 1 < kGroups; ++k) {
+            g[k] = gOf4(list + 4 * k);
+            moved[k] = motionOf(m, list + 4 * k, 4);
+        }
+        g[kGroups - 1] = gOf(list + 4 * (kGroups - 1), tail);
+        moved[kGroups - 1] = motionOf(m, list + 4 * (kGroups - 1), tail);
+        const glm::vec2 wall(s.wall[i]);
+        const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
+        const __m512 mi = _mm512_maskz_broadcast_f32x4(0xffff, own);
+        __m512 chain = _mm512_insertf32x4(_mm512_setzero_ps(), ghostRates(wall, m[i]), 0);
+#pragma GCC unroll 8
+        for (std::uint32_t k = 0; k < kGroups; ++k) {
+            const __m512 t = _mm512_mul_ps(g[k], _mm512_sub_ps(moved[k], mi));
+            const __m512 dots = _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1));  // pairDots
+            chain = k + 1 < kGroups ? _mm512_add_ps(chain, dots) : _mm512_mask_add_ps(chain, chunks(tail), chain, dots);
+        }
+        const __m128 rates = chainSum512(chain);
+        const VisitImpulses v = impulsesOf<2>(s, i, _mm_cvtss_f32(rates), _mm_cvtss_f32(_mm_movehl_ps(rates, rates)));
+        if (!v.apply) return;
+        const __m128 both =
+            v.split ? _mm_setr_ps(v.delta, v.delta, v.push, v.push) : _mm_setr_ps(v.delta, v.delta, 0.0f, 0.0f);
+        const __mmask16 lanes = v.split ? 0xffff : 0x3333;
+        const __m512 both512 = _mm512_maskz_broadcast_f32x4(0xffff, both);
+        __m512 self =
+            _mm512_insertf32x4(_mm512_setzero_ps(), _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both), 0);
+#pragma GCC unroll 8
+        for (std::uint32_t k = 0; k < kGroups; ++k) {
+            const __m512 impulse = _mm512_mul_ps(g[k], both512);
+            const std::uint32_t n = k + 1 < kGroups ? 4 : tail;
+            storeMotions(m, list + 4 * k, n, _mm512_mask_add_ps(moved[k], lanes, moved[k], impulse));
+            self =
+                k + 1 < kGroups ? _mm512_add_ps(self, impulse) : _mm512_mask_add_ps(self, chunks(tail), self, impulse);
+        }
+        _mm_storeu_ps(&m[i].velocity.x,
+                      _mm_mask_sub_ps(own, static_cast<__mmask8>(lanes & 0xf), own, chainSum512(self)));
+    }
+    /// visitGroups for particle i when its list fits kHeldGroups registers;
+    /// false (nothing done) otherwise.
+    [[gnu::target(SD_SOLVE_AVX512)]] static bool visitHeld(const SolverView<2>& s, std::size_t i) {
+        switch ((s.count[i] + 3) / 4) {
+            case 1:
+                visitGroups<1>(s, i);
+                return true;
+            case 2:
+                visitGroups<2>(s, i);
+                return true;
+            case 3:
+                visitGroups<3>(s, i);
+                return true;
+            case 4:
+                visitGroups<4>(s, i);
+                return true;
+            case 5:
+                visitGroups<5>(s, i);
+                return true;
+            case 6:
+                visitGroups<6>(s, i);
+                return true;
+            case 7:
+                visitGroups<7>(s, i);
+                return true;
+            case 8:
+                visitGroups<8>(s, i);
+                return true;
+            default:
+                return false;
+        }
+    }
     [[gnu::target(SD_SOLVE_AVX512)]] static void applySplit(const SolverView<2>& s, std::size_t i, float delta,
                                                             float push) {
         scatter(s, i, _mm_setr_ps(delta, delta, push, push), 0xffff);
@@ -325,6 +470,7 @@ struct Avx512Loops {
 /// (chains 0 and 1 in `low`'s halves, 2 and 3 in `high`'s), so the same
 /// numbers are added in the same order as the plain loops: the same bits.
 struct Avx2Loops {
+    static constexpr bool kHeld = false;
     /// Entry e's g as (gx, gy, gx, gy).
     [[gnu::target(SD_SOLVE_AVX2)]] static __m128 gOf(const Neighbour<2>& e) {
         const __m128 g = _mm_castsi128_ps(_mm_loadl_epi64(reinterpret_cast<const __m128i*>(&e.g.x)));
@@ -428,39 +574,29 @@ struct Avx2Loops {
 };
 #endif
 
-/// One visit of particle i's constraint (slide 36, signs in fluid.glsl), with
-/// the neighbour loops of `Loops`.
+/// One visit of particle i's constraint, with the neighbour loops of
+/// `Loops`: its rates, then its impulses.
 template <int D, class Loops>
 [[gnu::always_inline]] inline void visit(const SolverView<D>& s, std::size_t i) {
-    if (!s.split) {
-        const kernels::FluidImpulse r =
-            kernels::fluidSolveImpulse(Loops::rate(s, i), s.bias[i], s.invMass[i], s.pressure[i]);
-        s.pressure[i] = r.accumulated;
-        if (r.delta != 0.0f) Loops::apply(s, i, r.delta);
-        return;
+    if constexpr (Loops::kHeld) {
+        if (Loops::visitHeld(s, i)) return;
     }
-    // The bias splits by sign: an under-dense particle's positive bias lets
-    // its neighbours approach (it relaxes the constraint, no energy added) and
-    // stays with the real velocity, past a slop; an over-dense particle's
-    // negative bias pushes apart, which is the pseudo velocity's job. Only an
-    // over-dense particle has a pseudo constraint, so both are solved in one
-    // pass over its neighbours (half the memory traffic of two visits).
-    const float bias = s.bias[i];
-    if (bias >= 0.0f) {
-        const kernels::FluidImpulse r = kernels::fluidSolveImpulse(
-            Loops::rate(s, i), kernels::fluidAllowance(bias, s.allowanceSlop), s.invMass[i], s.pressure[i]);
-        s.pressure[i] = r.accumulated;
-        if (r.delta != 0.0f) Loops::apply(s, i, r.delta);
-        return;
+    float rate = 0.0f;
+    float pseudoRate = 0.0f;
+    if (solvesTwo<D>(s, i)) {
+        const SplitRates r = Loops::rates(s, i);
+        rate = r.rate;
+        pseudoRate = r.pseudoRate;
+    } else {
+        rate = Loops::rate(s, i);
     }
-    const SplitRates rates = Loops::rates(s, i);
-    const kernels::FluidImpulse r =
-        kernels::fluidSolveImpulse(rates.rate, kernels::fluidRealBias(bias), s.invMass[i], s.pressure[i]);
-    const kernels::FluidImpulse q =
-        kernels::fluidSolveImpulse(rates.pseudoRate, kernels::fluidPseudoBias(bias), s.invMass[i], s.pseudoImpulse[i]);
-    s.pressure[i] = r.accumulated;
-    s.pseudoImpulse[i] = q.accumulated;
-    Loops::applySplit(s, i, r.delta, q.delta);
+    const VisitImpulses v = impulsesOf<D>(s, i, rate, pseudoRate);
+    if (!v.apply) return;
+    if (v.split) {
+        Loops::applySplit(s, i, v.delta, v.push);
+    } else {
+        Loops::apply(s, i, v.delta);
+    }
 }
 
 /// Runs fn(i) for the particles of cells[begin, end), cell by cell, each

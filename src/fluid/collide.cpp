@@ -2,15 +2,16 @@
 // constraints solved after the fluid's, the particle a small rotationless body
 // of radius spacing / 2; then position integration, which puts back any
 // particle whose path still crossed a collider, so none ever passes through.
+#include <algorithm>
+#include <cmath>
+#include <limits>
+#include <span>
+
 #include "core/room.h"
 #include "fluid/body_contacts.h"
 #include "fluid/body_link.h"
 #include "fluid/fluid_state.h"
 #include "particles/cpu_kernels.h"
-
-#include <algorithm>
-#include <cmath>
-#include <limits>
 
 namespace spindrift::fluid {
 
@@ -161,33 +162,53 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
         p.position[i] = Vec<D>(std::numeric_limits<float>::quiet_NaN());
         nonFinite[chunk] += 1;
     };
+    const bool split = f.def.splitImpulse;
+    const FluidBodyStep* bodies = f.bodies;
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        // The arrays and settings as locals: read through the captured
+        // references, g++ reloaded them after every store of the loop
+        // (as in neighbours.cpp's setup).
+        Vec<D>* position = p.position.data();
+        Vec<D>* velocity = p.velocity.data();
+        Vec<D>* anchor = p.anchor.data();
+        float* still = p.still.data();
+        const float* pressure = p.pressure.data();
+        const Motion<D>* moved = p.motion.data();
+        const bool sleeping = sleeps;
+        const bool splitting = split;
+        const float step = dt;
+        const float sleepAfter = sleepTime;
+        const float wake = wakeSpeed;
+        const float circle = drift;
+        const Vec<D> downward = down;
+        const std::span<const kernels::ColliderParams> colliders = world.colliders;
+        const std::span<const kernels::FluidPolygon> polygons = f.polygons;
         // The largest squared speed: its root is the largest speed, exactly
         // (the square root is monotone and correctly rounded), for one root
         // a chunk instead of one a particle.
         float fastestSquared = 0.0f;
         glm::vec2 range(3.0e38f, -3.0e38f);
         for (std::size_t i = begin; i < end; ++i) {
-            if (p.pressure[i] > 0.0f) {
-                const float along = glm::dot(p.position[i], down);
+            if (pressure[i] > 0.0f) {
+                const float along = glm::dot(position[i], downward);
                 range = glm::vec2(std::min(range.x, along), std::max(range.y, along));
             }
-            const glm::vec3 x0 = to3<D>(p.position[i]);
-            glm::vec3 v = to3<D>(p.velocity[i]);
+            const glm::vec3 x0 = to3<D>(position[i]);
+            glm::vec3 v = to3<D>(velocity[i]);
             // Sleeping (fluid.glsl, fluidSleepStep): displacement, not
             // speed, decides.
-            if (sleeps) {
+            if (sleeping) {
                 const kernels::FluidSleep sleep =
-                    kernels::fluidSleepStep(x0, v, to3<D>(p.anchor[i]), p.still[i], dt, sleepTime, wakeSpeed, drift);
-                p.still[i] = sleep.still;
-                p.anchor[i] = from3<D>(sleep.anchor);
+                    kernels::fluidSleepStep(x0, v, to3<D>(anchor[i]), still[i], step, sleepAfter, wake, circle);
+                still[i] = sleep.still;
+                anchor[i] = from3<D>(sleep.anchor);
                 if (sleep.asleep) {
-                    p.velocity[i] = Vec<D>(0.0f);
+                    velocity[i] = Vec<D>(0.0f);
                     continue;
                 }
             }
-            const glm::vec3 motion = f.def.splitImpulse ? v + to3<D>(p.motion[i].pseudo) : v;
-            glm::vec3 x1 = x0 + motion * dt;
+            const glm::vec3 motion = splitting ? v + to3<D>(moved[i].pseudo) : v;
+            glm::vec3 x1 = x0 + motion * step;
             if (!kernels::fluidFinite(x1) || !kernels::fluidFiniteSpeed(v)) {
                 removeLater(chunk, i);
                 continue;
@@ -201,21 +222,22 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 // the colliders' tests, which then also stop a push out of a
                 // crate that would cross them (world colliders do not stop
                 // bodies).
-                if (f.bodies != nullptr) {
+                if (bodies != nullptr) {
                     glm::vec2 v2(v);
                     const glm::vec2 x =
-                        pushOutOfBodies(*f.bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1), v2);
+                        pushOutOfBodies(*bodies, f.g2.key[i] >> 2, binnedReach, glm::vec2(x0), glm::vec2(x1), v2);
                     x1 = glm::vec3(x, 0.0f);
                     v = glm::vec3(v2, 0.0f);
                 }
             }
             // Path tests (as the effects' collisions): a path that crosses a
             // plane, sphere or box ends at the contact, moving no further in.
-            for (const kernels::ColliderParams& c : world.colliders) {
+            for (const kernels::ColliderParams& c : colliders) {
                 if (!isFluidCollider(c)) continue;
                 // Most paths end well inside a closed box's walls: the plane's
                 // test of the end point alone clears them.
-                if (c.kind == kernels::SD_COLLIDER_PLANE && kernels::planeKeepsClear(kernels::planeDistance(c, x1))) continue;
+                if (c.kind == kernels::SD_COLLIDER_PLANE && kernels::planeKeepsClear(kernels::planeDistance(c, x1)))
+                    continue;
                 const kernels::Hit hit = pathHit(c, x0, x1);
                 if (hit.hit != 0u) {
                     const glm::vec3 n = flatten<D>(kernels::makeSurface(0.0f, hit.normal)).normal;
@@ -224,7 +246,7 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 }
             }
             // Polygons: an end point inside goes out through the nearest edge.
-            for (const kernels::FluidPolygon& poly : f.polygons) {
+            for (const kernels::FluidPolygon& poly : polygons) {
                 const kernels::FluidSurface s = kernels::fluidPolygonSurface(poly, x1);
                 if (s.distance < 0.0f) {
                     x1 += s.normal * (kSkin - s.distance);
@@ -235,8 +257,8 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
                 removeLater(chunk, i);
                 continue;
             }
-            p.position[i] = from3<D>(x1);
-            p.velocity[i] = from3<D>(v);
+            position[i] = from3<D>(x1);
+            velocity[i] = from3<D>(v);
             const Vec<D> moving = from3<D>(v);
             fastestSquared = std::max(fastestSquared, glm::dot(moving, moving));
         }

@@ -59,6 +59,12 @@ struct SolverView {
     float allowanceSlop;  // m/s of bias an under-dense particle's allowance starts above
 };
 
+/// Particle i's neighbour list (NeighbourChunks' layout, fluid_state.h).
+template <int D>
+inline const Neighbour<D>* listOf(const SolverView<D>& s, std::size_t i) {
+    return s.lists[i / kParticleChunk].data() + s.first[i];
+}
+
 // The order of every sum over a particle's neighbours (both backends; the
 // device's fluid_solve.comp makes the same additions): entry k goes to chain
 // k % 4, the first chain starting from the particle's own ghost term, and the
@@ -92,7 +98,7 @@ template <class T, class Term>
 /// g delta on every neighbour, v_i -= sum g delta (Newton's third law, slide 39).
 template <int D>
 inline void applyImpulse(const SolverView<D>& s, std::size_t i, float delta) {
-    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    const Neighbour<D>* list = listOf<D>(s, i);
     Motion<D>* m = s.motion;
     Vec<D> self[kChains] = {Vec<D>(s.wall[i]) * delta, Vec<D>(0.0f), Vec<D>(0.0f), Vec<D>(0.0f)};  // ghosts take none
     addInChains(self, s.count[i], [&](std::uint32_t k) {
@@ -106,7 +112,7 @@ inline void applyImpulse(const SolverView<D>& s, std::size_t i, float delta) {
 /// C' of particle i's constraint over the velocities (slide 36).
 template <int D>
 inline float rateOf(const SolverView<D>& s, std::size_t i) {
-    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    const Neighbour<D>* list = listOf<D>(s, i);
     const Motion<D>* m = s.motion;
     const Vec<D> vi = m[i].velocity;
     float chain[kChains] = {-glm::dot(Vec<D>(s.wall[i]), vi), 0.0f, 0.0f, 0.0f};  // ghosts at rest
@@ -124,7 +130,7 @@ struct SplitRates {
 
 template <int D>
 inline SplitRates splitRates(const SolverView<D>& s, std::size_t i) {
-    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    const Neighbour<D>* list = listOf<D>(s, i);
     const std::uint32_t count = s.count[i];
     const Motion<D>* m = s.motion;
     const Vec<D> wall(s.wall[i]);
@@ -156,7 +162,7 @@ inline SplitRates splitRates(const SolverView<D>& s, std::size_t i) {
 /// `push` to the pseudo velocities, as applyImpulse does.
 template <int D>
 inline void applySplitImpulses(const SolverView<D>& s, std::size_t i, float delta, float push) {
-    const Neighbour<D>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+    const Neighbour<D>* list = listOf<D>(s, i);
     const std::uint32_t count = s.count[i];
     Motion<D>* m = s.motion;
     const Vec<D> wall(s.wall[i]);
@@ -311,7 +317,7 @@ struct Avx512Loops {
     /// The rates over the velocities (lane 0) and the pseudo velocities
     /// (lane 2): splitRates' sums, chunk by chunk.
     [[gnu::target(SD_SOLVE_AVX512)]] static __m128 rates128(const SolverView<2>& s, std::size_t i) {
-        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const Neighbour<2>* list = listOf<2>(s, i);
         const std::uint32_t count = s.count[i];
         const Motion<2>* m = s.motion;
         const glm::vec2 wall(s.wall[i]);
@@ -343,7 +349,7 @@ struct Avx512Loops {
     /// bits alone) and subtracts the chains' sum from the particle's.
     [[gnu::target(SD_SOLVE_AVX512)]] static void scatter(const SolverView<2>& s, std::size_t i, __m128 both,
                                                          __mmask16 lanes) {
-        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const Neighbour<2>* list = listOf<2>(s, i);
         const std::uint32_t count = s.count[i];
         Motion<2>* m = s.motion;
         const glm::vec2 wall(s.wall[i]);
@@ -383,7 +389,7 @@ struct Avx512Loops {
     template <std::uint32_t kGroups>
     [[gnu::target(SD_SOLVE_AVX512), gnu::always_inline]] static inline void visitGroups(const SolverView<2>& s,
                                                                                         std::size_t i) {
-        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const Neighbour<2>* list = listOf<2>(s, i);
         const std::uint32_t tail = s.count[i] - 4 * (kGroups - 1);  // 1 to 4 in the last register
         Motion<2>* m = s.motion;
         __m512 g[kGroups];
@@ -507,7 +513,7 @@ struct Avx2Loops {
         return _mm256_add_ps(t, _mm256_permute_ps(t, 0xb1));
     }
     [[gnu::target(SD_SOLVE_AVX2)]] static __m128 rates128(const SolverView<2>& s, std::size_t i) {
-        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const Neighbour<2>* list = listOf<2>(s, i);
         const std::uint32_t count = s.count[i];
         const Motion<2>* m = s.motion;
         const glm::vec2 wall(s.wall[i]);
@@ -545,7 +551,7 @@ struct Avx2Loops {
     }
     [[gnu::target(SD_SOLVE_AVX2)]] static void scatter(const SolverView<2>& s, std::size_t i, __m128 both,
                                                        bool velocityOnly) {
-        const Neighbour<2>* list = s.lists[i / kParticleChunk].data() + s.first[i];
+        const Neighbour<2>* list = listOf<2>(s, i);
         const std::uint32_t count = s.count[i];
         Motion<2>* m = s.motion;
         const glm::vec2 wall(s.wall[i]);

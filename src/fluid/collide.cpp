@@ -86,20 +86,27 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
     assignInRoom(c.wallGradient, p.size(), glm::vec3(0.0f));
     if (world.colliders.empty() && f.polygons.empty()) return;
     const float radius = f.radius;
+    const float spacing = f.def.spacing;
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
+        // The arrays as locals (as in integratePositions).
         std::vector<Contact>& out = f.contacts[chunk];
+        const Vec<D>* position = p.position.data();
+        const Vec<D>* velocity = p.velocity.data();
+        float* wallDensity = c.wallDensity.data();
+        glm::vec3* wallGradient = c.wallGradient.data();
+        const float step = dt;
         for (std::size_t i = begin; i < end; ++i) {
-            const glm::vec3 x = to3<D>(p.position[i]);
+            const glm::vec3 x = to3<D>(position[i]);
             // Speculative (a surface the particle could reach this step, with
             // a spacing to spare for what the fluid adds while solving).
-            const float reach = radius + glm::length(p.velocity[i]) * dt + f.def.spacing;
+            const float reach = radius + glm::length(velocity[i]) * step + spacing;
             forEachSurface<D>(world, f, x, reach, [&](const kernels::FluidSurface& s) {
                 if (s.distance < reach) out.push_back(Contact{s, static_cast<std::uint32_t>(i)});
                 // The wall's ghost neighbours (wall_density.cpp): their
                 // direction from the particle is into the wall, -normal.
                 const WallTerm t = wallTerm(f.wallTable, s.distance);
-                c.wallDensity[i] += t.density;
-                c.wallGradient[i] -= s.normal * t.push;
+                wallDensity[i] += t.density;
+                wallGradient[i] -= s.normal * t.push;
             });
         }
     });

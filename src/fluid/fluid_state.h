@@ -215,6 +215,10 @@ struct WallTable {
     static constexpr int kSize = 128;
     float start = 0.0f;  // m, distance of entry 0
     float step = 1.0f;   // m between entries
+    /// m: no entry reaches this far or farther (twice the table's span, so
+    /// fluidWallPlace's quotient is past the last entry however it rounds):
+    /// the common case, decided without its division.
+    float beyond = 0.0f;
     std::array<float, kSize> density{};
     std::array<float, kSize> push{};
 };
@@ -227,7 +231,7 @@ void buildWallTable(FluidState& f);
 WallTerm wallTerm(const WallTable& t, float distance);
 /// Whether wallTerm at `distance` is not zero: the table reaches it.
 inline bool wallReaches(const WallTable& t, float distance) {
-    return kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize).entry >= 0;
+    return distance < t.beyond && kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize).entry >= 0;
 }
 
 /// A particle near a collider surface this step (found once per step; the

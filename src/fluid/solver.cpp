@@ -432,35 +432,18 @@ struct Avx512Loops {
                       _mm_mask_sub_ps(own, static_cast<__mmask8>(lanes & 0xf), own, chainSum512(self)));
     }
     /// visitGroups for particle i when its list fits kHeldGroups registers;
-    /// false (nothing done) otherwise.
+    /// false (nothing done) otherwise. Tried from the most registers down:
+    /// an interior particle's 25 to 28 neighbours take 7.
+    template <std::uint32_t kGroups = kHeldGroups>
     [[gnu::target(SD_SOLVE_AVX512)]] static bool visitHeld(const SolverView<2>& s, std::size_t i) {
-        switch ((s.count[i] + 3) / 4) {
-            case 1:
-                visitGroups<1>(s, i);
+        if constexpr (kGroups == 0) {
+            return false;
+        } else {
+            if ((s.count[i] + 3) / 4 == kGroups) {
+                visitGroups<kGroups>(s, i);
                 return true;
-            case 2:
-                visitGroups<2>(s, i);
-                return true;
-            case 3:
-                visitGroups<3>(s, i);
-                return true;
-            case 4:
-                visitGroups<4>(s, i);
-                return true;
-            case 5:
-                visitGroups<5>(s, i);
-                return true;
-            case 6:
-                visitGroups<6>(s, i);
-                return true;
-            case 7:
-                visitGroups<7>(s, i);
-                return true;
-            case 8:
-                visitGroups<8>(s, i);
-                return true;
-            default:
-                return false;
+            }
+            return visitHeld<kGroups - 1>(s, i);
         }
     }
     [[gnu::target(SD_SOLVE_AVX512)]] static void applySplit(const SolverView<2>& s, std::size_t i, float delta,

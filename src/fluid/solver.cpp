@@ -381,7 +381,7 @@ struct Avx512Loops {
     /// motion of four a register each, 16 of AVX-512's 32.
     static constexpr std::uint32_t kHeldGroups = 8;
     static constexpr bool kHeld = true;
-    /// A whole visit (rates, impulses, scatter) with its `groups` registers
+    /// A whole visit (rates, impulses, scatter) with its kGroups registers
     /// of entries and motions loaded once: rates128's and scatter's
     /// operations in their order, so the same bits, without the scatter's
     /// second loads of the list and the motions (the visit's own writes are

@@ -215,10 +215,6 @@ struct WallTable {
     static constexpr int kSize = 128;
     float start = 0.0f;  // m, distance of entry 0
     float step = 1.0f;   // m between entries
-    /// m: no entry reaches this far or farther (twice the table's span, so
-    /// fluidWallPlace's quotient is past the last entry however it rounds):
-    /// the common case, decided without its division.
-    float beyond = 0.0f;
     std::array<float, kSize> density{};
     std::array<float, kSize> push{};
 };
@@ -229,9 +225,13 @@ struct WallTerm {
 /// Fills FluidState::wallTable for its spacing and h.
 void buildWallTable(FluidState& f);
 WallTerm wallTerm(const WallTable& t, float distance);
+/// m: no entry of the table reaches this far or farther (twice its span, so
+/// fluidWallPlace's quotient is past the last entry however it rounds): the
+/// common case, decided without that division.
+inline float wallBeyond(const WallTable& t) { return t.start + 2.0f * t.step * static_cast<float>(WallTable::kSize); }
 /// Whether wallTerm at `distance` is not zero: the table reaches it.
 inline bool wallReaches(const WallTable& t, float distance) {
-    return distance < t.beyond && kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize).entry >= 0;
+    return distance < wallBeyond(t) && kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize).entry >= 0;
 }
 
 /// A particle near a collider surface this step (found once per step; the

@@ -25,7 +25,6 @@ void buildWallTable(FluidState& f) {
     // distance beyond which no ghost row is within h.
     t.start = -0.5f * sp;
     t.step = (h - t.start) / static_cast<float>(WallTable::kSize - 1);
-    t.beyond = t.start + 2.0f * t.step * static_cast<float>(WallTable::kSize);
     const int lateral = static_cast<int>(std::ceil(h / sp));
     const int lateralZ = f.def.dimension == 3 ? lateral : 0;
     const int rows = static_cast<int>(std::ceil(h / sp)) + 1;
@@ -58,7 +57,7 @@ void buildWallTable(FluidState& f) {
 }
 
 WallTerm wallTerm(const WallTable& t, float distance) {
-    if (!(distance < t.beyond)) return WallTerm{};
+    if (!(distance < wallBeyond(t))) return WallTerm{};
     const kernels::FluidWallPlace w = kernels::fluidWallPlace(distance, t.start, t.step, WallTable::kSize);
     if (w.entry < 0) return WallTerm{};
     const auto e = static_cast<std::size_t>(w.entry);

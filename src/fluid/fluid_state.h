@@ -147,6 +147,11 @@ struct Grid {
     /// one colour are at least 2h apart, so their constraints share no
     /// particle and can be solved at the same time.
     std::array<std::vector<std::uint32_t>, 8> colourCells;
+    /// The particles in the order the solver's sweeps visit them: colour by
+    /// colour, each colour's cells in colourCells' order, each cell's
+    /// particles in grid order. The setup writes the neighbour lists in this
+    /// order, so a sweep reads them as one stream (Constraints::listChunk).
+    std::vector<std::uint32_t> visitOrder;
     std::vector<std::uint32_t> order;     // scratch: grid order -> previous index
     std::vector<std::uint32_t> counts;    // scratch
     // Scratch arrays of the gather into grid order, one for each particle
@@ -179,7 +184,8 @@ struct Constraints {
     std::vector<float> bias;      // m/s
     std::vector<float> invMass;   // 1 / A
     std::vector<std::uint32_t> count;  // neighbours stored
-    std::vector<std::uint32_t> first;  // offset of the list in its chunk's array
+    std::vector<std::uint32_t> first;      // offset of the list in its chunk's array
+    std::vector<std::uint32_t> listChunk;  // the chunk whose array holds the list
     /// Colliders' share (wall_density.cpp), found with the contacts: density
     /// (kernel-sum units) and g of the motionless ghost neighbours (w times
     /// the unit direction into the wall, summed).
@@ -195,15 +201,16 @@ struct Constraints {
 
 /// Neighbour lists of one step, compact (no fixed stride, so no overflow and
 /// no memory for room that is rarely used): particle i's neighbours are
-/// chunks[i / kParticleChunk][first[i] + k] for k < count[i] (Constraints).
-/// One growable array per chunk of particles, so the setup fills them in
-/// parallel without counting first.
+/// chunks[listChunk[i]][first[i] + k] for k < count[i] (Constraints).
+/// One growable array per chunk of kParticleChunk particles of
+/// Grid::visitOrder, so the setup fills them in parallel without counting
+/// first, and the sweeps read them in the order they were written.
 template <int D>
 using NeighbourChunks = std::vector<std::vector<Neighbour<D>>>;
 
 template <int D>
 inline const Neighbour<D>* neighbourList(const NeighbourChunks<D>& lists, const Constraints& c, std::size_t i) {
-    return lists[i / kParticleChunk].data() + c.first[i];
+    return lists[c.listChunk[i]].data() + c.first[i];
 }
 
 struct FluidState;

@@ -77,6 +77,7 @@ FluidView<D> viewFluid(const FluidState& f) {
     v.neighbours = lists;
     v.count = f.constraints.count;
     v.first = f.constraints.first;
+    v.listChunk = f.constraints.listChunk;
     return v;
 }
 

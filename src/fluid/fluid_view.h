@@ -23,11 +23,12 @@ struct FluidView {
     std::span<const Vec<D>> velocity;    // m/s
     std::span<const float> density;      // rho / rho0 at the last setup
     std::span<const std::uint32_t> id;   // creation serial
-    std::span<const std::vector<Neighbour<D>>> neighbours;  // per chunk of kParticleChunk particles
+    std::span<const std::vector<Neighbour<D>>> neighbours;  // per chunk (NeighbourChunks)
     std::span<const std::uint32_t> count;
-    std::span<const std::uint32_t> first;  // offset in the chunk's list
+    std::span<const std::uint32_t> first;      // offset in the chunk's list
+    std::span<const std::uint32_t> listChunk;  // the chunk
     const Neighbour<D>* neighbourList(std::size_t i) const {
-        return neighbours[i / kParticleChunk].data() + first[i];
+        return neighbours[listChunk[i]].data() + first[i];
     }
 };
 

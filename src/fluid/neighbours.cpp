@@ -787,6 +787,8 @@ struct ParticleOutputs {
     float* invMass;
     float* bias;  // m/s
     std::uint32_t* count;
+    std::uint32_t* first;      // Constraints::first
+    std::uint32_t* listChunk;  // Constraints::listChunk
     float* density;  // over rest density
     float restDensity;
     float invRest;
@@ -824,6 +826,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
     c.invMass.resize(n);
     c.count.resize(n);
     c.first.resize(n);
+    c.listChunk.resize(n);
     c.warmVelocity.resize(n);
     // The warm start's scale (solver.cpp): the pressure is an impulse per
     // substep, so it scales with the substep's length.
@@ -848,6 +851,8 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
                                   c.invMass.data(),
                                   c.bias.data(),
                                   c.count.data(),
+                                  c.first.data(),
+                                  c.listChunk.data(),
                                   p.density.data(),
                                   f.restDensity,
                                   invRest,
@@ -874,10 +879,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
         std::size_t used = 0;
         NearList<D> near;
         CandidateBlock<D> block;
-        for (std::size_t i = begin; i < end; ++i) {
+        const std::uint32_t* visitOrder = g.visitOrder.data();
+        for (std::size_t rank = begin; rank < end; ++rank) {
+            // In the sweeps' order, so the lists are written as they are read.
+            const std::uint32_t i = visitOrder[rank];
             const Vec<D> xi = p.position[i];
             const Vec<D> vi = p.velocity[i];
-            c.first[i] = static_cast<std::uint32_t>(used);
+            o.first[i] = static_cast<std::uint32_t>(used);
+            o.listChunk[i] = static_cast<std::uint32_t>(chunk);
             // Phase 1: the particles of the 3^D sub-cells around i that lie
             // within h, gathered with a store per candidate and no branch on
             // the distance (about a third pass in 2D, at random, so a branch
@@ -887,7 +896,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
                 near.reserve(block.index.size());
             }
             s.overflows += block.overflows;
-            const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
+            const std::size_t nearCount = filter(block, &xi[0], i, h2, near);
             // Phase 2: the pairs within h, dense, in lanes (setUpPairLanes).
             // The warm start of the pairs is gathered: i's own constraint
             // gives i -g lambda_i per neighbour, neighbour j's gives it -g
@@ -899,7 +908,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
             s.overflows += nearCount - paired;
             if (out.size() < used + paired) out.resize(std::max(2 * out.size(), used + paired));
             PairArrays<D> arrays{near.r2.data(), near.index.data(), {}, &p.velocity[0][0], p.pressure.data(),
-                                 static_cast<std::uint32_t>(i), {}, lambdaI, warmFraction, invH, invH2};
+                                 i, {}, lambdaI, warmFraction, invH, invH2};
             for (int a = 0; a < D; ++a) {
                 arrays.offset[a] = near.offset[a].data();
                 arrays.vi[a] = vi[a];

@@ -52,6 +52,7 @@ struct SolverView {
     float* pseudoImpulse;
     const std::vector<Neighbour<D>>* lists;  // per chunk (NeighbourChunks)
     const std::uint32_t* first;
+    const std::uint32_t* listChunk;
     const glm::vec3* wall;  // the colliders' ghosts' g (wall_density.cpp)
     const float* bias;
     const float* invMass;
@@ -62,7 +63,7 @@ struct SolverView {
 /// Particle i's neighbour list (NeighbourChunks' layout, fluid_state.h).
 template <int D>
 inline const Neighbour<D>* listOf(const SolverView<D>& s, std::size_t i) {
-    return s.lists[i / kParticleChunk].data() + s.first[i];
+    return s.lists[s.listChunk[i]].data() + s.first[i];
 }
 
 // The order of every sum over a particle's neighbours (both backends; the
@@ -700,6 +701,7 @@ void solveConstraints(WorkerPool& pool, FluidState& f, float dt) {
                           f.pseudoImpulse.data(),
                           f.neighbours<D>().data(),
                           f.constraints.first.data(),
+                          f.constraints.listChunk.data(),
                           f.constraints.wallGradient.data(),
                           f.constraints.bias.data(),
                           f.constraints.invMass.data(),

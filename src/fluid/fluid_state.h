@@ -147,11 +147,6 @@ struct Grid {
     /// one colour are at least 2h apart, so their constraints share no
     /// particle and can be solved at the same time.
     std::array<std::vector<std::uint32_t>, 8> colourCells;
-    /// The particles in the order the solver's sweeps visit them: colour by
-    /// colour, each colour's cells in colourCells' order, each cell's
-    /// particles in grid order. The setup writes the neighbour lists in this
-    /// order, so a sweep reads them as one stream (Constraints::listChunk).
-    std::vector<std::uint32_t> visitOrder;
     std::vector<std::uint32_t> order;     // scratch: grid order -> previous index
     std::vector<std::uint32_t> counts;    // scratch
     // Scratch arrays of the gather into grid order, one for each particle
@@ -161,6 +156,15 @@ struct Grid {
     std::vector<std::vector<std::uint32_t>> scratchUint;
     std::vector<float> scratchMedian;  // medianAlong's
 };
+
+/// The colour of a cell (Grid::colourCells): the parities of its coordinates.
+template <int D>
+inline std::uint32_t colourOfCell(const Grid<D>& g, std::size_t cell) {
+    const std::size_t cx = cell % g.cells[0];
+    const std::size_t cy = (cell / g.cells[0]) % g.cells[1];
+    const std::size_t cz = cell / (static_cast<std::size_t>(g.cells[0]) * g.cells[1]);
+    return static_cast<std::uint32_t>((cx & 1) | ((cy & 1) << 1) | ((cz & 1) << 2));
+}
 
 /// Particles counted by the fastest closing speed of a neighbour (m/s, the rate at which their
 /// distance shrinks; moving apart counts as 0), in bins kApproachBin wide,
@@ -185,7 +189,7 @@ struct Constraints {
     std::vector<float> invMass;   // 1 / A
     std::vector<std::uint32_t> count;  // neighbours stored
     std::vector<std::uint32_t> first;      // offset of the list in its chunk's array
-    std::vector<std::uint32_t> listChunk;  // the chunk whose array holds the list
+    std::vector<std::uint32_t> listChunk;  // the array that holds the list (NeighbourChunks)
     /// Colliders' share (wall_density.cpp), found with the contacts: density
     /// (kernel-sum units) and g of the motionless ghost neighbours (w times
     /// the unit direction into the wall, summed).
@@ -202,9 +206,10 @@ struct Constraints {
 /// Neighbour lists of one step, compact (no fixed stride, so no overflow and
 /// no memory for room that is rarely used): particle i's neighbours are
 /// chunks[listChunk[i]][first[i] + k] for k < count[i] (Constraints).
-/// One growable array per chunk of kParticleChunk particles of
-/// Grid::visitOrder, so the setup fills them in parallel without counting
-/// first, and the sweeps read them in the order they were written.
+/// One growable array per chunk of kParticleChunk particles and colour of
+/// cell (Grid::colourCells; array chunk * 2^D + colour), so the setup fills
+/// them in parallel without counting first, and a sweep, which visits the
+/// cells colour by colour, reads each colour's lists as they were written.
 template <int D>
 using NeighbourChunks = std::vector<std::vector<Neighbour<D>>>;
 

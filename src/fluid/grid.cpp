@@ -230,26 +230,7 @@ void buildGrid(WorkerPool& pool, FluidState& f) {
             if (g.keyStart[cell * kQuadrants] == g.keyStart[(cell + 1) * kQuadrants]) {
                 continue;
             }
-            const int cx = static_cast<int>(cell % g.cells[0]);
-            const int cy = static_cast<int>((cell / g.cells[0]) % g.cells[1]);
-            const int cz = static_cast<int>(cell / (static_cast<std::size_t>(g.cells[0]) * g.cells[1]));
-            const int colour = (cx & 1) | ((cy & 1) << 1) | ((cz & 1) << 2);
-            g.colourCells[colour].push_back(static_cast<std::uint32_t>(cell));
-        }
-    }
-
-    // The sweeps' order (Grid::visitOrder): the lists are written in it, so
-    // a sweep streams them. Read in grid order, a sweep's lists came in runs
-    // of one cell with a cell's lists skipped between runs: at 30k particles
-    // (10 MB of lists) its visits cost about a fifth more (docs/fluid.md).
-    {
-        g.visitOrder.resize(n);
-        std::uint32_t* out = g.visitOrder.data();
-        for (const auto& cells : g.colourCells) {
-            for (std::uint32_t cell : cells) {
-                const std::uint32_t last = g.keyStart[(cell + 1) * kQuadrants];
-                for (std::uint32_t i = g.keyStart[cell * kQuadrants]; i < last; ++i) *out++ = i;
-            }
+            g.colourCells[colourOfCell(g, cell)].push_back(static_cast<std::uint32_t>(cell));
         }
     }
 }

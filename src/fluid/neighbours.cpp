@@ -884,7 +884,13 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
         // them). Cleared and grown per particle, an array value-initialised
         // every entry before the pairs wrote it: measured, a fifth of the
         // setup's time outside the filter and the pairs.
-        std::array<std::size_t, kColours> used{};
+        std::array<std::size_t, kColours> usedOf{};
+        // The array being written and its `used`, swapped on a change of
+        // colour only (once a sub-cell), so a particle's path reads them
+        // from registers as it did with one array.
+        std::uint32_t colour = 0;
+        std::vector<Neighbour<D>>* out = &lists[chunk * kColours];
+        std::size_t used = 0;
         NearList<D> near;
         CandidateBlock<D> block;
         for (std::size_t i = begin; i < end; ++i) {
@@ -898,11 +904,14 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
                 gatherBlock<D>(p, g, g.key[i], f.subCellReadLimit, block);
                 near.reserve(block.index.size());
             }
-            const std::uint32_t colour = block.colour;
-            const std::size_t array = chunk * kColours + colour;
-            std::vector<Neighbour<D>>& out = lists[array];
-            o.first[i] = static_cast<std::uint32_t>(used[colour]);
-            o.listChunk[i] = static_cast<std::uint32_t>(array);
+            if (block.colour != colour) {
+                usedOf[colour] = used;
+                colour = block.colour;
+                out = &lists[chunk * kColours + colour];
+                used = usedOf[colour];
+            }
+            o.first[i] = static_cast<std::uint32_t>(used);
+            o.listChunk[i] = static_cast<std::uint32_t>(chunk * kColours + colour);
             s.overflows += block.overflows;
             const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
             // Phase 2: the pairs within h, dense, in lanes (setUpPairLanes).
@@ -914,18 +923,18 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
             const float lambdaI = p.pressure[i] * warmFraction;
             const std::size_t paired = std::min<std::size_t>(nearCount, cap);
             s.overflows += nearCount - paired;
-            if (out.size() < used[colour] + paired) out.resize(std::max(2 * out.size(), used[colour] + paired));
+            if (out->size() < used + paired) out->resize(std::max(2 * out->size(), used + paired));
             PairArrays<D> arrays{near.r2.data(), near.index.data(), {}, &p.velocity[0][0], p.pressure.data(),
                                  static_cast<std::uint32_t>(i), {}, lambdaI, warmFraction, invH, invH2};
             for (int a = 0; a < D; ++a) {
                 arrays.offset[a] = near.offset[a].data();
                 arrays.vi[a] = vi[a];
             }
-            PairSums<D> sums = pairsOf(arrays, nearCount, paired, out.data() + used[colour]);
+            PairSums<D> sums = pairsOf(arrays, nearCount, paired, out->data() + used);
             const auto count = static_cast<std::uint32_t>(paired);
             if (closing) s.approach[approachBin(sums.fastest)] += 1;
             o.count[i] = count;
-            used[colour] += count;
+            used += count;
             // The colliders' ghosts (wall_density.cpp): motionless
             // neighbours, so they add to the density and to the particle's
             // own Jacobian entry, -(sum g + wall). W(0) = 1 is the particle

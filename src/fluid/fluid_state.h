@@ -188,7 +188,7 @@ struct Constraints {
     std::vector<float> bias;      // m/s
     std::vector<float> invMass;   // 1 / A
     std::vector<std::uint32_t> count;  // neighbours stored
-    std::vector<std::uint32_t> first;      // offset of the list in its chunk's array
+    std::vector<std::uint32_t> first;  // offset of the list in its chunk's array
     std::vector<std::uint32_t> listChunk;  // the array that holds the list (NeighbourChunks)
     /// Colliders' share (wall_density.cpp), found with the contacts: density
     /// (kernel-sum units) and g of the motionless ghost neighbours (w times

@@ -27,9 +27,7 @@ struct FluidView {
     std::span<const std::uint32_t> count;
     std::span<const std::uint32_t> first;      // offset in the chunk's list
     std::span<const std::uint32_t> listChunk;  // the chunk
-    const Neighbour<D>* neighbourList(std::size_t i) const {
-        return neighbours[listChunk[i]].data() + first[i];
-    }
+    const Neighbour<D>* neighbourList(std::size_t i) const { return neighbours[listChunk[i]].data() + first[i]; }
 };
 
 template <int D>

@@ -126,7 +126,8 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
     std::size_t runs = 0, total = 0;
     const std::array<int, 3> sc = subCellOf<D>(g, key);
     // A cell is 2 x 2 sub-cells (2^D), so its coordinates are the sub-cell's halved.
-    block.colour = static_cast<std::uint32_t>(((sc[0] >> 1) & 1) | (((sc[1] >> 1) & 1) << 1) | (((sc[2] >> 1) & 1) << 2));
+    block.colour =
+        static_cast<std::uint32_t>(((sc[0] >> 1) & 1) | (((sc[1] >> 1) & 1) << 1) | (((sc[2] >> 1) & 1) << 2));
     for (int dz = -zReach; dz <= zReach; ++dz) {
         const int sz = sc[2] + dz;
         if (sz < 0 || sz >= subCells[2]) continue;

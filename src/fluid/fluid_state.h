@@ -157,13 +157,16 @@ struct Grid {
     std::vector<float> scratchMedian;  // medianAlong's
 };
 
-/// The colour of a cell (Grid::colourCells): the parities of its coordinates.
+/// The colour of the cell at (cx, cy, cz) (Grid::colourCells): the parities
+/// of its coordinates.
+inline std::uint32_t colourOf(std::size_t cx, std::size_t cy, std::size_t cz) {
+    return static_cast<std::uint32_t>((cx & 1) | ((cy & 1) << 1) | ((cz & 1) << 2));
+}
+/// The colour of cell `cell` (its index in the grid, x fastest).
 template <int D>
 inline std::uint32_t colourOfCell(const Grid<D>& g, std::size_t cell) {
-    const std::size_t cx = cell % g.cells[0];
-    const std::size_t cy = (cell / g.cells[0]) % g.cells[1];
-    const std::size_t cz = cell / (static_cast<std::size_t>(g.cells[0]) * g.cells[1]);
-    return static_cast<std::uint32_t>((cx & 1) | ((cy & 1) << 1) | ((cz & 1) << 2));
+    return colourOf(cell % g.cells[0], (cell / g.cells[0]) % g.cells[1],
+                    cell / (static_cast<std::size_t>(g.cells[0]) * g.cells[1]));
 }
 
 /// Particles counted by the fastest closing speed of a neighbour (m/s, the rate at which their

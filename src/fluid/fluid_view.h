@@ -26,7 +26,7 @@ struct FluidView {
     std::span<const std::vector<Neighbour<D>>> neighbours;  // per chunk (NeighbourChunks)
     std::span<const std::uint32_t> count;
     std::span<const std::uint32_t> first;      // offset in the chunk's list
-    std::span<const std::uint32_t> listChunk;  // the chunk
+    std::span<const std::uint32_t> listChunk;  // the array of `neighbours` that holds it
     const Neighbour<D>* neighbourList(std::size_t i) const { return neighbours[listChunk[i]].data() + first[i]; }
 };
 

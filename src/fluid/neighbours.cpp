@@ -891,7 +891,8 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
         // colour only (once a sub-cell), so a particle's path reads them
         // from registers as it did with one array.
         std::uint32_t colour = 0;
-        std::vector<Neighbour<D>>* out = &lists[chunk * kColours];
+        auto array = static_cast<std::uint32_t>(chunk * kColours);
+        std::vector<Neighbour<D>>* out = &lists[array];
         std::size_t used = 0;
         NearList<D> near;
         CandidateBlock<D> block;
@@ -909,11 +910,12 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
             if (block.colour != colour) {
                 usedOf[colour] = used;
                 colour = block.colour;
-                out = &lists[chunk * kColours + colour];
+                array = static_cast<std::uint32_t>(chunk * kColours + colour);
+                out = &lists[array];
                 used = usedOf[colour];
             }
             o.first[i] = static_cast<std::uint32_t>(used);
-            o.listChunk[i] = static_cast<std::uint32_t>(chunk * kColours + colour);
+            o.listChunk[i] = array;
             s.overflows += block.overflows;
             const std::size_t nearCount = filter(block, &xi[0], static_cast<std::uint32_t>(i), h2, near);
             // Phase 2: the pairs within h, dense, in lanes (setUpPairLanes).

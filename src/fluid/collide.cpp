@@ -52,19 +52,63 @@ kernels::FluidSurface flatten(kernels::FluidSurface s) {
     return s;
 }
 
-/// Calls fn(surface) for every collider surface at x, but a plane's only
-/// where x is within `reach` of it or its ghosts reach x (the wall table):
-/// farther, the plane gives x neither a contact nor density, and its
-/// distance alone, the same float as the surface's, says so without the
-/// flattened normal's square root and divisions (most particles of a tank
-/// are far from most of its walls: 6 % of a step at 10k particles went to
-/// this pass before).
-template <int D, class Fn>
-void forEachSurface(const StepContext& world, const FluidState& f, glm::vec3 x, float reach, Fn&& fn) {
-    for (const kernels::ColliderParams& c : world.colliders) {
+/// Particles culled against the colliders together (collidersNear): 32
+/// consecutive ones in grid order, about one grid cell, so their box is
+/// small and most planes of a tank are far from all of it.
+constexpr std::size_t kCullBlock = 32;
+
+/// The box around some particles' positions (m; z = 0 in 2D). A NaN
+/// coordinate is passed over: such a particle meets no plane either way.
+struct Bounds {
+    glm::vec3 lo{3.0e38f};
+    glm::vec3 hi{-3.0e38f};
+    void add(glm::vec3 x) {
+        lo = glm::min(lo, x);
+        hi = glm::max(hi, x);
+    }
+};
+
+/// A lower bound (m) of plane c's signed distance (planeDistance,
+/// fluidColliderSurface) at every point of box b, with a margin far above
+/// the float rounding of either (a few units in the last place of the
+/// coordinates), so a plane it clears is one every particle's own test
+/// clears too.
+float planeDistanceBelow(const kernels::ColliderParams& c, const Bounds& b) {
+    const glm::vec3 n(c.normal);
+    const glm::vec3 offset = 0.5f * (b.lo + b.hi) - glm::vec3(c.position);
+    const glm::vec3 half = 0.5f * (b.hi - b.lo);
+    const float scale = glm::dot(glm::abs(offset) + half + glm::abs(glm::vec3(c.position)), glm::abs(n));
+    return glm::dot(offset, n) - glm::dot(half, glm::abs(n)) - 1.0e-5f * (scale + 1.0f);
+}
+
+/// The fluid colliders that may matter to particles inside box b, in the
+/// world's order (so contacts come out in the same order as from a test of
+/// every collider): all but the planes at least `clear` (m) from every
+/// point of b. Most particles of a tank are far from most of its walls, and
+/// a test per particle and plane was 10 % of a 10k dam-break step (the
+/// contacts and the paths, docs/fluid.md).
+void collidersNear(std::span<const kernels::ColliderParams> colliders, const Bounds& b, float clear,
+                   std::vector<const kernels::ColliderParams*>& out) {
+    out.clear();
+    for (const kernels::ColliderParams& c : colliders) {
         if (!isFluidCollider(c)) continue;
-        const kernels::FluidSurface s = kernels::fluidColliderSurface(c, x);
-        if (c.kind == kernels::SD_COLLIDER_PLANE && !(s.distance < reach) && !wallReaches(f.wallTable, s.distance)) {
+        if (c.kind == kernels::SD_COLLIDER_PLANE && planeDistanceBelow(c, b) >= clear) continue;
+        out.push_back(&c);
+    }
+}
+
+/// Calls fn(surface) for the surface at x of every collider of `near`
+/// (collidersNear) and every polygon, but a plane's only where x is within
+/// `reach` of it or its ghosts reach x (the wall table): farther, the
+/// plane gives x neither a contact nor density, and its distance alone,
+/// the same float as the surface's, says so without the flattened normal's
+/// square root and divisions.
+template <int D, class Fn>
+void forEachSurface(std::span<const kernels::ColliderParams* const> near, const FluidState& f, glm::vec3 x, float reach,
+                    Fn&& fn) {
+    for (const kernels::ColliderParams* c : near) {
+        const kernels::FluidSurface s = kernels::fluidColliderSurface(*c, x);
+        if (c->kind == kernels::SD_COLLIDER_PLANE && !(s.distance < reach) && !wallReaches(f.wallTable, s.distance)) {
             continue;
         }
         fn(flatten<D>(s));
@@ -72,6 +116,54 @@ void forEachSurface(const StepContext& world, const FluidState& f, glm::vec3 x, 
     for (const kernels::FluidPolygon& poly : f.polygons) {
         fn(kernels::fluidPolygonSurface(poly, x));
     }
+}
+
+/// How far (m) from a particle moving at `velocity` a surface gives it a
+/// contact this step: a surface it could reach, with a spacing to spare for
+/// what the fluid adds while solving (speculative contacts).
+template <int D>
+float contactReach(const FluidState& f, Vec<D> velocity, float dt) {
+    return f.radius + glm::length(velocity) * dt + f.def.spacing;
+}
+
+/// collidersNear for the contacts of particles [begin, end)
+/// (findContacts): the planes farther from the box of their positions than
+/// the longest of their reaches and than the wall table reaches, which
+/// give none of them a contact or density (forEachSurface's own test, for
+/// all of them at once).
+template <int D>
+void contactCollidersNear(const Particles<D>& p, std::span<const kernels::ColliderParams> colliders,
+                          const FluidState& f, float dt, std::size_t begin, std::size_t end,
+                          std::vector<const kernels::ColliderParams*>& near) {
+    Bounds box;
+    float farthest = 0.0f;
+    for (std::size_t i = begin; i < end; ++i) {
+        box.add(to3<D>(p.position[i]));
+        farthest = std::max(farthest, contactReach(f, p.velocity[i], dt));
+    }
+    collidersNear(colliders, box, std::max(farthest, wallBeyond(f.wallTable)), near);
+}
+
+/// collidersNear for the paths of particles [begin, end) this substep
+/// (integratePositions): the planes that none of them can end behind,
+/// those farther from the box of their starts than the longest path (a
+/// NaN path is passed over: it is removed before the tests). A body's push
+/// moves an end point by more than its path, so with bodies near
+/// (`bodiesNear`) every plane is tested.
+template <int D>
+void pathCollidersNear(const Particles<D>& p, std::span<const kernels::ColliderParams> colliders, bool split, float dt,
+                       bool bodiesNear, std::size_t begin, std::size_t end,
+                       std::vector<const kernels::ColliderParams*>& near) {
+    Bounds box;
+    float longest = 0.0f;
+    for (std::size_t i = begin; i < end; ++i) {
+        box.add(to3<D>(p.position[i]));
+        const Vec<D> motion = split ? p.velocity[i] + p.motion[i].pseudo : p.velocity[i];
+        longest = std::max(longest, glm::length(motion) * dt);
+    }
+    box.lo -= glm::vec3(longest);
+    box.hi += glm::vec3(longest);
+    collidersNear(colliders, box, bodiesNear ? std::numeric_limits<float>::infinity() : 0.0f, near);
 }
 
 }  // namespace
@@ -85,8 +177,6 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
     assignInRoom(c.wallDensity, p.size(), 0.0f);
     assignInRoom(c.wallGradient, p.size(), glm::vec3(0.0f));
     if (world.colliders.empty() && f.polygons.empty()) return;
-    const float radius = f.radius;
-    const float spacing = f.def.spacing;
     pool.forChunks(p.size(), kParticleChunk, [&](std::size_t chunk, std::size_t begin, std::size_t end) {
         // The arrays as locals (as in integratePositions).
         std::vector<Contact>& out = f.contacts[chunk];
@@ -95,12 +185,15 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
         float* wallDensity = c.wallDensity.data();
         glm::vec3* wallGradient = c.wallGradient.data();
         const float step = dt;
+        std::vector<const kernels::ColliderParams*> near;
+        near.reserve(world.colliders.size());
         for (std::size_t i = begin; i < end; ++i) {
+            if ((i - begin) % kCullBlock == 0) {
+                contactCollidersNear<D>(p, world.colliders, f, dt, i, std::min(end, i + kCullBlock), near);
+            }
             const glm::vec3 x = to3<D>(position[i]);
-            // Speculative (a surface the particle could reach this step, with
-            // a spacing to spare for what the fluid adds while solving).
-            const float reach = radius + glm::length(velocity[i]) * step + spacing;
-            forEachSurface<D>(world, f, x, reach, [&](const kernels::FluidSurface& s) {
+            const float reach = contactReach(f, velocity[i], step);
+            forEachSurface<D>(near, f, x, reach, [&](const kernels::FluidSurface& s) {
                 if (s.distance < reach) out.push_back(Contact{s, static_cast<std::uint32_t>(i)});
                 // The wall's ghost neighbours (wall_density.cpp): their
                 // direction from the particle is into the wall, -normal.
@@ -195,7 +288,13 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
         // a chunk instead of one a particle.
         float fastestSquared = 0.0f;
         glm::vec2 range(3.0e38f, -3.0e38f);
+        std::vector<const kernels::ColliderParams*> near;
+        near.reserve(colliders.size());
         for (std::size_t i = begin; i < end; ++i) {
+            if ((i - begin) % kCullBlock == 0) {
+                pathCollidersNear<D>(p, colliders, split, step, bodies != nullptr, i, std::min(end, i + kCullBlock),
+                                     near);
+            }
             if (pressure[i] > 0.0f) {
                 const float along = glm::dot(position[i], downward);
                 range = glm::vec2(std::min(range.x, along), std::max(range.y, along));
@@ -239,8 +338,8 @@ void integratePositions(WorkerPool& pool, FluidState& f, const StepContext& worl
             }
             // Path tests (as the effects' collisions): a path that crosses a
             // plane, sphere or box ends at the contact, moving no further in.
-            for (const kernels::ColliderParams& c : colliders) {
-                if (!isFluidCollider(c)) continue;
+            for (const kernels::ColliderParams* near_c : near) {
+                const kernels::ColliderParams& c = *near_c;
                 // Most paths end well inside a closed box's walls: the plane's
                 // test of the end point alone clears them.
                 if (c.kind == kernels::SD_COLLIDER_PLANE && kernels::planeKeepsClear(kernels::planeDistance(c, x1)))

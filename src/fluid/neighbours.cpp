@@ -43,13 +43,15 @@ std::uint32_t keyOfSubCell(const Grid<D>& g, int sx, int sy, int sz) {
 }
 
 /// The particles within h of the one being set up (phase 1 of the setup), as
-/// structure of arrays: offset (m, from the particle to it) per axis, squared
-/// distance (m^2) and index. Room for kNearLanes more than the candidates, so
-/// a vector filter stores whole vectors past the last kept one.
+/// structure of arrays: offset (m, from the particle to it) per axis and
+/// index. Room for kNearLanes more than the candidates, so a vector filter
+/// stores whole vectors past the last kept one. Not the squared distance:
+/// the pairs compute it again from the offsets (nearR2), three operations
+/// per neighbour, where keeping it cost the filter a compress and a store
+/// per candidate (about three candidates per neighbour).
 template <int D>
 struct NearList {
     std::array<std::vector<float>, D> offset;
-    std::vector<float> r2;
     std::vector<std::uint32_t> index;
 
     void reserve(std::size_t candidates) {
@@ -57,7 +59,6 @@ struct NearList {
         if (index.size() >= room) return;  // only grows: resizing zeroes every slot (measured, 15 % of the setup)
         const std::size_t size = std::max(2 * index.size(), room);
         for (std::vector<float>& axis : offset) axis.resize(size);
-        r2.resize(size);
         index.resize(size);
     }
 };
@@ -84,12 +85,11 @@ struct CandidateBlock {
 template <int D>
 struct NearOut {
     float* offset[D];
-    float* r2;
     std::uint32_t* index;
 };
 template <int D>
 NearOut<D> nearOut(NearList<D>& near) {
-    NearOut<D> out{{}, near.r2.data(), near.index.data()};
+    NearOut<D> out{{}, near.index.data()};
     for (int a = 0; a < D; ++a) out.offset[a] = near.offset[a].data();
     return out;
 }
@@ -180,7 +180,6 @@ std::size_t filterNearScalar(const CandidateBlock<D>& block, const float* xi, st
         float r2 = offset[0] * offset[0] + offset[1] * offset[1];
         if constexpr (D == 3) r2 = r2 + offset[2] * offset[2];
         for (int a = 0; a < D; ++a) near.offset[a][kept] = offset[a];
-        near.r2[kept] = r2;
         near.index[kept] = block.index[k];
         kept += static_cast<std::size_t>(r2 < h2) & static_cast<std::size_t>(block.index[k] != i);
     }
@@ -212,7 +211,6 @@ __attribute__((target("avx512f"))) std::size_t filterNearAvx512(const CandidateB
         const __m512i index = _mm512_loadu_si512(in.index + k);
         const __mmask16 keep = _mm512_cmp_ps_mask(r2, limit, _CMP_LT_OQ) & _mm512_cmpneq_epi32_mask(index, self);
         for (int a = 0; a < D; ++a) _mm512_storeu_ps(out.offset[a] + kept, _mm512_maskz_compress_ps(keep, offset[a]));
-        _mm512_storeu_ps(out.r2 + kept, _mm512_maskz_compress_ps(keep, r2));
         _mm512_storeu_si512(out.index + kept, _mm512_maskz_compress_epi32(keep, index));
         kept += static_cast<std::size_t>(__builtin_popcount(keep));
     }
@@ -258,7 +256,6 @@ __attribute__((target("avx2"))) std::size_t filterNearAvx2(const CandidateBlock<
         const auto keep = static_cast<unsigned>(within & ~isSelf);
         const __m256i pack = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(kPackTable.lanes[keep]));
         for (int a = 0; a < D; ++a) _mm256_storeu_ps(out.offset[a] + kept, _mm256_permutevar8x32_ps(offset[a], pack));
-        _mm256_storeu_ps(out.r2 + kept, _mm256_permutevar8x32_ps(r2, pack));
         _mm256_storeu_si256(reinterpret_cast<__m256i*>(out.index + kept), _mm256_permutevar8x32_epi32(index, pack));
         kept += static_cast<std::size_t>(__builtin_popcount(keep));
     }
@@ -290,7 +287,6 @@ struct PairSums {
 /// not vectorise it).
 template <int D>
 struct PairArrays {
-    const float* r2;                // m^2
     const std::uint32_t* index;
     const float* offset[D];         // m
     const float* velocity;          // the particles' velocities, D floats each (m/s)
@@ -313,13 +309,23 @@ struct PairTerm {
     float warmPressure;  // m/s, lambda_i + lambda_j of the warm start
 };
 
+/// The squared distance (m^2) of near-list entry k, as the filters compute
+/// it (glm's dot of the offset with itself, no fused multiply-add): the same
+/// float they kept the entry by.
+template <int D>
+[[gnu::always_inline]] inline float nearR2(const PairArrays<D>& a, std::size_t k) {
+    float r2 = a.offset[0][k] * a.offset[0][k] + a.offset[1][k] * a.offset[1][k];
+    if constexpr (D == 3) r2 = r2 + a.offset[2][k] * a.offset[2][k];
+    return r2;
+}
+
 /// `kClosing`: the closing speed too (it gathers the neighbour's velocity,
 /// about a tenth of the setup's time, measured; only a step's first substep
 /// counts it).
 template <int D, bool kClosing>
 [[gnu::always_inline]] inline PairTerm<D> pairTerm(const PairArrays<D>& a, std::size_t k) {
     PairTerm<D> t;
-    const float r2 = a.r2[k];
+    const float r2 = nearR2(a, k);
     const std::uint32_t j = a.index[k];
     const float r = std::sqrt(r2);
     t.density = kernels::fluidDensityKernel(r * a.invH);
@@ -541,7 +547,9 @@ __attribute__((target("avx2"), always_inline)) inline void addPairHalf2(const Pa
     const __m256 one = _mm256_set1_ps(1.0f);
     const __m256 inList = firstLanes8(listed - at);
     const __m256 inPairs = paired > at ? firstLanes8(paired - at) : zero;
-    const __m256 r2 = _mm256_loadu_ps(a.r2 + at);
+    const __m256 offset[2] = {_mm256_loadu_ps(a.offset[0] + at), _mm256_loadu_ps(a.offset[1] + at)};
+    const __m256 r2 =
+        _mm256_add_ps(_mm256_mul_ps(offset[0], offset[0]), _mm256_mul_ps(offset[1], offset[1]));  // nearR2
     const __m256i index = _mm256_loadu_si256(reinterpret_cast<const __m256i*>(a.index + at));
     const __m256 r = _mm256_sqrt_ps(r2);
     // W(r / h) (fluidDensityKernel), in its order of operations.
@@ -571,16 +579,15 @@ __attribute__((target("avx2"), always_inline)) inline void addPairHalf2(const Pa
     __m256 g[2];
     __m256 closing = zero;
     for (int axis = 0; axis < 2; ++axis) {
-        const __m256 offset = _mm256_loadu_ps(a.offset[axis] + at);
         const __m256 together = axis == 0 ? _mm256_mul_ps(side, w) : zero;
-        g[axis] = _mm256_blendv_ps(together, _mm256_mul_ps(offset, wOverR), apart);
+        g[axis] = _mm256_blendv_ps(together, _mm256_mul_ps(offset[axis], wOverR), apart);
         half.gSum[axis] = _mm256_blendv_ps(half.gSum[axis], _mm256_add_ps(half.gSum[axis], g[axis]), inPairs);
         half.warm[axis] = _mm256_blendv_ps(
             half.warm[axis], _mm256_sub_ps(half.warm[axis], _mm256_mul_ps(g[axis], warmPressure)), inPairs);
         if constexpr (kClosing) {
             const __m256i component = _mm256_add_epi32(_mm256_slli_epi32(index, 1), _mm256_set1_epi32(axis));
             const __m256 vj = _mm256_mask_i32gather_ps(zero, a.velocity, component, inPairs, 4);
-            const __m256 approach = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(a.vi[axis]), vj), offset);
+            const __m256 approach = _mm256_mul_ps(_mm256_sub_ps(_mm256_set1_ps(a.vi[axis]), vj), offset[axis]);
             closing = axis == 0 ? approach : _mm256_add_ps(closing, approach);
         }
     }
@@ -702,7 +709,10 @@ __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const Pair
     for (std::size_t base = 0; base < listed; base += 16) {
         const __mmask16 inList = firstLanes(listed - base);
         const __mmask16 inPairs = paired > base ? firstLanes(paired - base) : static_cast<__mmask16>(0);
-        const __m512 r2 = _mm512_loadu_ps(a.r2 + base);
+        __m512 offset[D];
+        for (int axis = 0; axis < D; ++axis) offset[axis] = _mm512_loadu_ps(a.offset[axis] + base);
+        __m512 r2 = _mm512_add_ps(_mm512_mul_ps(offset[0], offset[0]), _mm512_mul_ps(offset[1], offset[1]));  // nearR2
+        if constexpr (D == 3) r2 = _mm512_add_ps(r2, _mm512_mul_ps(offset[2], offset[2]));
         const __m512i index = _mm512_loadu_si512(a.index + base);
         const __m512 r = _mm512_maskz_sqrt_ps(0xffff, r2);  // maskz: g++ 12 warns on the plain form's undefined source
         // W(r / h) (fluidDensityKernel), in its order of operations.
@@ -726,16 +736,15 @@ __attribute__((target(SD_PAIRS_AVX512))) PairSums<D> setUpPairsAvx512(const Pair
         __m512 g[D];
         __m512 closing = zero;
         for (int axis = 0; axis < D; ++axis) {
-            const __m512 offset = _mm512_loadu_ps(a.offset[axis] + base);
             const __m512 together = axis == 0 ? _mm512_mul_ps(side, w) : zero;
-            g[axis] = _mm512_mask_blend_ps(apart, together, _mm512_mul_ps(offset, wOverR));
+            g[axis] = _mm512_mask_blend_ps(apart, together, _mm512_mul_ps(offset[axis], wOverR));
             gSum[axis] = _mm512_mask_add_ps(gSum[axis], inPairs, gSum[axis], g[axis]);
             warm[axis] = _mm512_mask_sub_ps(warm[axis], inPairs, warm[axis], _mm512_mul_ps(g[axis], warmPressure));
             if constexpr (kClosing) {
                 const __m512i at =
                     _mm512_add_epi32(_mm512_mullo_epi32(index, _mm512_set1_epi32(D)), _mm512_set1_epi32(axis));
                 const __m512 vj = _mm512_mask_i32gather_ps(zero, inPairs, at, a.velocity, 4);
-                const __m512 approach = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(a.vi[axis]), vj), offset);
+                const __m512 approach = _mm512_mul_ps(_mm512_sub_ps(_mm512_set1_ps(a.vi[axis]), vj), offset[axis]);
                 closing = axis == 0 ? approach : _mm512_add_ps(closing, approach);
             }
         }
@@ -928,8 +937,16 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
             const std::size_t paired = std::min<std::size_t>(nearCount, cap);
             s.overflows += nearCount - paired;
             if (out->size() < used + paired) out->resize(std::max(2 * out->size(), used + paired));
-            PairArrays<D> arrays{near.r2.data(), near.index.data(), {}, &p.velocity[0][0], p.pressure.data(),
-                                 static_cast<std::uint32_t>(i), {}, lambdaI, warmFraction, invH, invH2};
+            PairArrays<D> arrays{near.index.data(),
+                                 {},
+                                 &p.velocity[0][0],
+                                 p.pressure.data(),
+                                 static_cast<std::uint32_t>(i),
+                                 {},
+                                 lambdaI,
+                                 warmFraction,
+                                 invH,
+                                 invH2};
             for (int a = 0; a < D; ++a) {
                 arrays.offset[a] = near.offset[a].data();
                 arrays.vi[a] = vi[a];

@@ -119,13 +119,22 @@ void forEachSurface(std::span<const kernels::ColliderParams* const> near, const 
     }
 }
 
-/// How far (m) from a particle moving at `velocity` a surface gives it a
+/// How far (m) from a particle moving at `speed` (m/s) a surface gives it a
 /// contact this step: a surface it could reach, with a spacing to spare for
 /// what the fluid adds while solving (speculative contacts).
+float contactReach(const FluidState& f, float speed, float dt) { return f.radius + speed * dt + f.def.spacing; }
+
+/// The largest length of some vectors from the largest squared length:
+/// glm::length is the square root of the dot product, and the root is
+/// monotone and correctly rounded, so this is the largest length exactly,
+/// for one root instead of one per vector (as integratePositions' largest
+/// speed). A NaN square is passed over, as std::max passes it.
 template <int D>
-float contactReach(const FluidState& f, Vec<D> velocity, float dt) {
-    return f.radius + glm::length(velocity) * dt + f.def.spacing;
-}
+struct LongestOf {
+    float squared = 0.0f;
+    void add(Vec<D> v) { squared = std::max(squared, glm::dot(v, v)); }
+    float length() const { return std::sqrt(squared); }
+};
 
 /// collidersNear for the contacts of particles [begin, end)
 /// (findContacts): the planes farther from the box of their positions than
@@ -137,12 +146,13 @@ void contactCollidersNear(const Particles<D>& p, std::span<const kernels::Collid
                           const FluidState& f, float dt, std::size_t begin, std::size_t end,
                           std::vector<const kernels::ColliderParams*>& near) {
     Bounds box;
-    float farthest = 0.0f;
+    LongestOf<D> fastest;
     for (std::size_t i = begin; i < end; ++i) {
         box.add(to3<D>(p.position[i]));
-        farthest = std::max(farthest, contactReach(f, p.velocity[i], dt));
+        fastest.add(p.velocity[i]);
     }
-    collidersNear(colliders, box, std::max(farthest, wallBeyond(f.wallTable)), near);
+    // contactReach grows with the speed: the fastest's is the farthest.
+    collidersNear(colliders, box, std::max(contactReach(f, fastest.length(), dt), wallBeyond(f.wallTable)), near);
 }
 
 /// collidersNear for the paths of particles [begin, end) this substep
@@ -156,12 +166,12 @@ void pathCollidersNear(const Particles<D>& p, std::span<const kernels::ColliderP
                        bool bodiesNear, std::size_t begin, std::size_t end,
                        std::vector<const kernels::ColliderParams*>& near) {
     Bounds box;
-    float longest = 0.0f;
+    LongestOf<D> fastest;
     for (std::size_t i = begin; i < end; ++i) {
         box.add(to3<D>(p.position[i]));
-        const Vec<D> motion = split ? p.velocity[i] + p.motion[i].pseudo : p.velocity[i];
-        longest = std::max(longest, glm::length(motion) * dt);
+        fastest.add(split ? p.velocity[i] + p.motion[i].pseudo : p.velocity[i]);
     }
+    const float longest = fastest.length() * dt;
     box.lo -= glm::vec3(longest);
     box.hi += glm::vec3(longest);
     collidersNear(colliders, box, bodiesNear ? std::numeric_limits<float>::infinity() : 0.0f, near);
@@ -193,7 +203,7 @@ void findContacts(WorkerPool& pool, FluidState& f, const StepContext& world, flo
                 contactCollidersNear<D>(p, world.colliders, f, dt, i, std::min(end, i + kCullBlock), near);
             }
             const glm::vec3 x = to3<D>(position[i]);
-            const float reach = contactReach(f, velocity[i], step);
+            const float reach = contactReach(f, glm::length(velocity[i]), step);
             forEachSurface<D>(near, f, x, reach, [&](const kernels::FluidSurface& s) {
                 if (s.distance < reach) out.push_back(Contact{s, static_cast<std::uint32_t>(i)});
                 // The wall's ghost neighbours (wall_density.cpp): their

@@ -165,6 +165,17 @@ void gatherBlock(const Particles<D>& p, const Grid<D>& g, std::uint32_t key, std
     }
 }
 
+/// The squared length (m^2) of an offset as every filter and the pairs
+/// compute it: glm's dot(offset, offset) with no fused multiply-add, so the
+/// same float everywhere (the vector loops repeat these operations lane for
+/// lane).
+template <int D>
+[[gnu::always_inline]] inline float squaredLength(const float (&offset)[D]) {
+    float r2 = offset[0] * offset[0] + offset[1] * offset[1];
+    if constexpr (D == 3) r2 = r2 + offset[2] * offset[2];
+    return r2;
+}
+
 /// Writes to `near` [0, the returned count) the particles of `block` within h
 /// of particle i (not i itself), in block order, with no branch on the
 /// distance. The offsets and squared distances are those of glm's
@@ -177,8 +188,7 @@ std::size_t filterNearScalar(const CandidateBlock<D>& block, const float* xi, st
     for (std::size_t k = 0; k < block.count; ++k) {
         float offset[D];
         for (int a = 0; a < D; ++a) offset[a] = block.position[a][k] - xi[a];
-        float r2 = offset[0] * offset[0] + offset[1] * offset[1];
-        if constexpr (D == 3) r2 = r2 + offset[2] * offset[2];
+        const float r2 = squaredLength<D>(offset);
         for (int a = 0; a < D; ++a) near.offset[a][kept] = offset[a];
         near.index[kept] = block.index[k];
         kept += static_cast<std::size_t>(r2 < h2) & static_cast<std::size_t>(block.index[k] != i);
@@ -309,14 +319,13 @@ struct PairTerm {
     float warmPressure;  // m/s, lambda_i + lambda_j of the warm start
 };
 
-/// The squared distance (m^2) of near-list entry k, as the filters compute
-/// it (glm's dot of the offset with itself, no fused multiply-add): the same
-/// float they kept the entry by.
+/// The squared distance (m^2) of near-list entry k: the same float the
+/// filters kept the entry by (squaredLength).
 template <int D>
 [[gnu::always_inline]] inline float nearR2(const PairArrays<D>& a, std::size_t k) {
-    float r2 = a.offset[0][k] * a.offset[0][k] + a.offset[1][k] * a.offset[1][k];
-    if constexpr (D == 3) r2 = r2 + a.offset[2][k] * a.offset[2][k];
-    return r2;
+    float offset[D];
+    for (int axis = 0; axis < D; ++axis) offset[axis] = a.offset[axis][k];
+    return squaredLength<D>(offset);
 }
 
 /// `kClosing`: the closing speed too (it gathers the neighbour's velocity,

@@ -225,9 +225,12 @@ inline bool solvesTwo(const SolverView<D>& s, std::size_t i) {
 
 /// The impulses of particle i's visit from its rates (slide 36, signs in
 /// fluid.glsl), with its accumulated impulses updated; `pseudoRate` is read
-/// only when solvesTwo.
+/// only when solvesTwo. Always inlined: the vector visits (AVX-512, AVX2)
+/// call it, and a call from them into this function built for the baseline
+/// target made the sweeps four times slower (a probe of the eighth session
+/// of 2026-12-07, docs/fluid.md, where g++ stopped inlining it).
 template <int D>
-inline VisitImpulses impulsesOf(const SolverView<D>& s, std::size_t i, float rate, float pseudoRate) {
+[[gnu::always_inline]] inline VisitImpulses impulsesOf(const SolverView<D>& s, std::size_t i, float rate, float pseudoRate) {
     if (!s.split) {
         const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, s.bias[i], s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;

@@ -230,7 +230,8 @@ inline bool solvesTwo(const SolverView<D>& s, std::size_t i) {
 /// target made the sweeps four times slower (a probe of the eighth session
 /// of 2026-12-07, docs/fluid.md, where g++ stopped inlining it).
 template <int D>
-[[gnu::always_inline]] inline VisitImpulses impulsesOf(const SolverView<D>& s, std::size_t i, float rate, float pseudoRate) {
+[[gnu::always_inline]] inline VisitImpulses impulsesOf(const SolverView<D>& s, std::size_t i, float rate,
+                                                       float pseudoRate) {
     if (!s.split) {
         const kernels::FluidImpulse r = kernels::fluidSolveImpulse(rate, s.bias[i], s.invMass[i], s.pressure[i]);
         s.pressure[i] = r.accumulated;

@@ -9,6 +9,7 @@
 
 #include <algorithm>
 #include <cstdint>
+#include <fstream>
 #include <string>
 #include <vector>
 
@@ -52,5 +53,35 @@ private:
     UpdateTarget saved_;
     bool ok_ = false;
 };
+
+/// The CPU as /proc/cpuinfo names it, with its family and model ("unknown"
+/// where the file cannot be read). The fluid's ratio to LiquidFun moved from
+/// 1.1x to 1.5x between CPUs with the same code (docs/performance.md), and a
+/// virtual machine's name can be as bare as "Intel(R) Xeon(R) Processor", so
+/// the family and model go with it.
+inline std::string cpuModel() {
+    std::ifstream in("/proc/cpuinfo");
+    std::string line, name, family, model;
+    const auto valueOf = [](const std::string& l) {
+        const std::size_t colon = l.find(':');
+        return colon == std::string::npos || colon + 2 > l.size() ? std::string() : l.substr(colon + 2);
+    };
+    while (std::getline(in, line) && !line.empty()) {  // the first processor's block
+        if (line.rfind("model name", 0) == 0) name = valueOf(line);
+        if (line.rfind("cpu family", 0) == 0) family = valueOf(line);
+        if (line.rfind("model\t", 0) == 0) model = valueOf(line);
+    }
+    if (name.empty()) return "unknown";
+    return name + " (family " + family + ", model " + model + ")";
+}
+
+/// Every program's JSON context names the CPU and the vector target its
+/// vector loops run at by default, next to Google Benchmark's own (host,
+/// CPU count, clock, caches, load).
+inline const bool kMachineContext = [] {
+    benchmark::AddCustomContext("cpu_model", cpuModel());
+    benchmark::AddCustomContext("best_update_target", std::string(updateTargetName(bestUpdateTarget())));
+    return true;
+}();
 
 }  // namespace spindrift::bench

@@ -113,9 +113,9 @@ struct FluidDef {
     /// Particle spacing (m) of blocks and jets; the particle's radius for
     /// collisions is half of it.
     float spacing = 0.02f;
-    /// Smoothing length h (m); 0: 3 x spacing in 2D (about 25 neighbours; at
-    /// 2 x spacing, 12 neighbours, a resting tank's density error is several
-    /// times larger, see docs/performance.md), 2.5 x spacing in 3D.
+    /// Smoothing length h (m); 0: 3.5 x spacing in 2D (about 36 neighbours;
+    /// at 2 x spacing, 12 neighbours, a resting tank's density error is
+    /// several times larger, see docs/performance.md), 2.5 x spacing in 3D.
     float smoothing = 0.0f;
     /// Solver iterations per substep, kFluidMinIterations (1) to kFluidMaxIterations (16).
     std::uint32_t iterations = 2;
@@ -124,8 +124,8 @@ struct FluidDef {
     /// constraint alone), in [kFluidMinRelaxation (1), kFluidMaxRelaxation
     /// (1.5)]. 2 iterations at 1.2 hold a deep tank as 4 at 1 did, in 22 to
     /// 32 % less time a step (docs/fluid.md, "Over-relaxed sweeps"). With 1
-    /// iteration no later sweep takes the overshoot back: set 1 there (a
-    /// dam break settles expanded at 1 iteration, more so over-relaxed).
+    /// iteration it is not applied (the sweep is plain): no later sweep
+    /// takes the overshoot back, and the fluid settles expanded.
     float relaxation = 1.2f;
     /// Velocity steering toward the rest density (slide 34): the bias is
     /// (rho0 - rho) x baumgarte x h / dt, in [kFluidMinBaumgarte (0.01), 1].

@@ -879,7 +879,7 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
                                   p.density.data(),
                                   f.restDensity,
                                   invRest,
-                                  f.def.relaxation,
+                                  sweepRelaxation(f.def),
                                   f.def.baumgarte,
                                   f.h,
                                   invDt};

@@ -383,8 +383,11 @@ struct Avx512Loops {
         scatter(s, i, _mm_setr_ps(delta, delta, 0.0f, 0.0f), 0x3333);
     }
     /// The most neighbours a visit holds in registers (visitHeld): g and
-    /// motion of four a register each, 16 of AVX-512's 32.
-    static constexpr std::uint32_t kHeldGroups = 8;
+    /// motion of four a register each, 20 of AVX-512's 32. Ten groups hold
+    /// the 36 to 40 neighbours of an interior particle at the default h
+    /// (3.5 spacings); with eight such a visit took the two-pass loops, and
+    /// the sweeps cost about a tenth more.
+    static constexpr std::uint32_t kHeldGroups = 10;
     static constexpr bool kHeld = true;
     /// A whole visit (rates, impulses, scatter) with its kGroups registers
     /// of entries and motions loaded once: rates128's and scatter's
@@ -399,7 +402,7 @@ struct Avx512Loops {
         Motion<2>* m = s.motion;
         __m512 g[kGroups];
         __m512 moved[kGroups];
-#pragma GCC unroll 8
+#pragma GCC unroll 10
         for (std::uint32_t k = 0; k + 1 < kGroups; ++k) {
             g[k] = gOf4(list + 4 * k);
             moved[k] = motionOf(m, list + 4 * k, 4);
@@ -410,7 +413,7 @@ struct Avx512Loops {
         const __m128 own = _mm_loadu_ps(&m[i].velocity.x);
         const __m512 mi = _mm512_maskz_broadcast_f32x4(0xffff, own);
         __m512 chain = _mm512_insertf32x4(_mm512_setzero_ps(), ghostRates(wall, m[i]), 0);
-#pragma GCC unroll 8
+#pragma GCC unroll 10
         for (std::uint32_t k = 0; k < kGroups; ++k) {
             const __m512 t = _mm512_mul_ps(g[k], _mm512_sub_ps(moved[k], mi));
             const __m512 dots = _mm512_add_ps(t, _mm512_maskz_permute_ps(0xffff, t, 0xb1));  // pairDots
@@ -425,7 +428,7 @@ struct Avx512Loops {
         const __m512 both512 = _mm512_maskz_broadcast_f32x4(0xffff, both);
         __m512 self =
             _mm512_insertf32x4(_mm512_setzero_ps(), _mm_mul_ps(_mm_setr_ps(wall.x, wall.y, wall.x, wall.y), both), 0);
-#pragma GCC unroll 8
+#pragma GCC unroll 10
         for (std::uint32_t k = 0; k < kGroups; ++k) {
             const __m512 impulse = _mm512_mul_ps(g[k], both512);
             const std::uint32_t n = k + 1 < kGroups ? 4 : tail;
@@ -438,7 +441,7 @@ struct Avx512Loops {
     }
     /// visitGroups for particle i when its list fits kHeldGroups registers;
     /// false (nothing done) otherwise. Tried from the most registers down:
-    /// an interior particle's 25 to 28 neighbours take 7.
+    /// an interior particle's 36 to 40 neighbours take 9 or 10.
     template <std::uint32_t kGroups = kHeldGroups>
     [[gnu::target(SD_SOLVE_AVX512)]] static bool visitHeld(const SolverView<2>& s, std::size_t i) {
         if constexpr (kGroups == 0) {

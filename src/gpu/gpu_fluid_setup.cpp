@@ -24,7 +24,7 @@ using kernels::FluidSetupHeader;
 using kernels::FluidSetupPush;
 
 /// List entries per particle the lists hold at least: a particle at rest has
-/// about 28 neighbours within h = 3 spacings in 2D and 113 in 3D; a
+/// about 36 neighbours within h = 3.5 spacings in 2D and 113 in 3D; a
 /// compressed fluid more.
 constexpr std::uint32_t kEntriesPerParticle2D = 64;
 constexpr std::uint32_t kEntriesPerParticle3D = 256;

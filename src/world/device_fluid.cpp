@@ -282,8 +282,9 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
     }
     // The warm start's share: as setupConstraints (neighbours.cpp) scales it.
     const float warmFraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
-    s.setup = {f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, f.def.relaxation, dt,
-               warmFraction};
+    s.setup = {
+        f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, fluid::sweepRelaxation(f.def), dt,
+        warmFraction};
     // The step's external force, as stepPasses applies it (fluid_step.cpp).
     s.setup.velocityChange = to3<D>(fluid::Vec<D>(glm::vec3(f.def.gravity) * dt));
     s.setup.countClosing = first;  // the substep rule's closing speeds (setupConstraints)

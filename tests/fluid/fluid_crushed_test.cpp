@@ -28,9 +28,9 @@ TEST(FluidCrushed, APileAtTheNozzleReadsABoundedNumberOfNeighbours) {
     jet.rate = 16777217.0f;
     def.jets.push_back(jet);
     const FluidId fluid = createFluid(w.id, def);
-    // Default h = 3 spacings: 9 particles per h-wide sub-cell at rest, read
-    // up to 72, 9 sub-cells around a particle.
-    constexpr double kBound = 9.0 * 8.0 * 9.0;
+    // Default h = 3.5 spacings: 12.25 particles per h-wide sub-cell at rest,
+    // read up to ceil(8 x 12.25) = 98, 9 sub-cells around a particle.
+    constexpr double kBound = 98.0 * 9.0;
     std::uint64_t overflows = 0;
     double mostNeighbours = 0.0;
     for (int step = 0; step < 5; ++step) {

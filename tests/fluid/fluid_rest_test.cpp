@@ -113,7 +113,7 @@ TEST(FluidWalls, ABlockFillingABoxStartsAtRestDensityEverywhere) {
         const FluidId f = createFluid(w.id, def);
         stepWorld(w.id, kDt);
         const FluidSnapshot s = readFluid(w.id, f);
-        const float h = (dimension == 2 ? 3.0f : 2.5f) * spacing;
+        const float h = (dimension == 2 ? 3.5f : 2.5f) * spacing;  // FluidDef::smoothing's defaults
         int checked = 0;
         for (std::size_t i = 0; i < s.count(); ++i) {
             int near = 0;

@@ -113,9 +113,10 @@ TEST(FluidSplats, StrayParticleIsSmallerThanInterior) {
     EXPECT_FLOAT_EQ(byId[lone].centre.w, rest * std::clamp(std::sqrt(s.density[lone]), 0.3f, 1.2f));
     // Interior: id 44 is row 4, column 4, four rows (> h) from every side.
     EXPECT_NEAR(byId[44].centre.w, rest, 0.05f * rest);  // density within 10% of rest
-    // Rest density in 2D at h = 3 spacings is 3.31 (the lattice sum of
-    // the density kernel), so a lone particle reads 0.3 of rest and its splat
-    // is about sqrt(0.3) = 0.55 of an interior one.
+    // Rest density in 2D at h = 3.5 spacings is 4.42 (the lattice sum of
+    // the density kernel), so a lone particle reads 0.23 of rest and its
+    // splat is clamped to 0.3 of an interior one (sqrt(0.23) = 0.48 is below
+    // the clamp).
     EXPECT_LT(byId[lone].centre.w, 0.6f * byId[44].centre.w);
 }
 

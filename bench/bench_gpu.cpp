@@ -280,8 +280,7 @@ void BM_FluidDeviceSubstep(benchmark::State& state) {
                 gpu::submitOnce(*d, [&](VkCommandBuffer cmd) {
                     gpu::recordFluidGrid(cmd, *gridPasses, xs, static_cast<std::uint32_t>(count), grid);
                     gpu::recordFluidGather(cmd, *setupPasses, *gridPasses,
-                                           {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)},
-                                           setup.velocityChange);
+                                           {&xs, &vs, &ps, &walls, static_cast<std::uint32_t>(count)}, setup);
                     gpu::recordFluidContactsFind(cmd, *contactPasses, *setupPasses, walls, contactParams);
                     gpu::recordFluidConstraints(cmd, *setupPasses, *gridPasses, setup);
                     gpu::recordFluidSolve(cmd, *solvePasses, *gridPasses, *setupPasses, walls, solve,

@@ -8,6 +8,7 @@
 
 #include <spindrift/fluid.h>
 
+#include <algorithm>
 #include <array>
 #include <cstdint>
 #include <span>
@@ -278,6 +279,9 @@ struct FluidState {
     FluidDef def;
     float h = 0.0f;            // m
     float restDensity = 0.0f;  // kernel-sum units
+    /// sum_n w_n dy_n^2 / r_n over the lattice's neighbours (m): the
+    /// hydrostatic pressure's scale (latticeHydrostaticSum, fluidWarmCap).
+    float hydrostaticSum = 0.0f;
     float radius = 0.0f;       // m, particle radius against colliders
     std::uint32_t maxNeighbours = 0;
     /// Most particles the setup reads from one sub-cell (h wide): kCrushedSubCell
@@ -341,6 +345,25 @@ void validateFluidDef(const FluidDef& def);
 /// Rest density of an interior particle of a lattice at `spacing` (kernel-sum
 /// units, the particle itself counting 1).
 float latticeRestDensity(std::uint32_t dimension, float spacing, float h);
+/// sum_n w_n dy_n^2 / r_n (m) over the neighbours of an interior particle of
+/// a lattice at `spacing`: the hydrostatic pressure at depth d is
+/// g dt d / this (kernels::fluidWarmCap).
+float latticeHydrostaticSum(std::uint32_t dimension, float spacing, float h);
+
+/// The warm start of a substep of dt (s), as both backends apply it: the
+/// share of the last pressure (an impulse per substep, so the share scales
+/// with the substep's length) and the cap on that pressure, at the pressed
+/// depth of the last step (kernels::fluidWarmCap).
+struct WarmStart {
+    float fraction = 0.0f;
+    float cap = 0.0f;  // m/s
+};
+inline WarmStart warmStartOf(const FluidState& f, float dt) {
+    WarmStart w;
+    w.fraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
+    w.cap = kernels::fluidWarmCap(glm::length(f.def.gravity), dt, std::max(f.pressedDepth, f.h), f.hydrostaticSum);
+    return w;
+}
 
 void addBlock(FluidState& f, const FluidBlockDef& block);
 /// Throws FieldError at "block[i].min" when a block of `def` (all of them, or

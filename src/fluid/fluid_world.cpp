@@ -326,25 +326,48 @@ void validateFluidDef(const FluidDef& def) {
     for (std::size_t i = 0; i < def.polygons.size(); ++i) makePolygon(def, def.polygons[i], i);
 }
 
-float latticeRestDensity(std::uint32_t dimension, float spacing, float h) {
-    // Sum of the density kernel over the lattice points within h of one of
-    // them, itself included (W(0) = 1): what the constraint setup measures for an interior
-    // particle of a freshly laid block, in the same float arithmetic.
+namespace {
+
+/// `start` plus the sum of term(offset, r2) over the lattice points within h
+/// of one of them, itself excluded (offset in m, r2 its squared length), in
+/// that order of float additions.
+template <class Term>
+float sumOverLattice(std::uint32_t dimension, float spacing, float h, float start, Term term) {
     const int reach = static_cast<int>(std::ceil(h / spacing));
     const int zReach = dimension == 3 ? reach : 0;
-    const float invH = 1.0f / h;
-    float sum = 1.0f;
+    float sum = start;
     for (int k = -zReach; k <= zReach; ++k) {
         for (int j = -reach; j <= reach; ++j) {
             for (int i = -reach; i <= reach; ++i) {
                 if (i == 0 && j == 0 && k == 0) continue;
                 const glm::vec3 o = glm::vec3(static_cast<float>(i), static_cast<float>(j), static_cast<float>(k)) * spacing;
                 const float r2 = glm::dot(o, o);
-                if (r2 < h * h) sum += kernels::fluidDensityKernel(std::sqrt(r2) * invH);
+                if (r2 < h * h) sum += term(o, r2);
             }
         }
     }
     return sum;
+}
+
+}  // namespace
+
+float latticeRestDensity(std::uint32_t dimension, float spacing, float h) {
+    // Sum of the density kernel over the lattice points within h of one of
+    // them, itself included (W(0) = 1): what the constraint setup measures for an interior
+    // particle of a freshly laid block, in the same float arithmetic.
+    const float invH = 1.0f / h;
+    return sumOverLattice(dimension, spacing, h, 1.0f,
+                          [&](glm::vec3, float r2) { return kernels::fluidDensityKernel(std::sqrt(r2) * invH); });
+}
+
+float latticeHydrostaticSum(std::uint32_t dimension, float spacing, float h) {
+    // fluidWarmCap's S: the pressure a (depth) changes a particle's velocity
+    // by a sum_n w_n dy_n^2 / r_n along the vertical (y; the lattice is the
+    // same along every axis).
+    const float invH2 = 1.0f / (h * h);
+    return sumOverLattice(dimension, spacing, h, 0.0f, [&](glm::vec3 o, float r2) {
+        return kernels::fluidWeight(r2, invH2) * o.y * o.y / std::sqrt(r2);
+    });
 }
 
 void initialiseFluid(FluidState& f) {
@@ -352,6 +375,7 @@ void initialiseFluid(FluidState& f) {
     f.h = def.smoothing > 0.0f ? def.smoothing
                                : (def.dimension == 2 ? kDefaultSmoothing2 : kDefaultSmoothing3) * def.spacing;
     f.restDensity = def.restDensity > 0.0f ? def.restDensity : latticeRestDensity(def.dimension, def.spacing, f.h);
+    f.hydrostaticSum = latticeHydrostaticSum(def.dimension, def.spacing, f.h);
     f.radius = 0.5f * def.spacing;
     buildWallTable(f);
     f.maxNeighbours = def.maxNeighbours > 0 ? def.maxNeighbours : std::numeric_limits<std::uint32_t>::max();

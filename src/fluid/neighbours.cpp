@@ -851,10 +851,15 @@ void setupConstraints(WorkerPool& pool, FluidState& f, float dt, bool countClosi
     c.first.resize(n);
     c.listChunk.resize(n);
     c.warmVelocity.resize(n);
-    // The warm start's scale (solver.cpp): the pressure is an impulse per
-    // substep, so it scales with the substep's length.
-    c.warmFraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
+    // The warm start's scale and cap (solver.cpp, fluidWarmCap): the last
+    // pressures are capped where they are kept, so the gathered and the
+    // scattered warm start read the same.
+    const WarmStart warm = warmStartOf(f, dt);
+    c.warmFraction = warm.fraction;
     const float warmFraction = c.warmFraction;
+    pool.forChunks(n, kParticleChunk, [&](std::size_t, std::size_t begin, std::size_t end) {
+        for (std::size_t i = begin; i < end; ++i) p.pressure[i] = kernels::fluidCappedPressure(p.pressure[i], warm.cap);
+    });
 
     const float h2 = f.h * f.h;
     const float invH2 = 1.0f / h2;

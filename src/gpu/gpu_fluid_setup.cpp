@@ -100,7 +100,7 @@ void reserveFluidLists(GpuFluidSetup& s, std::uint32_t entries) {
 }
 
 void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
-                       glm::vec3 velocityChange) {
+                       const FluidSetupParams& params) {
     const std::uint32_t n = in.count;
     const std::uint32_t dimension = grid.dimension;
     if (n != grid.count) {
@@ -121,8 +121,9 @@ void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid
 
     FluidSetupPush push{};
     push.cells = glm::ivec4(grid.cells, static_cast<int>(dimension));
-    push.velocityChange = glm::vec4(velocityChange, 0.0f);
+    push.velocityChange = glm::vec4(params.velocityChange, 0.0f);
     push.count = n;
+    push.warmCap = params.warmCap;
     // The inputs' writers (a step's pass, an upload) and the last reader of
     // the header, before the header is cleared and the gather reads.
     memoryBarrier(cmd, VK_PIPELINE_STAGE_COMPUTE_SHADER_BIT | VK_PIPELINE_STAGE_TRANSFER_BIT,
@@ -177,7 +178,7 @@ void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFlui
 
 void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
                       const FluidSetupParams& params) {
-    recordFluidGather(cmd, s, grid, in, params.velocityChange);
+    recordFluidGather(cmd, s, grid, in, params);
     recordFluidConstraints(cmd, s, grid, params);
 }
 

@@ -17,6 +17,7 @@
 #include "gpu/gpu_fluid_grid.h"
 #include "gpu/vulkan_buffer.h"
 #include "gpu/vulkan_pipeline.h"
+#include "kernels/fluid.glsl"
 #include "kernels/layout.glsl"
 
 #include <glm/glm.hpp>
@@ -38,6 +39,7 @@ struct FluidSetupParams {
     float relaxation = 1.0f;          // FluidDef::relaxation
     float dt = 1.0f / 60.0f;          // s, of the substep
     float warmFraction = 0.0f;        // Constraints::warmFraction
+    float warmCap = kernels::SD_FLUID_NO_WARM_CAP;  // m/s, fluid::WarmStart::cap: the gather caps the pressures
     /// The closing speeds too (constraint w), as the CPU's setup counts them
     /// in a step's first substep only; 0 in w otherwise.
     bool countClosing = true;
@@ -108,7 +110,7 @@ void recordFluidSetup(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid&
 /// gpu_fluid_contacts.h): the gather into grid order (it binds `in`, wall
 /// included), then the constraints (passes count, tiles and setup).
 void recordFluidGather(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid, const FluidSetupInputs& in,
-                       glm::vec3 velocityChange);
+                       const FluidSetupParams& params);
 void recordFluidConstraints(VkCommandBuffer cmd, GpuFluidSetup& s, const GpuFluidGrid& grid,
                             const FluidSetupParams& params);
 

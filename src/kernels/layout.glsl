@@ -253,7 +253,7 @@ struct FluidSetupHeader {
 };
 
 // The setup passes' push constants (std430: an ivec4, a vec4, four uints,
-// eight floats, a uint, a float, two uints). 96 bytes. The floats are the CPU setup's,
+// eight floats, a uint, a float, two uints, a float, three pads). 112 bytes. The floats are the CPU setup's,
 // computed the same way on the host (h2 = h h, invH2 = 1 / h2, ...).
 struct FluidSetupPush {
     ivec4 cells;          // xyz cells 2h wide per axis (z 1 in 2D), w = dimension
@@ -274,6 +274,10 @@ struct FluidSetupPush {
     uint tiles;           // workgroups of the count pass
     float relaxation;     // FluidDef::relaxation (fluidInverseMass)
     uint countClosing;    // 1: the closing speeds too (the step's first substep; setupConstraints)
+    float warmCap;        // m/s: the gather caps the last pressures at it (fluidWarmCap)
+    uint pad0;
+    uint pad1;
+    uint pad2;
 };
 
 // The constraint fluid's solve on the device (src/gpu/shaders/fluid_solve.comp,
@@ -511,7 +515,8 @@ static_assert(sizeof(FluidGridPush) == 48);
 static_assert(offsetof(FluidGridPush, cells) == 16);
 static_assert(offsetof(FluidGridPush, count) == 32);
 static_assert(offsetof(FluidGridPush, keyTotal) == 40);
-static_assert(sizeof(FluidSetupPush) == 96);
+static_assert(sizeof(FluidSetupPush) == 112);
+static_assert(offsetof(FluidSetupPush, warmCap) == 96);
 static_assert(offsetof(FluidSetupPush, count) == 32);
 static_assert(offsetof(FluidSetupPush, h) == 48);
 static_assert(offsetof(FluidSetupPush, restDensity) == 64);

@@ -280,11 +280,12 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
         fluid::Grid<3> grid;
         s.grid = placeDeviceGrid<3>(g, f, grid);
     }
-    // The warm start's share: as setupConstraints (neighbours.cpp) scales it.
-    const float warmFraction = f.lastSubstep > 0.0f ? f.def.warmStart * (dt / f.lastSubstep) : f.def.warmStart;
+    // The warm start's share and cap: as setupConstraints (neighbours.cpp) takes them.
+    const fluid::WarmStart warm = fluid::warmStartOf(f, dt);
+    const float warmFraction = warm.fraction;
     s.setup = {
         f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, fluid::sweepRelaxation(f.def), dt,
-        warmFraction};
+        warmFraction,       warm.cap};
     // The step's external force, as stepPasses applies it (fluid_step.cpp).
     s.setup.velocityChange = to3<D>(fluid::Vec<D>(glm::vec3(f.def.gravity) * dt));
     s.setup.countClosing = first;  // the substep rule's closing speeds (setupConstraints)
@@ -297,7 +298,7 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
 /// A substep's passes up to the solve's end.
 void recordSubstepSolve(VkCommandBuffer cmd, DeviceFluid& g, const SubstepParams& s) {
     gpu::recordFluidGrid(cmd, *g.grid, g.x, g.count, s.grid);
-    gpu::recordFluidGather(cmd, *g.setup, *g.grid, {&g.x, &g.v, &g.p, &g.wall, g.count}, s.setup.velocityChange);
+    gpu::recordFluidGather(cmd, *g.setup, *g.grid, {&g.x, &g.v, &g.p, &g.wall, g.count}, s.setup);
     gpu::recordFluidContactsFind(cmd, *g.contacts, *g.setup, g.wall, s.contacts, &gpu::gridOrder(*g.grid), &g.ids,
                                  &g.stills);
     gpu::recordFluidConstraints(cmd, *g.setup, *g.grid, s.setup);

@@ -91,8 +91,8 @@ protected:
         const gpu::FluidContactParams contactParams{c.f.radius, def.spacing, kFluidDt, def.friction, def.splitImpulse};
         gpu::submitOnce(*s.device, [&](VkCommandBuffer cmd) {
             gpu::recordFluidGrid(cmd, *parts.grid, device.x, device.n, device.gridParams);
-            gpu::recordFluidGather(cmd, *parts.setup, *parts.grid, {&device.x, &device.v, &device.p, &device.wall, device.n},
-                                   device.setupParams.velocityChange);
+            gpu::recordFluidGather(cmd, *parts.setup, *parts.grid,
+                                   {&device.x, &device.v, &device.p, &device.wall, device.n}, device.setupParams);
             gpu::recordFluidContactsFind(cmd, *parts.contacts, *parts.setup, device.wall, contactParams);
             gpu::recordFluidConstraints(cmd, *parts.setup, *parts.grid, device.setupParams);
         });

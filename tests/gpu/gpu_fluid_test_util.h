@@ -158,6 +158,7 @@ struct DeviceFluid {
         setupParams.relaxation = c.f.def.relaxation;
         setupParams.dt = kFluidDt;
         setupParams.warmFraction = c.f.constraints.warmFraction;
+        setupParams.warmCap = fluid::warmStartOf(c.f, kFluidDt).cap;
         setupParams.velocityChange = glm::vec3(glm::vec3(c.f.def.gravity) * kFluidDt);
         if (D == 2) setupParams.velocityChange.z = 0.0f;
         static_assert(sizeof(fluid::Vec<D>) == D * sizeof(float));  // tightly packed, as the device reads them

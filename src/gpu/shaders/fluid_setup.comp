@@ -74,7 +74,9 @@ void gather(uint i) {
         precise float v = velocities[d * from + a] + args.velocityChange[a];
         vs[d * i + a] = v;
     }
-    ps[i] = pressures[from];
+    // Capped where it is kept, as the CPU's setup does (fluidWarmCap): the
+    // setup's warm start and the solve read these.
+    ps[i] = fluidCappedPressure(pressures[from], args.warmCap);
 }
 
 // One particle's sums over its pairs (the CPU's PairSums).

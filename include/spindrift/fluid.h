@@ -132,6 +132,9 @@ struct FluidDef {
     float baumgarte = 0.05f;
     /// Fraction of the previous step's pressure applied before iterating
     /// (warm starting, in [0, 1]); lets few iterations carry a deep column.
+    /// Under gravity each particle's carried pressure is capped at five
+    /// times the hydrostatic pressure at the bottom of the fluid, so an
+    /// impact's pressure is not applied twice (docs/fluid.md).
     float warmStart = 1.0f;
     /// Most neighbours kept per particle, at most kFluidMaxNeighbours (1024);
     /// more are counted as overflows and ignored. 0 (the default): no limit

@@ -242,7 +242,7 @@ SD_FN float fluidPseudoBias(float bias) {
 // impact's is not: the pressure that stopped a drop in one substep is spent
 // once the drop has stopped, and re-applied it flings the drop's neighbours.
 // (30k dam break, t = 2.42 s: a drop running down the wall at 9 m/s lands
-// beside it, one particle carries 20 times the 99.9th percentile's pressure,
+// beside it, one particle carries 18 times the 99.9th percentile's pressure,
 // its warm start raises the fluid's kinetic energy by 13 % in one substep and
 // sends a neighbour off at 23.75 m/s; docs/fluid.md, "The warm start's cap".)
 // So each particle's warm-start pressure is capped at SD_FLUID_WARM_CAP_HEADS

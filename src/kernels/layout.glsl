@@ -253,8 +253,9 @@ struct FluidSetupHeader {
 };
 
 // The setup passes' push constants (std430: an ivec4, a vec4, four uints,
-// eight floats, a uint, a float, two uints, a float, three pads). 112 bytes. The floats are the CPU setup's,
-// computed the same way on the host (h2 = h h, invH2 = 1 / h2, ...).
+// eight floats, a uint, a float, two uints, a float, three pads). 112
+// bytes. The floats are the CPU setup's, computed the same way on the host
+// (h2 = h h, invH2 = 1 / h2, ...).
 struct FluidSetupPush {
     ivec4 cells;          // xyz cells 2h wide per axis (z 1 in 2D), w = dimension
     vec4 velocityChange;  // xyz m/s the gather adds to every velocity: gravity x dt (the step's external force)

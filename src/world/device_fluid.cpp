@@ -285,7 +285,8 @@ SubstepParams substepParams(DeviceFluid& g, const fluid::FluidState& f, float dt
     const float warmFraction = warm.fraction;
     s.setup = {
         f.subCellReadLimit, f.maxNeighbours, f.h, f.restDensity, f.def.baumgarte, fluid::sweepRelaxation(f.def), dt,
-        warmFraction,       warm.cap};
+        warmFraction};
+    s.setup.warmCap = warm.cap;
     // The step's external force, as stepPasses applies it (fluid_step.cpp).
     s.setup.velocityChange = to3<D>(fluid::Vec<D>(glm::vec3(f.def.gravity) * dt));
     s.setup.countClosing = first;  // the substep rule's closing speeds (setupConstraints)
